@@ -1,0 +1,29 @@
+#!/usr/bin/env bash
+# Installs what talus needs to build and test on Debian 12, from Debian's
+# packages only. Safe to run again: apt-get skips what is already installed.
+set -euo pipefail
+
+packages=(
+  libdeal.ii-dev   # meshes, finite elements, parameter files, PETSc/Trilinos/MPI through deal.II
+  libeigen3-dev    # small dense algebra: inertia tensors, local frames
+  libcgal-dev      # exact geometric predicates
+  libopenmpi-dev openmpi-bin  # MPI
+  numdiff          # compares test output with tolerances (deal.II's test macros need it)
+  cmake g++ make
+  ccache           # makes rebuilds in CI and at home cheap
+)
+
+missing=()
+for p in "${packages[@]}"; do
+  dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
+done
+if [ ${#missing[@]} -eq 0 ]; then
+  echo "install-dependencies: everything is already installed"
+  exit 0
+fi
+
+SUDO=""
+if [ "$(id -u)" -ne 0 ]; then SUDO="sudo"; fi
+export DEBIAN_FRONTEND=noninteractive
+$SUDO apt-get update -q
+$SUDO apt-get install -y -q --no-install-recommends "${missing[@]}"

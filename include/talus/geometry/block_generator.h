@@ -1,0 +1,83 @@
+#pragma once
+
+#include <talus/geometry/convex_polyhedron.h>
+#include <talus/geometry/region.h>
+
+#include <string>
+#include <vector>
+
+namespace talus
+{
+
+/// A family of parallel joints (geologists' convention, see normal_from_dip).
+struct JointSetSpec
+{
+  double dip = 0.0;           ///< degrees, 0..90
+  double dip_direction = 0.0; ///< degrees clockwise from north (+y), 0..360
+  double spacing = 1.0;       ///< m, normal distance between joints
+  Vec3 origin = Vec3::Zero(); ///< m, a point on one joint of the set
+  /// Number of joints starting at the one through `origin` and continuing
+  /// along the upward normal; 0 means the set fills the whole model.
+  unsigned int count = 0;
+  /// When set, only blocks whose centroid lies in `extent` are cut.
+  bool limited = false;
+  Box extent;
+};
+
+/// Settings shared by every cutting operation.
+struct CuttingSettings
+{
+  /// Vertices closer to a cutting plane than this times the block size
+  /// count as lying on it.
+  double relative_tolerance = 1e-9;
+  /// A cut that would leave a piece smaller than this (m^3) is not made; it
+  /// is counted and reported instead.
+  double minimum_volume = 0.0;
+};
+
+/// What happened while cutting: reported in the run summary.
+struct CuttingReport
+{
+  unsigned long cuts = 0;            ///< successful plane cuts
+  unsigned long skipped_slivers = 0; ///< cuts refused by the minimum volume
+  double smallest_refused = 0.0;     ///< m^3, smallest piece refused
+  Vec3 smallest_refused_at = Vec3::Zero();
+};
+
+/// Builds a block model: a starting brick (or polyhedron) cut by joint sets
+/// and single joints, with regions excavated. Only blocks that straddle a
+/// plane are cut, so each operation costs time linear in the number of blocks.
+class BlockGenerator
+{
+public:
+  BlockGenerator(ConvexPolyhedron start, CuttingSettings settings);
+
+  /// Cuts every block crossed by a joint of the set.
+  void cut_joint_set(const JointSetSpec& set);
+
+  /// Cuts every block crossed by one plane; with `extent`, only blocks whose
+  /// centroid lies in it.
+  void cut_plane(const Plane& plane, const Box* extent = nullptr);
+
+  /// Removes the part of the model inside `region`; blocks crossing its
+  /// boundary are cut so that exactly the region's volume goes. Returns the
+  /// volume removed (m^3).
+  double excavate(const ConvexRegion& region);
+
+  const std::vector<ConvexPolyhedron>& blocks() const { return blocks_; }
+  std::vector<ConvexPolyhedron> take_blocks() { return std::move(blocks_); }
+  const CuttingReport& report() const { return report_; }
+
+private:
+  double tolerance_for(const ConvexPolyhedron& block) const;
+  /// Cuts `block` by `plane`; false (block untouched) when the plane misses
+  /// it or a piece would be below the minimum volume.
+  bool try_cut(const ConvexPolyhedron& block, const Plane& plane, ConvexPolyhedron& above,
+               ConvexPolyhedron& below);
+
+  std::vector<ConvexPolyhedron> blocks_;
+  CuttingSettings settings_;
+  CuttingReport report_;
+};
+
+} // namespace talus

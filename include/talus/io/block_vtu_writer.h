@@ -1,0 +1,41 @@
+#pragma once
+
+#include <talus/model/block_model.h>
+
+#include <string>
+#include <utility>
+#include <vector>
+
+namespace talus
+{
+
+/// A per-block quantity to show in ParaView: `components` values per block.
+struct BlockField
+{
+  std::string name;
+  unsigned int components = 1;
+  std::vector<double> values;
+};
+
+/// Writes every block as one VTK polyhedron cell (type 42) of an XML
+/// unstructured grid, with block id, group and volume as cell data plus any
+/// `fields`. ParaView shows each block as a solid it can colour and select.
+void write_blocks_vtu(const std::string& path, const BlockModel& model,
+                      const std::vector<BlockField>& fields = {});
+
+/// The list of VTU files of a run with their times, written as a PVD file so
+/// that ParaView opens the run as one time series.
+class PvdSeries
+{
+public:
+  explicit PvdSeries(std::string pvd_path) : path_(std::move(pvd_path)) {}
+  /// Records `vtu_file` (relative to the PVD's folder) at `time` (s) and
+  /// rewrites the PVD file.
+  void add(double time, const std::string& vtu_file);
+
+private:
+  std::string path_;
+  std::vector<std::pair<double, std::string>> entries_;
+};
+
+} // namespace talus

@@ -1,0 +1,65 @@
+#pragma once
+
+#include <talus/geometry/block_generator.h>
+#include <talus/geometry/region.h>
+
+#include <string>
+#include <vector>
+
+namespace talus
+{
+
+/// One joint plane (as opposed to a set of parallel joints).
+struct JointPlaneSpec
+{
+  double dip = 0.0;           ///< degrees
+  double dip_direction = 0.0; ///< degrees clockwise from north
+  Vec3 origin = Vec3::Zero(); ///< m, a point on the plane
+  bool limited = false;       ///< only blocks with centroid in `extent`
+  Box extent;
+};
+
+/// A named selection: blocks whose centroid lies in `region` join `name`.
+struct GroupSpec
+{
+  std::string name;
+  Box region;
+};
+
+/// A region to remove from the model, with a description for the summary.
+struct ExcavationSpec
+{
+  ConvexRegion region;
+  std::string description;
+};
+
+struct OutputSettings
+{
+  std::string directory = "output"; ///< created if missing
+  std::string base_name = "talus";  ///< prefix of every file written
+  bool write_vtu = true;
+};
+
+/// Everything a parameter file describes, as plain values; built by
+/// read_scene(), which has already checked every value.
+struct Scene
+{
+  std::string parameter_file;
+  Box brick;
+  double density = 2600.0; ///< kg/m^3
+  CuttingSettings cutting;
+  std::vector<JointSetSpec> joint_sets;
+  std::vector<JointPlaneSpec> joint_planes;
+  std::vector<ExcavationSpec> excavations;
+  std::string default_group = "rock";
+  std::vector<GroupSpec> groups;
+  OutputSettings output;
+  /// The parameters as used, every entry with its value (defaults included).
+  std::string used_parameters;
+};
+
+/// Reads and checks a parameter file. Throws InputError with file, line,
+/// entry, the problem and what is allowed for the first thing wrong.
+Scene read_scene(const std::string& filename);
+
+} // namespace talus

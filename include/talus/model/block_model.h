@@ -1,0 +1,54 @@
+#pragma once
+
+#include <talus/geometry/convex_polyhedron.h>
+
+#include <array>
+#include <string>
+#include <vector>
+
+namespace talus
+{
+
+/// Every block of a scene in flat arrays (structure of arrays), indexed by
+/// block number. Geometry: vertices of block b are
+/// [vertex_start[b], vertex_start[b+1]); its faces are
+/// [face_start[b], face_start[b+1]); the vertex loop of face f is
+/// face_vertex[face_loop_start[f] .. face_loop_start[f+1]) and holds global
+/// vertex numbers.
+class BlockModel
+{
+public:
+  /// Appends a block; computes its mass properties. Returns its number.
+  unsigned int add_block(const ConvexPolyhedron& shape, unsigned int group);
+
+  unsigned int n_blocks() const { return static_cast<unsigned int>(volume.size()); }
+  unsigned int n_vertices() const { return static_cast<unsigned int>(vertex.size()); }
+  unsigned int n_faces() const { return static_cast<unsigned int>(face_normal.size()); }
+
+  /// Block b as a polyhedron object (for geometry work off the hot path).
+  ConvexPolyhedron polyhedron(unsigned int b) const;
+
+  /// Index of the group called `name`, added if new.
+  unsigned int group_index(const std::string& name);
+
+  double total_volume() const;
+
+  // Geometry.
+  std::vector<Vec3> vertex;                 ///< m
+  std::vector<unsigned int> vertex_start{0}; ///< per block, n_blocks + 1
+  std::vector<unsigned int> face_start{0};   ///< per block, n_blocks + 1
+  std::vector<unsigned int> face_loop_start{0}; ///< per face, n_faces + 1
+  std::vector<unsigned int> face_vertex;    ///< global vertex numbers
+  std::vector<Vec3> face_normal;            ///< outward unit normals
+
+  // Mass properties per block (unit density; multiply by density).
+  std::vector<double> volume;                   ///< m^3
+  std::vector<Vec3> centroid;                   ///< m
+  std::vector<std::array<double, 6>> inertia;   ///< m^5: xx, yy, zz, xy, yz, zx about centroid
+
+  // Selections.
+  std::vector<unsigned int> group;      ///< per block, index into group_names
+  std::vector<std::string> group_names;
+};
+
+} // namespace talus

@@ -1,0 +1,25 @@
+#pragma once
+
+#include <talus/io/scene.h>
+#include <talus/model/block_model.h>
+
+#include <string>
+#include <vector>
+
+namespace talus
+{
+
+/// What building the blocks did, for the run summary.
+struct BuildReport
+{
+  CuttingReport cutting;
+  std::vector<double> excavated_volume; ///< m^3, one per excavation in order
+};
+
+/// Builds the blocks a scene describes: the brick cut by every joint set,
+/// then every single joint, then the excavations removed; blocks are put
+/// into groups by centroid and every block is checked to be a closed convex
+/// polyhedron.
+BlockModel build_blocks(const Scene& scene, BuildReport& report);
+
+} // namespace talus

@@ -1,0 +1,221 @@
+#include "parameter_file.h"
+
+#include <deal.II/base/utilities.h>
+
+#include <algorithm>
+#include <fstream>
+#include <regex>
+#include <sstream>
+
+namespace talus
+{
+
+namespace
+{
+
+std::string trim(const std::string& s)
+{
+  const auto b = s.find_first_not_of(" \t\r");
+  if (b == std::string::npos)
+    return "";
+  return s.substr(b, s.find_last_not_of(" \t\r") - b + 1);
+}
+
+/// Collapses runs of blanks, as ParameterHandler does for names.
+std::string collapse(const std::string& s)
+{
+  std::string out;
+  for (char c : trim(s))
+    if (!(c == ' ' || c == '\t') || out.empty() || out.back() != ' ')
+      out.push_back(c == '\t' ? ' ' : c);
+  return out;
+}
+
+std::string join_path(const std::vector<std::string>& parts)
+{
+  std::string p;
+  for (const auto& s : parts)
+    p += (p.empty() ? "" : " / ") + s;
+  return p;
+}
+
+} // namespace
+
+ParameterFile::ParameterFile(const std::string& filename) : filename_(filename)
+{
+  std::ifstream in(filename);
+  if (!in)
+    throw InputError(filename + ": cannot open the parameter file (missing or unreadable)");
+  std::stringstream buffer;
+  buffer << in.rdbuf();
+  text_ = buffer.str();
+
+  // A lenient first pass that only records where things are; the real parse
+  // (and its error reporting) is ParameterHandler's.
+  std::istringstream lines(text_);
+  std::string line;
+  std::vector<std::string> stack;
+  for (unsigned int number = 1; std::getline(lines, line); ++number)
+  {
+    const auto hash = line.find('#');
+    const std::string code = trim(hash == std::string::npos ? line : line.substr(0, hash));
+    if (code.rfind("subsection ", 0) == 0 || code.rfind("subsection\t", 0) == 0)
+    {
+      stack.push_back(collapse(code.substr(10)));
+      if (stack.size() == 1 &&
+          std::find(sections_in_file_.begin(), sections_in_file_.end(), stack[0]) ==
+              sections_in_file_.end())
+        sections_in_file_.push_back(stack[0]);
+    }
+    else if (code == "end" && !stack.empty())
+      stack.pop_back();
+    else if (code.rfind("set ", 0) == 0 || code.rfind("set\t", 0) == 0)
+    {
+      const auto eq = code.find('=');
+      const std::string name = collapse(code.substr(4, eq == std::string::npos ? std::string::npos
+                                                                               : eq - 4));
+      const std::string value = eq == std::string::npos ? "" : trim(code.substr(eq + 1));
+      entry_line_.emplace(std::make_pair(join_path(stack), name), number);
+      line_entry_[number] = {join_path(stack), name, value};
+    }
+  }
+}
+
+void ParameterFile::enter(const std::string& section)
+{
+  handler_.enter_subsection(section);
+  current_.push_back(section);
+}
+
+void ParameterFile::leave()
+{
+  handler_.leave_subsection();
+  current_.pop_back();
+}
+
+std::string ParameterFile::path() const { return join_path(current_); }
+
+void ParameterFile::declare(const std::string& name, const std::string& default_value,
+                            const dealii::Patterns::PatternBase& pattern,
+                            const std::string& allowed, const std::string& documentation)
+{
+  handler_.declare_entry(name, default_value, pattern, documentation);
+  declared_[path()].emplace_back(name, allowed);
+}
+
+void ParameterFile::parse()
+{
+  try
+  {
+    std::istringstream in(text_);
+    handler_.parse_input(in, filename_);
+  }
+  catch (const dealii::ExceptionBase& e)
+  {
+    rethrow(e);
+  }
+}
+
+void ParameterFile::rethrow(const dealii::ExceptionBase& e) const
+{
+  std::ostringstream info;
+  e.print_info(info);
+  const std::string text = info.str();
+  std::smatch m;
+  unsigned int line = 0;
+  if (std::regex_search(text, m, std::regex("Line <([0-9]+)>")))
+    line = static_cast<unsigned int>(std::stoul(m[1]));
+  const std::string where = filename_ + (line > 0 ? ":" + std::to_string(line) : "");
+
+  // An entry whose value does not fit its pattern: name it and say what fits.
+  if (dynamic_cast<const dealii::ParameterHandler::ExcInvalidEntryForPattern*>(&e) &&
+      line_entry_.count(line))
+  {
+    const auto& entry = line_entry_.at(line);
+    std::string allowed;
+    if (declared_.count(entry[0]))
+      for (const auto& d : declared_.at(entry[0]))
+        if (d.first == entry[1])
+          allowed = d.second;
+    throw InputError::at(filename_, line, entry[0], entry[1], "value '" + entry[2] + "' is invalid",
+                         allowed);
+  }
+  // A line that names no declared entry, or is not a statement at all.
+  if (std::regex_search(text, m, std::regex("No entry with name <([^>]*)> was declared")))
+  {
+    const std::string section = line_entry_.count(line) ? line_entry_.at(line)[0] : "";
+    std::string names;
+    if (declared_.count(section))
+      for (const auto& d : declared_.at(section))
+        names += (names.empty() ? "" : ", ") + d.first;
+    throw InputError::at(filename_, line, section, m[1], "no such entry",
+                         names.empty() ? "" : "entries " + names);
+  }
+  if (std::regex_search(text, m, std::regex("no such subsection to be entered: ([^\n]*)")))
+  {
+    std::string names;
+    for (const auto& d : declared_)
+      if (!d.first.empty() && d.first.find(" / ") == std::string::npos)
+        names += (names.empty() ? "" : ", ") + d.first;
+    throw InputError(where + ": unknown subsection '" + trim(m[1]) + "'; allowed: " + names +
+                     " (numbered ones: 'Joint set N', 'Joint N', 'Excavation N', 'Group N')");
+  }
+  if (std::regex_search(text, m, std::regex("unequal numbers of 'subsection' and 'end'")))
+    throw InputError(filename_ +
+                     ": the numbers of 'subsection' and 'end' lines differ; every subsection "
+                     "must be closed by 'end'");
+  if (std::regex_search(text, m, std::regex("Line <[0-9]+> of file <[^>]*>: ?([\\s\\S]*)")))
+    throw InputError(where + ": " + trim(std::regex_replace(std::string(m[1]), std::regex("\\s+"),
+                                                             " ")) +
+                     "; allowed: 'subsection NAME', 'set ENTRY = VALUE', 'end', comments after #");
+  throw InputError(filename_ + ": " + trim(text));
+}
+
+unsigned int ParameterFile::line_of(const std::string& p, const std::string& name) const
+{
+  const auto it = entry_line_.find({p, name});
+  return it == entry_line_.end() ? 0 : it->second;
+}
+
+std::string ParameterFile::get(const std::string& name) const
+{
+  return handler_.get(name);
+}
+
+double ParameterFile::get_double(const std::string& name) const
+{
+  return handler_.get_double(name);
+}
+
+long ParameterFile::get_integer(const std::string& name) const
+{
+  return handler_.get_integer(name);
+}
+
+bool ParameterFile::get_bool(const std::string& name) const
+{
+  return handler_.get_bool(name);
+}
+
+Vec3 ParameterFile::get_vec3(const std::string& name) const
+{
+  const auto parts = dealii::Utilities::split_string_list(get(name), ',');
+  return Vec3(std::stod(parts.at(0)), std::stod(parts.at(1)), std::stod(parts.at(2)));
+}
+
+InputError ParameterFile::error(const std::string& name, const std::string& problem,
+                                const std::string& allowed) const
+{
+  const unsigned int line = line_of(path(), name);
+  return InputError::at(filename_, line, path(), name,
+                        line == 0 ? problem + " (default value)" : problem, allowed);
+}
+
+std::string ParameterFile::used_parameters() const
+{
+  std::ostringstream out;
+  handler_.print_parameters(out, dealii::ParameterHandler::PRM);
+  return out.str();
+}
+
+} // namespace talus

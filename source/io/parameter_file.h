@@ -1,0 +1,74 @@
+#pragma once
+
+// Private to source/: wraps deal.II's ParameterHandler so that every error
+// reaches the user as one InputError naming file, line, entry and what is
+// allowed. Kept out of include/ so that talus headers stay free of deal.II.
+
+#include <talus/base/exceptions.h>
+#include <talus/geometry/plane.h>
+
+#include <deal.II/base/parameter_handler.h>
+
+#include <map>
+#include <string>
+#include <vector>
+
+namespace talus
+{
+
+class ParameterFile
+{
+public:
+  /// Reads the file's text and notes where every subsection and entry is.
+  explicit ParameterFile(const std::string& filename);
+
+  /// Names of the top-level subsections the file uses, in order of first use.
+  const std::vector<std::string>& sections_in_file() const { return sections_in_file_; }
+
+  /// Enters/leaves a subsection for declarations and reads.
+  void enter(const std::string& section);
+  void leave();
+
+  /// Declares an entry; `allowed` says in words what values are accepted.
+  void declare(const std::string& name, const std::string& default_value,
+               const dealii::Patterns::PatternBase& pattern, const std::string& allowed,
+               const std::string& documentation);
+
+  /// Parses the file; converts every deal.II parse error into an InputError.
+  void parse();
+
+  std::string get(const std::string& name) const;
+  double get_double(const std::string& name) const;
+  long get_integer(const std::string& name) const;
+  bool get_bool(const std::string& name) const;
+  Vec3 get_vec3(const std::string& name) const;
+
+  /// An InputError about an entry of the current subsection, at its line in
+  /// the file (or naming the default when the file does not set it).
+  InputError error(const std::string& name, const std::string& problem,
+                   const std::string& allowed) const;
+
+  /// The parameters as used, in deal.II's .prm format.
+  std::string used_parameters() const;
+
+  const std::string& filename() const { return filename_; }
+
+private:
+  std::string path() const;
+  unsigned int line_of(const std::string& path, const std::string& name) const;
+  [[noreturn]] void rethrow(const dealii::ExceptionBase& e) const;
+
+  std::string filename_;
+  std::string text_;
+  dealii::ParameterHandler handler_;
+  std::vector<std::string> current_;
+  std::vector<std::string> sections_in_file_;
+  /// (subsection path, entry) -> line of its `set` statement.
+  std::map<std::pair<std::string, std::string>, unsigned int> entry_line_;
+  /// line -> (subsection path, entry, value) for every `set` statement.
+  std::map<unsigned int, std::vector<std::string>> line_entry_;
+  /// subsection path -> entries declared there, with what they allow.
+  std::map<std::string, std::vector<std::pair<std::string, std::string>>> declared_;
+};
+
+} // namespace talus

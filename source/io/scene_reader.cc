@@ -1,0 +1,287 @@
+#include <talus/io/scene.h>
+
+#include "parameter_file.h"
+
+#include <regex>
+
+namespace talus
+{
+
+namespace
+{
+
+namespace P = dealii::Patterns;
+
+const std::string vec3_allowed = "three numbers separated by commas, e.g. 0, 0, 0";
+
+P::List vec3_pattern() { return P::List(P::Double(), 3, 3, ","); }
+
+/// Reads "Corner min"/"Corner max" of the current subsection as a box and
+/// checks that it has positive size in every direction.
+Box read_box(const ParameterFile& prm, const std::string& lo_name, const std::string& hi_name)
+{
+  Box b{prm.get_vec3(lo_name), prm.get_vec3(hi_name)};
+  for (unsigned int d = 0; d < 3; ++d)
+    if (!(b.hi[d] > b.lo[d]))
+      throw prm.error(hi_name, "must exceed '" + lo_name + "' in every coordinate",
+                      "a box with hi > lo in x, y and z");
+  return b;
+}
+
+void declare_box(ParameterFile& prm, const std::string& lo_name, const std::string& hi_name,
+                 const std::string& what)
+{
+  prm.declare(lo_name, "0, 0, 0", vec3_pattern(), vec3_allowed, "Lower corner (m) of " + what);
+  prm.declare(hi_name, "1, 1, 1", vec3_pattern(), vec3_allowed, "Upper corner (m) of " + what);
+}
+
+// ---- Model: the starting brick and how it is cut -------------------------
+
+void declare_model(ParameterFile& prm)
+{
+  prm.enter("Model");
+  declare_box(prm, "Brick min", "Brick max", "the brick all blocks are cut from");
+  prm.declare("Default group", "rock", P::Anything(), "any name",
+              "Group of blocks that no 'Group N' region selects.");
+  prm.declare("Cutting tolerance", "1e-9", P::Double(0.0, 1e-3), "a number in [0, 1e-3]",
+              "Vertices closer to a cutting plane than this times the block size lie on it.");
+  prm.declare("Minimum block volume", "0", P::Double(0.0), "a number >= 0 (m^3)",
+              "A cut that would leave a smaller piece is not made, and is reported.");
+  prm.leave();
+}
+
+void parse_model(ParameterFile& prm, Scene& scene)
+{
+  prm.enter("Model");
+  scene.brick = read_box(prm, "Brick min", "Brick max");
+  scene.default_group = prm.get("Default group");
+  scene.cutting.relative_tolerance = prm.get_double("Cutting tolerance");
+  scene.cutting.minimum_volume = prm.get_double("Minimum block volume");
+  prm.leave();
+}
+
+// ---- Material ------------------------------------------------------------
+
+void declare_material(ParameterFile& prm)
+{
+  prm.enter("Material");
+  prm.declare("Density", "2600", P::Double(), "a number > 0 (kg/m^3)", "Rock density (kg/m^3).");
+  prm.leave();
+}
+
+void parse_material(ParameterFile& prm, Scene& scene)
+{
+  prm.enter("Material");
+  scene.density = prm.get_double("Density");
+  if (!(scene.density > 0.0))
+    throw prm.error("Density", "must be positive", "a number > 0 (kg/m^3)");
+  prm.leave();
+}
+
+// ---- Joint sets and single joints ------------------------------------------
+
+void declare_orientation(ParameterFile& prm)
+{
+  prm.declare("Dip", "0", P::Double(0.0, 90.0), "a number from 0 to 90 (degrees)",
+              "Dip angle of the joint plane from horizontal (degrees).");
+  prm.declare("Dip direction", "0", P::Double(0.0, 360.0), "a number from 0 to 360 (degrees)",
+              "Azimuth of the down-dip line, clockwise from north (+y), degrees.");
+  prm.declare("Origin", "0, 0, 0", vec3_pattern(), vec3_allowed, "A point on the plane (m).");
+  prm.declare("Limit to extent", "false", P::Bool(), "true or false",
+              "Cut only blocks whose centroid lies in the extent box.");
+  declare_box(prm, "Extent min", "Extent max", "the region the joints cut");
+}
+
+void declare_joint_set(ParameterFile& prm, const std::string& section)
+{
+  prm.enter(section);
+  declare_orientation(prm);
+  prm.declare("Spacing", "1", P::Double(), "a number > 0 (m)",
+              "Normal distance between neighbouring joints of the set (m).");
+  prm.declare("Number of joints", "0", P::Integer(0), "an integer >= 0 (0: unlimited)",
+              "Joints from the one through Origin along the upward normal; 0 fills the model.");
+  prm.leave();
+}
+
+void declare_joint(ParameterFile& prm, const std::string& section)
+{
+  prm.enter(section);
+  declare_orientation(prm);
+  prm.leave();
+}
+
+template <typename Spec>
+void parse_orientation(ParameterFile& prm, Spec& spec)
+{
+  spec.dip = prm.get_double("Dip");
+  spec.dip_direction = prm.get_double("Dip direction");
+  spec.origin = prm.get_vec3("Origin");
+  spec.limited = prm.get_bool("Limit to extent");
+  if (spec.limited)
+    spec.extent = read_box(prm, "Extent min", "Extent max");
+}
+
+JointSetSpec parse_joint_set(ParameterFile& prm, const std::string& section)
+{
+  prm.enter(section);
+  JointSetSpec set;
+  parse_orientation(prm, set);
+  set.spacing = prm.get_double("Spacing");
+  if (!(set.spacing > 0.0))
+    throw prm.error("Spacing", "must be positive", "a number > 0 (m)");
+  set.count = static_cast<unsigned int>(prm.get_integer("Number of joints"));
+  prm.leave();
+  return set;
+}
+
+JointPlaneSpec parse_joint(ParameterFile& prm, const std::string& section)
+{
+  prm.enter(section);
+  JointPlaneSpec joint;
+  parse_orientation(prm, joint);
+  prm.leave();
+  return joint;
+}
+
+// ---- Excavations -----------------------------------------------------------
+
+void declare_excavation(ParameterFile& prm, const std::string& section)
+{
+  prm.enter(section);
+  prm.declare("Shape", "box", P::Selection("box|cylinder"), "box or cylinder",
+              "A box, or a cylinder approximated by a prism with 'Sides' faces (a tunnel).");
+  declare_box(prm, "Corner min", "Corner max", "the box to remove");
+  prm.declare("Axis start", "0, 0, 0", vec3_pattern(), vec3_allowed,
+              "Centre of one end of the cylinder (m).");
+  prm.declare("Axis end", "0, 1, 0", vec3_pattern(), vec3_allowed,
+              "Centre of the other end of the cylinder (m).");
+  prm.declare("Radius", "1", P::Double(), "a number > 0 (m)",
+              "Radius of the circle the prism is inscribed in (m).");
+  prm.declare("Sides", "16", P::Integer(3, 1024), "an integer from 3 to 1024",
+              "Number of flat faces around the cylinder.");
+  prm.leave();
+}
+
+ExcavationSpec parse_excavation(ParameterFile& prm, const std::string& section)
+{
+  prm.enter(section);
+  ExcavationSpec e;
+  if (prm.get("Shape") == "box")
+  {
+    e.region = ConvexRegion::box(read_box(prm, "Corner min", "Corner max"));
+    e.description = section + ": box";
+  }
+  else
+  {
+    const Vec3 a = prm.get_vec3("Axis start"), b = prm.get_vec3("Axis end");
+    const double radius = prm.get_double("Radius");
+    if (!(radius > 0.0))
+      throw prm.error("Radius", "must be positive", "a number > 0 (m)");
+    if (!((b - a).norm() > 0.0))
+      throw prm.error("Axis end", "coincides with 'Axis start'", "a point other than Axis start");
+    const unsigned int sides = static_cast<unsigned int>(prm.get_integer("Sides"));
+    e.region = ConvexRegion::cylinder(a, b, radius, sides);
+    e.description = section + ": cylinder of radius " + prm.get("Radius") + " m, " +
+                    std::to_string(sides) + " sides";
+  }
+  prm.leave();
+  return e;
+}
+
+// ---- Groups ------------------------------------------------------------------
+
+void declare_group(ParameterFile& prm, const std::string& section)
+{
+  prm.enter(section);
+  prm.declare("Name", "group", P::Anything(), "any name", "Name given to the selected blocks.");
+  declare_box(prm, "Corner min", "Corner max", "the region whose blocks join the group");
+  prm.leave();
+}
+
+GroupSpec parse_group(ParameterFile& prm, const std::string& section)
+{
+  prm.enter(section);
+  GroupSpec g{prm.get("Name"), read_box(prm, "Corner min", "Corner max")};
+  prm.leave();
+  return g;
+}
+
+// ---- Output ------------------------------------------------------------------
+
+void declare_output(ParameterFile& prm)
+{
+  prm.enter("Output");
+  prm.declare("Directory", "output", P::Anything(), "a writable folder (created if missing)",
+              "Folder for every file the run writes.");
+  prm.declare("Base name", "talus", P::Anything(), "a file name prefix",
+              "Prefix of the files written.");
+  prm.declare("Write VTU", "true", P::Bool(), "true or false", "Write ParaView files.");
+  prm.leave();
+}
+
+void parse_output(ParameterFile& prm, Scene& scene)
+{
+  prm.enter("Output");
+  scene.output.directory = prm.get("Directory");
+  scene.output.base_name = prm.get("Base name");
+  if (scene.output.base_name.empty() ||
+      scene.output.base_name.find('/') != std::string::npos)
+    throw prm.error("Base name", "must be a plain file name", "a non-empty name without '/'");
+  scene.output.write_vtu = prm.get_bool("Write VTU");
+  prm.leave();
+}
+
+} // namespace
+
+Scene read_scene(const std::string& filename)
+{
+  ParameterFile prm(filename);
+
+  // Numbered subsections exist exactly as the file names them.
+  const std::regex numbered("(Joint set|Joint|Excavation|Group) ([0-9]+)");
+  std::vector<std::pair<std::string, std::string>> numbered_sections; // kind, name
+  for (const std::string& s : prm.sections_in_file())
+  {
+    std::smatch m;
+    if (std::regex_match(s, m, numbered))
+      numbered_sections.emplace_back(m[1], s);
+  }
+
+  declare_model(prm);
+  declare_material(prm);
+  declare_output(prm);
+  for (const auto& [kind, name] : numbered_sections)
+  {
+    if (kind == "Joint set")
+      declare_joint_set(prm, name);
+    else if (kind == "Joint")
+      declare_joint(prm, name);
+    else if (kind == "Excavation")
+      declare_excavation(prm, name);
+    else
+      declare_group(prm, name);
+  }
+
+  prm.parse();
+
+  Scene scene;
+  scene.parameter_file = filename;
+  parse_model(prm, scene);
+  parse_material(prm, scene);
+  parse_output(prm, scene);
+  for (const auto& [kind, name] : numbered_sections)
+  {
+    if (kind == "Joint set")
+      scene.joint_sets.push_back(parse_joint_set(prm, name));
+    else if (kind == "Joint")
+      scene.joint_planes.push_back(parse_joint(prm, name));
+    else if (kind == "Excavation")
+      scene.excavations.push_back(parse_excavation(prm, name));
+    else
+      scene.groups.push_back(parse_group(prm, name));
+  }
+  scene.used_parameters = prm.used_parameters();
+  return scene;
+}
+
+} // namespace talus

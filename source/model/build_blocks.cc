@@ -1,0 +1,39 @@
+#include <talus/model/build_blocks.h>
+
+namespace talus
+{
+
+BlockModel build_blocks(const Scene& scene, BuildReport& report)
+{
+  BlockGenerator generator(ConvexPolyhedron::box(scene.brick.lo, scene.brick.hi), scene.cutting);
+  for (const JointSetSpec& set : scene.joint_sets)
+    generator.cut_joint_set(set);
+  for (const JointPlaneSpec& joint : scene.joint_planes)
+    generator.cut_plane(Plane::through(joint.origin, normal_from_dip(joint.dip, joint.dip_direction)),
+                        joint.limited ? &joint.extent : nullptr);
+  for (const ExcavationSpec& excavation : scene.excavations)
+    report.excavated_volume.push_back(generator.excavate(excavation.region));
+  report.cutting = generator.report();
+
+  BlockModel model;
+  const unsigned int default_group = model.group_index(scene.default_group);
+  std::vector<unsigned int> group_of_region;
+  for (const GroupSpec& g : scene.groups)
+    group_of_region.push_back(model.group_index(g.name));
+
+  const std::vector<ConvexPolyhedron>& blocks = generator.blocks();
+  for (std::size_t i = 0; i < blocks.size(); ++i)
+  {
+    blocks[i].validate("block " + std::to_string(i), 1e-6);
+    const unsigned int b = model.add_block(blocks[i], default_group);
+    for (std::size_t r = 0; r < scene.groups.size(); ++r)
+      if (scene.groups[r].region.contains(model.centroid[b]))
+      {
+        model.group[b] = group_of_region[r];
+        break;
+      }
+  }
+  return model;
+}
+
+} // namespace talus
