@@ -8,6 +8,7 @@
 #include <talus/model/build_blocks.h>
 
 #include <chrono>
+#include <filesystem>
 #include <cstdio>
 #include <cstring>
 #include <iostream>
@@ -26,8 +27,7 @@ int run(const std::string& filename)
   const auto start = std::chrono::steady_clock::now();
   talus::Scene scene = talus::read_scene(filename);
 
-  // Everything that can be checked is checked before any work is done.
-  talus::prepare_output_directory(scene.output.directory);
+  // read_scene has checked every value and prepared the output folder.
   const std::string prefix = scene.output.directory + "/" + scene.output.base_name;
   talus::write_file_atomically(prefix + "_used_parameters.prm",
                                [&](std::ostream& out) { out << scene.used_parameters; });
@@ -36,7 +36,7 @@ int run(const std::string& filename)
   const talus::BlockModel model = talus::build_blocks(scene, report);
   const auto built = std::chrono::steady_clock::now();
 
-  std::printf("talus: %s\n", filename.c_str());
+  std::printf("talus: scene %s\n", std::filesystem::path(filename).filename().c_str());
   std::printf("Blocks:       %u\n", model.n_blocks());
   std::printf("Faces:        %u\n", model.n_faces());
   std::printf("Vertices:     %u\n", model.n_vertices());

@@ -164,10 +164,16 @@ void ParameterFile::rethrow(const dealii::ExceptionBase& e) const
     throw InputError(filename_ +
                      ": the numbers of 'subsection' and 'end' lines differ; every subsection "
                      "must be closed by 'end'");
-  if (std::regex_search(text, m, std::regex("Line <[0-9]+> of file <[^>]*>: ?([\\s\\S]*)")))
-    throw InputError(where + ": " + trim(std::regex_replace(std::string(m[1]), std::regex("\\s+"),
-                                                             " ")) +
-                     "; allowed: 'subsection NAME', 'set ENTRY = VALUE', 'end', comments after #");
+  if (line > 0)
+  {
+    std::istringstream lines(text_);
+    std::string content;
+    for (unsigned int n = 0; n < line && std::getline(lines, content); ++n)
+    {
+    }
+    throw InputError(where + ": cannot read the line '" + trim(content) +
+                     "'; allowed: 'subsection NAME', 'set ENTRY = VALUE', 'end', comments after #");
+  }
   throw InputError(filename_ + ": " + trim(text));
 }
 

@@ -1,8 +1,12 @@
 #include <talus/io/scene.h>
 
+#include <talus/io/file_output.h>
+
 #include "parameter_file.h"
 
+#include <algorithm>
 #include <regex>
+#include <tuple>
 
 namespace talus
 {
@@ -223,6 +227,14 @@ void parse_output(ParameterFile& prm, Scene& scene)
 {
   prm.enter("Output");
   scene.output.directory = prm.get("Directory");
+  try
+  {
+    prepare_output_directory(scene.output.directory);
+  }
+  catch (const InputError& e)
+  {
+    throw prm.error("Directory", e.what(), "a folder that can be created and written");
+  }
   scene.output.base_name = prm.get("Base name");
   if (scene.output.base_name.empty() ||
       scene.output.base_name.find('/') != std::string::npos)
@@ -239,13 +251,18 @@ Scene read_scene(const std::string& filename)
 
   // Numbered subsections exist exactly as the file names them.
   const std::regex numbered("(Joint set|Joint|Excavation|Group) ([0-9]+)");
-  std::vector<std::pair<std::string, std::string>> numbered_sections; // kind, name
+  std::vector<std::tuple<std::string, long, std::string>> found; // kind, number, name
   for (const std::string& s : prm.sections_in_file())
   {
     std::smatch m;
     if (std::regex_match(s, m, numbered))
-      numbered_sections.emplace_back(m[1], s);
+      found.emplace_back(m[1], std::stol(m[2]), s);
   }
+  // Joint set 2 is cut after Joint set 1 whatever the order in the file.
+  std::sort(found.begin(), found.end());
+  std::vector<std::pair<std::string, std::string>> numbered_sections; // kind, name
+  for (const auto& [kind, number, name] : found)
+    numbered_sections.emplace_back(kind, name);
 
   declare_model(prm);
   declare_material(prm);
