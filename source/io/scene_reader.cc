@@ -227,14 +227,6 @@ void parse_output(ParameterFile& prm, Scene& scene)
 {
   prm.enter("Output");
   scene.output.directory = prm.get("Directory");
-  try
-  {
-    prepare_output_directory(scene.output.directory);
-  }
-  catch (const InputError& e)
-  {
-    throw prm.error("Directory", e.what(), "a folder that can be created and written");
-  }
   scene.output.base_name = prm.get("Base name");
   if (scene.output.base_name.empty() ||
       scene.output.base_name.find('/') != std::string::npos)
@@ -298,6 +290,19 @@ Scene read_scene(const std::string& filename)
       scene.groups.push_back(parse_group(prm, name));
   }
   scene.used_parameters = prm.used_parameters();
+
+  // Last, once every value is known to be good: nothing is created on disk
+  // for a file that is refused.
+  prm.enter("Output");
+  try
+  {
+    prepare_output_directory(scene.output.directory);
+  }
+  catch (const InputError& e)
+  {
+    throw prm.error("Directory", e.what(), "a folder that can be created and written");
+  }
+  prm.leave();
   return scene;
 }
 
