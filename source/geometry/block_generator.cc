@@ -115,7 +115,12 @@ double BlockGenerator::excavate(const ConvexRegion& region)
   for (ConvexPolyhedron& block : blocks_)
   {
     const double tol = tolerance_for(block);
-    if (!block.bounding_box().overlaps(region.bounds, tol))
+    bool apart = !block.bounding_box().overlaps(region.bounds, -tol);
+    // A block wholly outside one face of the region (touching it at most)
+    // is not cut at all.
+    for (std::size_t f = 0; f < region.planes.size() && !apart; ++f)
+      apart = block.extent_along(region.planes[f]).first >= -tol;
+    if (apart)
     {
       result.push_back(std::move(block));
       continue;

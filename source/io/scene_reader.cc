@@ -4,6 +4,8 @@
 
 #include "parameter_file.h"
 
+#include <cmath>
+
 #include <algorithm>
 #include <regex>
 #include <tuple>
@@ -235,9 +237,125 @@ void parse_output(ParameterFile& prm, Scene& scene)
   prm.leave();
 }
 
+// ---- Solver, contacts and joints ------------------------------------------
+
+void declare_solver(ParameterFile& prm)
+{
+  prm.enter("Solver");
+  prm.declare("Mode", "static", P::Selection("static|dynamic"), "static or dynamic",
+              "static: damped to equilibrium; dynamic: undamped motion in time.");
+  prm.declare("Steps", "0", P::Integer(0), "an integer >= 0",
+              "Step limit; 0 builds and writes the model only.");
+  prm.declare("Target ratio", "1e-5", P::Double(0.0), "a number >= 0",
+              "A static run stops when the unbalanced-force ratio falls below this (0: never).");
+  prm.declare("Local damping", "0.8", P::Double(0.0, 1.0), "a number from 0 to 1",
+              "Local damping coefficient of static runs (eq. 79).");
+  prm.declare("Density scaling", "true", P::Bool(), "true or false",
+              "Static runs: raise inertial masses to the mean block mass (faster convergence).");
+  prm.declare("Rotation", "isotropic", P::Selection("isotropic|principal"),
+              "isotropic or principal",
+              "isotropic: the manual's approximate inertia (eq. 46); principal: full inertia "
+              "with Euler's equations (eqs. 45, 49), for dynamics.");
+  prm.declare("Time step fraction", "0.1", P::Double(0.0, 1.0), "a number in (0, 1]",
+              "frac of eq. 87.");
+  prm.declare("Time step", "0", P::Double(0.0), "a number >= 0 (s; 0: automatic)",
+              "Fixed time step (s); 0 uses eq. 87.");
+  prm.declare("Gravity", "0, 0, -9.81", vec3_pattern(), vec3_allowed, "Gravity (m/s^2).");
+  prm.declare("Fixed groups", "", P::List(P::Anything()), "group names separated by commas",
+              "Blocks of these groups do not move.");
+  prm.declare("History blocks", "", P::List(P::Integer(0)), "block numbers separated by commas",
+              "Blocks whose displacement and velocity are written to the history.");
+  prm.declare("History interval", "10", P::Integer(1), "an integer >= 1", "Steps between history rows.");
+  prm.declare("Output interval", "0", P::Integer(0), "an integer >= 0 (0: first and last)",
+              "Steps between VTU files.");
+  prm.leave();
+
+  prm.enter("Contacts");
+  prm.declare("Tolerance", "0", P::Double(0.0), "a number >= 0 (m; 0: 0.5 % of the mean block size)",
+              "CTOL: contacts are made within this gap and deleted beyond it (m).");
+  prm.declare("Update period", "10", P::Integer(1), "an integer >= 1",
+              "Steps between common-plane and sub-contact updates.");
+  prm.declare("Rotation constant", "0", P::Double(), "a number (m)", "K_T of eq. 12 (m).");
+  prm.declare("Point area fraction", "0.01", P::Double(0.0), "a number > 0",
+              "Area of a vertex or edge sub-contact, as a fraction of volume^(2/3) of the smaller block.");
+  prm.leave();
+
+  prm.enter("Joint properties");
+  prm.declare("Normal stiffness", "1e10", P::Double(), "a number > 0 (Pa/m)", "kn (Pa/m).");
+  prm.declare("Shear stiffness", "1e10", P::Double(), "a number > 0 (Pa/m)", "ks (Pa/m).");
+  prm.declare("Friction angle", "30", P::Double(0.0, 89.999), "a number from 0 to less than 90 (degrees)",
+              "phi (degrees).");
+  prm.declare("Cohesion", "0", P::Double(0.0), "a number >= 0 (Pa)", "c (Pa), lost at failure.");
+  prm.declare("Tensile strength", "0", P::Double(0.0), "a number >= 0 (Pa)",
+              "T (Pa), lost at failure.");
+  prm.declare("Dilation angle", "0", P::Double(0.0, 89.999), "a number from 0 to less than 90 (degrees)",
+              "psi (degrees), active while slipping.");
+  prm.declare("Dilation limit", "0", P::Double(0.0), "a number >= 0 (m; 0: no limit)",
+              "Shear displacement beyond which dilation stops (m).");
+  prm.leave();
+}
+
+void parse_solver(ParameterFile& prm, Scene& scene)
+{
+  SolverSettings& s = scene.solver;
+  prm.enter("Solver");
+  s.dynamic = prm.get("Mode") == "dynamic";
+  s.steps = static_cast<unsigned long>(prm.get_integer("Steps"));
+  s.target_ratio = prm.get_double("Target ratio");
+  s.local_damping = s.dynamic ? 0.0 : prm.get_double("Local damping");
+  s.density_scaling = prm.get_bool("Density scaling");
+  s.principal_inertia = prm.get("Rotation") == "principal";
+  s.time_step_fraction = prm.get_double("Time step fraction");
+  if (!(s.time_step_fraction > 0.0))
+    throw prm.error("Time step fraction", "must be positive", "a number in (0, 1]");
+  s.time_step = prm.get_double("Time step");
+  s.gravity = prm.get_vec3("Gravity");
+  for (const std::string& g : dealii::Utilities::split_string_list(prm.get("Fixed groups")))
+  {
+    bool known = g == scene.default_group;
+    for (const GroupSpec& spec : scene.groups)
+      known |= spec.name == g;
+    if (!known)
+      throw prm.error("Fixed groups", "names the unknown group '" + g + "'",
+                      "the default group '" + scene.default_group + "' or a 'Group N' name");
+    scene.fixed_groups.push_back(g);
+  }
+  for (const std::string& b : dealii::Utilities::split_string_list(prm.get("History blocks")))
+    s.history_blocks.push_back(static_cast<unsigned int>(std::stoul(b)));
+  s.history_interval = static_cast<unsigned int>(prm.get_integer("History interval"));
+  s.output_interval = static_cast<unsigned long>(prm.get_integer("Output interval"));
+  prm.leave();
+
+  prm.enter("Contacts");
+  s.contact.tolerance = prm.get_double("Tolerance");
+  if (s.contact.tolerance == 0.0)
+    s.contact.tolerance = 0.005 * std::cbrt(scene.brick.volume()); // refined once blocks exist
+  s.contact.update_period = static_cast<unsigned int>(prm.get_integer("Update period"));
+  s.contact.rotation_constant = prm.get_double("Rotation constant");
+  s.contact.point_area_fraction = prm.get_double("Point area fraction");
+  if (!(s.contact.point_area_fraction > 0.0))
+    throw prm.error("Point area fraction", "must be positive", "a number > 0");
+  prm.leave();
+
+  prm.enter("Joint properties");
+  JointProperties& j = s.joint;
+  j.normal_stiffness = prm.get_double("Normal stiffness");
+  if (!(j.normal_stiffness > 0.0))
+    throw prm.error("Normal stiffness", "must be positive", "a number > 0 (Pa/m)");
+  j.shear_stiffness = prm.get_double("Shear stiffness");
+  if (!(j.shear_stiffness > 0.0))
+    throw prm.error("Shear stiffness", "must be positive", "a number > 0 (Pa/m)");
+  j.friction_angle = prm.get_double("Friction angle");
+  j.cohesion = prm.get_double("Cohesion");
+  j.tensile_strength = prm.get_double("Tensile strength");
+  j.dilation_angle = prm.get_double("Dilation angle");
+  j.dilation_limit = prm.get_double("Dilation limit");
+  prm.leave();
+}
+
 } // namespace
 
-Scene read_scene(const std::string& filename)
+Scene read_scene(const std::string& filename, bool prepare_output)
 {
   ParameterFile prm(filename);
 
@@ -259,6 +377,7 @@ Scene read_scene(const std::string& filename)
   declare_model(prm);
   declare_material(prm);
   declare_output(prm);
+  declare_solver(prm);
   for (const auto& [kind, name] : numbered_sections)
   {
     if (kind == "Joint set")
@@ -289,20 +408,24 @@ Scene read_scene(const std::string& filename)
     else
       scene.groups.push_back(parse_group(prm, name));
   }
+  parse_solver(prm, scene);
   scene.used_parameters = prm.used_parameters();
 
   // Last, once every value is known to be good: nothing is created on disk
   // for a file that is refused.
-  prm.enter("Output");
-  try
+  if (prepare_output)
   {
-    prepare_output_directory(scene.output.directory);
+    prm.enter("Output");
+    try
+    {
+      prepare_output_directory(scene.output.directory);
+    }
+    catch (const InputError& e)
+    {
+      throw prm.error("Directory", e.what(), "a folder that can be created and written");
+    }
+    prm.leave();
   }
-  catch (const InputError& e)
-  {
-    throw prm.error("Directory", e.what(), "a folder that can be created and written");
-  }
-  prm.leave();
   return scene;
 }
 

@@ -2,6 +2,7 @@
 
 #include <talus/geometry/block_generator.h>
 #include <talus/geometry/region.h>
+#include <talus/solver/rigid_solver.h>
 
 #include <string>
 #include <vector>
@@ -54,12 +55,17 @@ struct Scene
   std::string default_group = "rock";
   std::vector<GroupSpec> groups;
   OutputSettings output;
+  /// The calculation (steps = 0: build and write the model only).
+  SolverSettings solver;
+  std::vector<std::string> fixed_groups; ///< names; resolved to solver.fixed_groups
   /// The parameters as used, every entry with its value (defaults included).
   std::string used_parameters;
 };
 
 /// Reads and checks a parameter file. Throws InputError with file, line,
-/// entry, the problem and what is allowed for the first thing wrong.
-Scene read_scene(const std::string& filename);
+/// entry, the problem and what is allowed for the first thing wrong. With
+/// `prepare_output`, also creates the output folder (after every check has
+/// passed) and fails if it cannot be written.
+Scene read_scene(const std::string& filename, bool prepare_output = true);
 
 } // namespace talus

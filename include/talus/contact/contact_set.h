@@ -1,0 +1,77 @@
+#pragma once
+
+#include <talus/contact/common_plane.h>
+#include <talus/model/block_model.h>
+
+#include <cstdint>
+#include <unordered_map>
+#include <vector>
+
+namespace talus
+{
+
+struct ContactSettings
+{
+  double tolerance = 0.01;         ///< CTOL, m: contacts exist while the gap is at most this
+  unsigned int update_period = 10; ///< steps between common-plane and sub-contact updates
+  double rotation_constant = 0.0;  ///< K_T of eq. 12, m
+  /// Area given to a sub-contact of a vertex or edge contact (no face on
+  /// one side), as a fraction of the smaller block's volume^(2/3).
+  double point_area_fraction = 0.01;
+  CommonPlaneSettings common_plane;
+};
+
+/// Every contact between blocks (one common plane per pair) and their
+/// sub-contacts, in flat arrays. Contacts live in slots that are reused
+/// through a free list; sub-contacts are rebuilt in contact order at each
+/// update, carrying their forces over by key so nothing jumps.
+class ContactSet
+{
+public:
+  /// Creates the contact of a candidate pair if the gap is within the
+  /// tolerance (no-op when the pair already has one).
+  void try_create(unsigned int a, unsigned int b, const BlockModel& blocks,
+                  const ContactSettings& settings);
+
+  /// Updates every common plane (deleting contacts whose gap exceeds the
+  /// tolerance) and rebuilds the sub-contacts.
+  void update(const BlockModel& blocks, const ContactSettings& settings);
+
+  unsigned int n_contacts() const { return n_alive_; }
+  unsigned int n_slots() const { return static_cast<unsigned int>(block_a.size()); }
+  unsigned int n_subcontacts() const { return static_cast<unsigned int>(sc_contact.size()); }
+
+  // Contacts (slot-indexed; `alive` says which slots hold one).
+  std::vector<unsigned int> block_a, block_b;
+  std::vector<CommonPlane> plane;
+  std::vector<double> gap;
+  std::vector<ContactType> type;
+  std::vector<char> alive;
+
+  // Sub-contacts.
+  std::vector<unsigned int> sc_contact;   ///< contact slot
+  std::vector<Vec3> sc_position;          ///< m, on the common plane
+  std::vector<double> sc_area;            ///< m^2
+  std::vector<double> sc_un;              ///< normal displacement, m (negative = closure)
+  std::vector<double> sc_fn;              ///< normal force, N
+  std::vector<double> sc_fs;              ///< shear force, 3 per sub-contact, N
+  std::vector<double> sc_us;              ///< accumulated slip, m
+  std::vector<unsigned char> sc_state;
+  std::vector<std::int64_t> sc_key;       ///< what the sub-contact sits on, for carry-over
+
+private:
+  void remove(unsigned int c);
+  void build_subcontacts(unsigned int c, const BlockModel& blocks, const ContactSettings& settings,
+                         const Vec3& old_normal);
+
+  std::unordered_map<std::uint64_t, unsigned int> slot_of_pair_;
+  std::vector<unsigned int> free_;
+  unsigned int n_alive_ = 0;
+  // Sub-contacts of the previous update, indexed by contact slot, for carry-over.
+  std::vector<unsigned int> old_start_, old_end_;
+  std::vector<double> old_un_, old_fn_, old_fs_, old_us_;
+  std::vector<unsigned char> old_state_;
+  std::vector<Vec3> old_normal_;
+};
+
+} // namespace talus

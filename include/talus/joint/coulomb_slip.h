@@ -1,0 +1,39 @@
+#pragma once
+
+#include <talus/joint/joint_properties.h>
+
+namespace talus
+{
+
+/// Sub-contact state flags.
+enum SubContactState : unsigned char
+{
+  intact = 0,     ///< never failed: cohesion and tensile strength hold
+  slipping = 1,   ///< at the shear limit this step
+  open = 2,       ///< separated (no normal force) this step
+  failed = 4      ///< has failed once: residual strength (eqs. 36-37)
+};
+
+/// The arrays of one batch of sub-contacts that a joint model reads and
+/// writes: structure of arrays so the loop vectorises and the model is
+/// chosen once per batch, not per sub-contact.
+struct SubContactBatch
+{
+  unsigned int size = 0;
+  const double* area = nullptr;   ///< A_c, m^2
+  const double* du_normal = nullptr; ///< eq. 21, m (positive = opening)
+  const double* du_shear = nullptr;  ///< eq. 22, 3 per sub-contact, m
+  double* normal_displacement = nullptr; ///< U^n: < 0 = closure, m
+  double* normal_force = nullptr; ///< F^n, N (compression positive)
+  double* shear_force = nullptr;  ///< F^s, 3 per sub-contact, N
+  double* shear_displacement = nullptr; ///< accumulated |U^s| while slipping, m (for the dilation limit)
+  unsigned char* state = nullptr;
+};
+
+/// Coulomb slip with tension cut-off, cohesion, dilation and loss of
+/// strength at failure (eqs. 24-43), applied to every sub-contact of the
+/// batch. Returns the frictional work done this step (J), for the energy
+/// balance.
+double coulomb_slip(const JointProperties& joint, SubContactBatch& batch);
+
+} // namespace talus

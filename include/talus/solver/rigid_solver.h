@@ -1,0 +1,143 @@
+#pragma once
+
+#include <talus/contact/cell_space.h>
+#include <talus/contact/contact_set.h>
+#include <talus/joint/joint_properties.h>
+#include <talus/model/block_model.h>
+
+#include <Eigen/Core>
+
+#include <string>
+#include <vector>
+
+namespace talus
+{
+
+struct SolverSettings
+{
+  bool dynamic = false;             ///< false: static solution with damping
+  unsigned long steps = 0;          ///< step limit (0: build the model only)
+  double target_ratio = 1e-5;       ///< static runs stop below this unbalanced-force ratio (0: off)
+  double local_damping = 0.8;       ///< alpha of eq. 79 (statics)
+  /// Statics only: inertial masses raised to the mean block mass so that the
+  /// time step follows the mean block, not the smallest (density scaling).
+  bool density_scaling = true;
+  /// Rotation with the full principal inertia and Euler's equations (eqs.
+  /// 45, 49) instead of the manual's isotropic approximation (eq. 46).
+  bool principal_inertia = false;
+  double time_step_fraction = 0.1;  ///< frac of eq. 87
+  double time_step = 0.0;           ///< s; 0: automatic (eq. 87)
+  Vec3 gravity = Vec3(0, 0, -9.81); ///< m/s^2
+  ContactSettings contact;
+  JointProperties joint;
+  std::vector<unsigned int> fixed_groups;    ///< group indices of fixed blocks
+  std::vector<unsigned int> history_blocks;  ///< blocks whose motion is recorded
+  unsigned int history_interval = 10;        ///< steps between history rows
+  unsigned long output_interval = 0;         ///< steps between VTU files (0: first and last)
+};
+
+/// What a run did, for the summary.
+struct SolverReport
+{
+  unsigned long steps = 0;
+  double time = 0.0;      ///< s
+  double time_step = 0.0; ///< s
+  double ratio = 0.0;     ///< unbalanced-force ratio at the end
+  unsigned int contacts = 0, subcontacts = 0;
+  double seconds_detection = 0, seconds_planes = 0, seconds_forces = 0, seconds_motion = 0;
+};
+
+/// The rigid-block distinct element cycle: contacts (cell space, common
+/// plane, sub-contacts), sub-contact forces by the joint model, block motion
+/// (eqs. 44-52) with local damping for statics.
+class RigidSolver
+{
+public:
+  RigidSolver(BlockModel& blocks, double density, const SolverSettings& settings);
+
+  /// Stable time step of eq. 87 for this model (s).
+  double stable_time_step() const;
+
+  /// Runs to the step limit or (statics) the target ratio. `output` is
+  /// called with (step, time) whenever output is due.
+  template <typename Output, typename History>
+  SolverReport run(Output&& output, History&& history);
+
+  /// One cycle.
+  void step();
+
+  /// Largest unbalanced force over the mean gravity force of free blocks.
+  double unbalanced_ratio() const { return ratio_; }
+  double kinetic_energy() const;
+  /// Energy bookkeeping (J): work done by gravity, elastic energy stored in
+  /// the joints, dissipated by friction and by damping.
+  double gravity_work() const { return gravity_work_; }
+  double joint_energy() const;
+  double friction_dissipation() const { return friction_work_; }
+  double damping_dissipation() const { return damping_work_; }
+
+  // Block state (per block).
+  std::vector<double> mass;              ///< kg, gravitational
+  std::vector<double> inertial_mass;     ///< kg, after density scaling
+  std::vector<double> inertia;           ///< kg m^2, isotropic (see constructor), scaled
+  std::vector<Vec3> principal_moments;   ///< kg m^2, scaled (principal inertia only)
+  std::vector<Eigen::Matrix3d> axes;     ///< principal axes as columns (principal inertia only)
+  std::vector<Vec3> velocity, spin;      ///< m/s, rad/s
+  std::vector<Vec3> force, moment;       ///< N, N m (reset every cycle)
+  std::vector<Vec3> displacement;        ///< m, since the start
+  std::vector<Vec3> rotation;            ///< rad, sum of increments
+  std::vector<char> fixed;
+  std::vector<double> moved;             ///< u_acc of eq. 1, m
+
+  const ContactSet& contacts() const { return contacts_; }
+  double time() const { return time_; }
+  unsigned long steps_done() const { return step_; }
+  double dt() const { return dt_; }
+  SolverReport report() const;
+
+private:
+  void detect_contacts(bool everything);
+  void contact_forces();
+  void move_blocks();
+
+  BlockModel& m_;
+  SolverSettings s_;
+  CellSpace cells_;
+  ContactSet contacts_;
+  std::vector<Box> envelopes_;
+  std::vector<std::pair<unsigned int, unsigned int>> pairs_;
+  std::vector<double> du_n_, du_s_;
+  double dt_ = 0.0, time_ = 0.0, ratio_ = 1.0;
+  double gravity_work_ = 0.0, friction_work_ = 0.0, damping_work_ = 0.0;
+  unsigned long step_ = 0;
+  mutable SolverReport timing_;
+};
+
+template <typename Output, typename History>
+SolverReport RigidSolver::run(Output&& output, History&& history)
+{
+  output(step_, time_);
+  history(step_, time_);
+  unsigned long last_output = step_;
+  while (step_ < s_.steps)
+  {
+    step();
+    if (s_.history_interval > 0 && step_ % s_.history_interval == 0)
+      history(step_, time_);
+    if (s_.output_interval > 0 && step_ % s_.output_interval == 0)
+    {
+      output(step_, time_);
+      last_output = step_;
+    }
+    if (!s_.dynamic && s_.target_ratio > 0.0 && ratio_ < s_.target_ratio && step_ > 10)
+      break;
+  }
+  if (last_output != step_)
+  {
+    history(step_, time_);
+    output(step_, time_);
+  }
+  return report();
+}
+
+} // namespace talus

@@ -1,0 +1,366 @@
+#include <talus/contact/contact_set.h>
+
+#include <Eigen/Geometry>
+
+#include <algorithm>
+#include <cmath>
+
+namespace talus
+{
+
+namespace
+{
+
+std::uint64_t pair_key(unsigned int a, unsigned int b)
+{
+  return (static_cast<std::uint64_t>(a) << 32) | b;
+}
+
+using Point2 = Eigen::Vector2d;
+
+double cross2(const Point2& o, const Point2& a, const Point2& b)
+{
+  return (a - o).x() * (b - o).y() - (a - o).y() * (b - o).x();
+}
+
+/// Convex hull (counter-clockwise, no collinear points) of a few points.
+std::vector<Point2> convex_hull(std::vector<Point2> p, double tol)
+{
+  std::sort(p.begin(), p.end(),
+            [](const Point2& a, const Point2& b) { return a.x() < b.x() || (a.x() == b.x() && a.y() < b.y()); });
+  if (p.size() < 3)
+    return p;
+  std::vector<Point2> h(2 * p.size());
+  std::size_t k = 0;
+  for (std::size_t i = 0; i < p.size(); ++i)
+  {
+    while (k >= 2 && cross2(h[k - 2], h[k - 1], p[i]) <= tol)
+      --k;
+    h[k++] = p[i];
+  }
+  for (std::size_t i = p.size() - 1, t = k + 1; i > 0; --i)
+  {
+    while (k >= t && cross2(h[k - 2], h[k - 1], p[i - 1]) <= tol)
+      --k;
+    h[k++] = p[i - 1];
+  }
+  h.resize(k - 1);
+  return h;
+}
+
+/// Sutherland-Hodgman: the part of `subject` inside the convex polygon `clip`
+/// (counter-clockwise). Works for a polygon, a segment or a point subject.
+std::vector<Point2> clip_convex(std::vector<Point2> subject, const std::vector<Point2>& clip)
+{
+  for (std::size_t e = 0; e < clip.size() && !subject.empty(); ++e)
+  {
+    const Point2& a = clip[e];
+    const Point2& b = clip[(e + 1) % clip.size()];
+    std::vector<Point2> out;
+    const std::size_t n = subject.size();
+    for (std::size_t i = 0; i < n; ++i)
+    {
+      const Point2& p = subject[i];
+      const Point2& q = subject[(i + 1) % n];
+      const double dp = cross2(a, b, p), dq = cross2(a, b, q);
+      if (dp >= 0.0)
+        out.push_back(p);
+      if (n > 1 && (dp >= 0.0) != (dq >= 0.0) && !(n == 2 && i == 1))
+        out.push_back(p + (q - p) * (dp / (dp - dq)));
+    }
+    subject = std::move(out);
+  }
+  return subject;
+}
+
+double polygon_area(const std::vector<Point2>& p)
+{
+  double a = 0.0;
+  for (std::size_t i = 0; i < p.size(); ++i)
+    a += p[i].x() * p[(i + 1) % p.size()].y() - p[(i + 1) % p.size()].x() * p[i].y();
+  return 0.5 * a;
+}
+
+/// The side of one block facing the common plane.
+struct FacingSide
+{
+  std::vector<Point2> hull; ///< touching vertices projected, convex hull
+  bool has_face = false;    ///< a face lies on the plane
+  Vec3 face_normal;         ///< that face's outward normal
+  double face_offset = 0.0;
+  double deepest = 0.0;     ///< height of the vertex nearest the other block
+};
+
+FacingSide facing_side(const BlockModel& m, unsigned int block, const Vec3& n, const Vec3& c,
+                       const Vec3& u, const Vec3& v, double band, double sign)
+{
+  // sign = +1 for block A (below the plane), -1 for B.
+  FacingSide s;
+  std::vector<Point2> points;
+  s.deepest = -sign * 1e300;
+  for (unsigned int i = m.vertex_start[block]; i < m.vertex_start[block + 1]; ++i)
+  {
+    const Vec3 r = m.vertex[i] - c;
+    const double h = n.dot(r);
+    if (sign * h >= -band)
+    {
+      points.emplace_back(u.dot(r), v.dot(r));
+      s.deepest = sign > 0 ? std::max(s.deepest, h) : std::min(s.deepest, h);
+    }
+  }
+  s.hull = convex_hull(points, 1e-12 * band);
+  // The face most nearly facing the other block, if it lies on the plane.
+  double best = 0.0;
+  unsigned int best_face = 0;
+  for (unsigned int f = m.face_start[block]; f < m.face_start[block + 1]; ++f)
+  {
+    const double d = sign * m.face_normal[f].dot(n);
+    if (d > best)
+    {
+      best = d;
+      best_face = f;
+    }
+  }
+  if (s.hull.size() >= 3 && best > 0.99)
+  {
+    s.has_face = true;
+    s.face_normal = m.face_normal[best_face];
+    s.face_offset = s.face_normal.dot(m.vertex[m.face_vertex[m.face_loop_start[best_face]]]);
+  }
+  return s;
+}
+
+/// Height along n (from the reference point) of a block's surface above the
+/// plane point q = c + x u + y v.
+double surface_height(const FacingSide& s, const Vec3& n, const Vec3& point)
+{
+  if (!s.has_face)
+    return s.deepest;
+  return (s.face_offset - s.face_normal.dot(point)) / s.face_normal.dot(n);
+}
+
+} // namespace
+
+void ContactSet::try_create(unsigned int a, unsigned int b, const BlockModel& m,
+                            const ContactSettings& settings)
+{
+  if (slot_of_pair_.count(pair_key(a, b)))
+    return;
+  CommonPlane cp = initial_common_plane(m.centroid[a], m.centroid[b]);
+  CommonPlaneSettings cps = settings.common_plane;
+  cps.contact_tolerance = settings.tolerance;
+  const CommonPlaneResult r =
+      update_common_plane(cp, &m.vertex[m.vertex_start[a]], m.vertex_start[a + 1] - m.vertex_start[a],
+                          &m.vertex[m.vertex_start[b]], m.vertex_start[b + 1] - m.vertex_start[b],
+                          cps, true);
+  if (!r.within_tolerance || r.gap > settings.tolerance)
+    return;
+  unsigned int c;
+  if (!free_.empty())
+  {
+    c = free_.back();
+    free_.pop_back();
+    block_a[c] = a;
+    block_b[c] = b;
+    plane[c] = cp;
+    gap[c] = r.gap;
+    type[c] = r.type;
+    alive[c] = 1;
+  }
+  else
+  {
+    c = n_slots();
+    block_a.push_back(a);
+    block_b.push_back(b);
+    plane.push_back(cp);
+    gap.push_back(r.gap);
+    type.push_back(r.type);
+    alive.push_back(1);
+  }
+  slot_of_pair_[pair_key(a, b)] = c;
+  ++n_alive_;
+}
+
+void ContactSet::remove(unsigned int c)
+{
+  slot_of_pair_.erase(pair_key(block_a[c], block_b[c]));
+  alive[c] = 0;
+  free_.push_back(c);
+  --n_alive_;
+}
+
+void ContactSet::update(const BlockModel& m, const ContactSettings& settings)
+{
+  // Keep the previous sub-contacts for carry-over.
+  old_start_.assign(n_slots(), 0);
+  old_end_.assign(n_slots(), 0);
+  for (unsigned int i = 0; i < n_subcontacts(); ++i)
+  {
+    const unsigned int c = sc_contact[i];
+    if (old_end_[c] == 0)
+      old_start_[c] = i;
+    old_end_[c] = i + 1;
+  }
+  std::swap(old_un_, sc_un);
+  std::swap(old_fn_, sc_fn);
+  std::swap(old_fs_, sc_fs);
+  std::swap(old_us_, sc_us);
+  std::swap(old_state_, sc_state);
+  std::vector<Vec3> old_position;
+  std::swap(old_position, sc_position);
+  old_normal_.resize(n_slots());
+  for (unsigned int c = 0; c < n_slots(); ++c)
+    old_normal_[c] = plane[c].normal;
+  sc_contact.clear();
+  sc_area.clear();
+  sc_un.clear();
+  sc_fn.clear();
+  sc_fs.clear();
+  sc_us.clear();
+  sc_state.clear();
+  sc_key.clear();
+
+  CommonPlaneSettings cps = settings.common_plane;
+  cps.contact_tolerance = settings.tolerance;
+  for (unsigned int c = 0; c < n_slots(); ++c)
+  {
+    if (!alive[c])
+      continue;
+    const unsigned int a = block_a[c], b = block_b[c];
+    const CommonPlaneResult r = update_common_plane(
+        plane[c], &m.vertex[m.vertex_start[a]], m.vertex_start[a + 1] - m.vertex_start[a],
+        &m.vertex[m.vertex_start[b]], m.vertex_start[b + 1] - m.vertex_start[b], cps, false);
+    gap[c] = r.gap;
+    type[c] = r.type;
+    if (!r.within_tolerance || r.gap > settings.tolerance)
+    {
+      remove(c);
+      continue;
+    }
+    // Eq. 13: keep the reference point on both blocks.
+    Vec3& ref = plane[c].reference;
+    const Vec3& n = plane[c].normal;
+    for (unsigned int blk : {a, b})
+      for (unsigned int f = m.face_start[blk]; f < m.face_start[blk + 1]; ++f)
+      {
+        const Vec3& nf = m.face_normal[f];
+        const double d = nf.dot(ref - m.vertex[m.face_vertex[m.face_loop_start[f]]]);
+        if (d > 0.0)
+          ref += (n * n.dot(nf) - nf) * d;
+      }
+    const std::size_t first = sc_position.size();
+    build_subcontacts(c, m, settings, old_normal_[c]);
+    // Carry forces over from the nearest old sub-contact of this contact.
+    for (std::size_t i = first; i < sc_position.size(); ++i)
+    {
+      double best = 1e300;
+      unsigned int match = 0;
+      for (unsigned int o = old_start_[c]; o < old_end_[c]; ++o)
+      {
+        const double d = (old_position[o] - sc_position[i]).squaredNorm();
+        if (d < best)
+        {
+          best = d;
+          match = o;
+        }
+      }
+      if (old_end_[c] > old_start_[c] && best < 0.25 * sc_area[i])
+      {
+        // Eq. 23 in exact form: turn the shear force with the plane.
+        const Eigen::Quaterniond turn = Eigen::Quaterniond::FromTwoVectors(old_normal_[c], n);
+        Vec3 fs = turn * Vec3(old_fs_[3 * match], old_fs_[3 * match + 1], old_fs_[3 * match + 2]);
+        fs -= n * n.dot(fs);
+        for (int d = 0; d < 3; ++d)
+          sc_fs[3 * i + d] = fs[d];
+        sc_us[i] = old_us_[match];
+        sc_state[i] = old_state_[match];
+      }
+    }
+  }
+}
+
+void ContactSet::build_subcontacts(unsigned int c, const BlockModel& m,
+                                   const ContactSettings& settings, const Vec3&)
+{
+  const unsigned int a = block_a[c], b = block_b[c];
+  const Vec3 n = plane[c].normal;
+  const Vec3 ref = plane[c].reference;
+  const Vec3 u = n.unitOrthogonal();
+  const Vec3 v = n.cross(u);
+  const double band = settings.tolerance;
+  const FacingSide sa = facing_side(m, a, n, ref, u, v, band, +1.0);
+  const FacingSide sb = facing_side(m, b, n, ref, u, v, band, -1.0);
+
+  // The contact region on the plane: where the two facing sides overlap.
+  std::vector<Point2> region;
+  if (sa.hull.size() >= 3 && sb.hull.size() >= 3)
+    region = clip_convex(sa.hull, sb.hull);
+  else if (sb.hull.size() >= 3)
+    region = clip_convex(sa.hull, sb.hull);
+  else if (sa.hull.size() >= 3)
+    region = clip_convex(sb.hull, sa.hull);
+  else if (sa.hull.size() == 2 && sb.hull.size() == 2)
+  {
+    // Edge to edge: the crossing point of the two edges (or their nearest
+    // points' midpoint when they do not cross in projection).
+    const Point2 p = sa.hull[0], r = sa.hull[1] - sa.hull[0];
+    const Point2 q = sb.hull[0], s = sb.hull[1] - sb.hull[0];
+    const double den = r.x() * s.y() - r.y() * s.x();
+    if (std::abs(den) > 1e-14 * r.norm() * s.norm())
+    {
+      const double t = ((q - p).x() * s.y() - (q - p).y() * s.x()) / den;
+      const double w = ((q - p).x() * r.y() - (q - p).y() * r.x()) / den;
+      if (t >= 0 && t <= 1 && w >= 0 && w <= 1)
+        region.push_back(p + t * r);
+    }
+  }
+  else if (!sa.hull.empty() && !sb.hull.empty())
+    region.push_back(0.5 * (sa.hull[0] + sb.hull[0]));
+
+  if (region.empty())
+    return;
+  std::vector<double> weight(region.size(), 0.0);
+  const double area = region.size() >= 3 ? polygon_area(region) : 0.0;
+  if (region.size() >= 3 && area > 0.0)
+  {
+    // Each vertex of the region carries half of each fan triangle beside it,
+    // so the weights add up to the contact area exactly.
+    Point2 centre = Point2::Zero();
+    for (const Point2& p : region)
+      centre += p;
+    centre /= static_cast<double>(region.size());
+    for (std::size_t i = 0; i < region.size(); ++i)
+    {
+      const std::size_t j = (i + 1) % region.size();
+      const double t = 0.5 * std::abs(cross2(centre, region[i], region[j]));
+      weight[i] += 0.5 * t;
+      weight[j] += 0.5 * t;
+    }
+  }
+  else
+  {
+    const double point_area = settings.point_area_fraction *
+                              std::pow(std::min(m.volume[a], m.volume[b]), 2.0 / 3.0);
+    std::fill(weight.begin(), weight.end(), point_area);
+  }
+  for (std::size_t i = 0; i < region.size(); ++i)
+  {
+    if (!(weight[i] > 0.0))
+      continue;
+    const Vec3 on_plane = ref + region[i].x() * u + region[i].y() * v;
+    const double ha = surface_height(sa, n, on_plane);
+    const double hb = surface_height(sb, n, on_plane);
+    sc_contact.push_back(c);
+    sc_position.push_back(on_plane + 0.5 * (ha + hb) * n);
+    sc_area.push_back(weight[i]);
+    sc_un.push_back(hb - ha);
+    sc_fn.push_back(0.0);
+    for (int d = 0; d < 3; ++d)
+      sc_fs.push_back(0.0);
+    sc_us.push_back(0.0);
+    sc_state.push_back(0);
+    sc_key.push_back(static_cast<std::int64_t>(i));
+  }
+}
+
+} // namespace talus

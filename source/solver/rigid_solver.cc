@@ -1,0 +1,368 @@
+#include <talus/geometry/mass_properties.h>
+#include <talus/joint/coulomb_slip.h>
+#include <talus/solver/rigid_solver.h>
+
+#include <Eigen/Geometry>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+
+namespace talus
+{
+
+namespace
+{
+double seconds_since(std::chrono::steady_clock::time_point t)
+{
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t).count();
+}
+double sign(double x) { return (x > 0.0) - (x < 0.0); }
+} // namespace
+
+RigidSolver::RigidSolver(BlockModel& blocks, double density, const SolverSettings& settings)
+    : m_(blocks), s_(settings)
+{
+  const unsigned int nb = m_.n_blocks();
+  mass.resize(nb);
+  inertia.resize(nb);
+  velocity.assign(nb, Vec3::Zero());
+  spin.assign(nb, Vec3::Zero());
+  force.assign(nb, Vec3::Zero());
+  moment.assign(nb, Vec3::Zero());
+  displacement.assign(nb, Vec3::Zero());
+  rotation.assign(nb, Vec3::Zero());
+  fixed.assign(nb, 0);
+  moved.assign(nb, 0.0);
+  if (s_.principal_inertia)
+  {
+    principal_moments.resize(nb);
+    axes.resize(nb);
+  }
+  double mass_sum = 0.0;
+  for (unsigned int b = 0; b < nb; ++b)
+  {
+    mass[b] = density * m_.volume[b];
+    mass_sum += mass[b];
+    // The manual's approximate isotropic inertia, from the mean distance r
+    // of the vertices to the centroid (below eq. 45): I = (2/9) m r^2, the
+    // factor that makes it exact for a cube.
+    double r = 0.0;
+    for (unsigned int v = m_.vertex_start[b]; v < m_.vertex_start[b + 1]; ++v)
+      r += (m_.vertex[v] - m_.centroid[b]).norm();
+    r /= (m_.vertex_start[b + 1] - m_.vertex_start[b]);
+    inertia[b] = 2.0 / 9.0 * mass[b] * r * r;
+    if (s_.principal_inertia)
+    {
+      const MassProperties p = compute_mass_properties(m_.polyhedron(b));
+      principal_moments[b] = density * p.principal_moments;
+      axes[b] = p.principal_axes;
+    }
+    for (unsigned int g : s_.fixed_groups)
+      if (m_.group[b] == g)
+        fixed[b] = 1;
+  }
+  // Density scaling for statics: no block lighter (in inertia) than the mean.
+  inertial_mass = mass;
+  if (!s_.dynamic && s_.density_scaling && nb > 0)
+    for (unsigned int b = 0; b < nb; ++b)
+    {
+      const double scale = std::max(1.0, mass_sum / nb / mass[b]);
+      inertial_mass[b] *= scale;
+      inertia[b] *= scale;
+      if (s_.principal_inertia)
+        principal_moments[b] *= scale;
+    }
+  dt_ = s_.time_step > 0.0 ? s_.time_step : stable_time_step();
+
+  envelopes_.resize(nb);
+  Box all{m_.vertex.empty() ? Vec3::Zero() : m_.vertex[0],
+          m_.vertex.empty() ? Vec3::Zero() : m_.vertex[0]};
+  for (const Vec3& v : m_.vertex)
+  {
+    all.lo = all.lo.cwiseMin(v);
+    all.hi = all.hi.cwiseMax(v);
+  }
+  cells_.define(all, nb);
+  detect_contacts(true);
+  contacts_.update(m_, s_.contact);
+}
+
+double RigidSolver::stable_time_step() const
+{
+  // Eq. 87: the smallest block mass against the largest contact stiffness; a
+  // contact is never stiffer than its joint stiffness times the largest face.
+  double m_min = 1e300, area_max = 0.0;
+  for (unsigned int b = 0; b < m_.n_blocks(); ++b)
+  {
+    m_min = std::min(m_min, inertial_mass[b]);
+    const ConvexPolyhedron p = m_.polyhedron(b);
+    for (unsigned int f = 0; f < p.n_faces(); ++f)
+    {
+      Vec3 twice = Vec3::Zero();
+      for (unsigned int k = 0; k < p.face_size(f); ++k)
+        twice += p.vertex(p.face_vertex(f, k)).cross(p.vertex(p.face_vertex(f, (k + 1) % p.face_size(f))));
+      area_max = std::max(area_max, 0.5 * twice.norm());
+    }
+  }
+  const double k_max = std::max(s_.joint.normal_stiffness, s_.joint.shear_stiffness) * area_max;
+  return s_.time_step_fraction * 2.0 * std::sqrt(m_min / k_max);
+}
+
+void RigidSolver::detect_contacts(bool everything)
+{
+  // Eq. 1: only blocks that moved more than the tolerance are searched again.
+  std::vector<char> flagged(m_.n_blocks(), 0);
+  bool any = everything;
+  for (unsigned int b = 0; b < m_.n_blocks(); ++b)
+    if (everything || moved[b] > s_.contact.tolerance)
+    {
+      flagged[b] = 1;
+      moved[b] = 0.0;
+      any = true;
+    }
+  if (!any)
+    return;
+  // Envelopes enlarged so that blocks within the tolerance are found
+  // (search volume 2 CTOL larger than the envelope, as the manual says).
+  for (unsigned int b = 0; b < m_.n_blocks(); ++b)
+  {
+    Box e{m_.vertex[m_.vertex_start[b]], m_.vertex[m_.vertex_start[b]]};
+    for (unsigned int v = m_.vertex_start[b]; v < m_.vertex_start[b + 1]; ++v)
+    {
+      e.lo = e.lo.cwiseMin(m_.vertex[v]);
+      e.hi = e.hi.cwiseMax(m_.vertex[v]);
+    }
+    e.lo.array() -= s_.contact.tolerance;
+    e.hi.array() += s_.contact.tolerance;
+    envelopes_[b] = e;
+  }
+  cells_.map(envelopes_);
+  cells_.candidate_pairs(envelopes_, everything ? std::vector<char>() : flagged, pairs_);
+  for (const auto& [a, b] : pairs_)
+    if (!(fixed[a] && fixed[b]))
+      contacts_.try_create(a, b, m_, s_.contact);
+}
+
+void RigidSolver::contact_forces()
+{
+  ContactSet& cs = contacts_;
+  const unsigned int n = cs.n_subcontacts();
+  du_n_.resize(n);
+  du_s_.resize(3 * n);
+  // Relative displacement increments (eqs. 15, 20-22).
+  for (unsigned int i = 0; i < n; ++i)
+  {
+    const unsigned int c = cs.sc_contact[i];
+    const unsigned int a = cs.block_a[c], b = cs.block_b[c];
+    const Vec3& p = cs.sc_position[i];
+    const Vec3 vel = velocity[b] + spin[b].cross(p - m_.centroid[b]) - velocity[a] -
+                     spin[a].cross(p - m_.centroid[a]);
+    const Vec3 du = vel * dt_;
+    const Vec3& nrm = cs.plane[c].normal;
+    const double dun = du.dot(nrm);
+    du_n_[i] = dun;
+    const Vec3 dus = du - dun * nrm;
+    du_s_[3 * i] = dus[0];
+    du_s_[3 * i + 1] = dus[1];
+    du_s_[3 * i + 2] = dus[2];
+    // The sub-contact point moves with the mean motion of both blocks (eq. 11).
+    cs.sc_position[i] += 0.5 * dt_ *
+                         (velocity[b] + spin[b].cross(p - m_.centroid[b]) + velocity[a] +
+                          spin[a].cross(p - m_.centroid[a]));
+  }
+  // One joint model for the whole batch (dispatch once, not per sub-contact).
+  SubContactBatch batch;
+  batch.size = n;
+  batch.area = cs.sc_area.data();
+  batch.du_normal = du_n_.data();
+  batch.du_shear = du_s_.data();
+  batch.normal_displacement = cs.sc_un.data();
+  batch.normal_force = cs.sc_fn.data();
+  batch.shear_force = cs.sc_fs.data();
+  batch.shear_displacement = cs.sc_us.data();
+  batch.state = cs.sc_state.data();
+  friction_work_ += coulomb_slip(s_.joint, batch);
+
+  // Force and moment sums (eqs. 28-32): A pushes B along +n.
+  for (unsigned int i = 0; i < n; ++i)
+  {
+    const unsigned int c = cs.sc_contact[i];
+    const unsigned int a = cs.block_a[c], b = cs.block_b[c];
+    const Vec3 f = cs.sc_fn[i] * cs.plane[c].normal +
+                   Vec3(cs.sc_fs[3 * i], cs.sc_fs[3 * i + 1], cs.sc_fs[3 * i + 2]);
+    const Vec3& p = cs.sc_position[i];
+    force[b] += f;
+    moment[b] += (p - m_.centroid[b]).cross(f);
+    force[a] -= f;
+    moment[a] -= (p - m_.centroid[a]).cross(f);
+  }
+  // Reference points follow the blocks (eq. 11) and relative rotation (eq. 12).
+  for (unsigned int c = 0; c < cs.n_slots(); ++c)
+  {
+    if (!cs.alive[c])
+      continue;
+    const unsigned int a = cs.block_a[c], b = cs.block_b[c];
+    Vec3& ref = cs.plane[c].reference;
+    const Vec3 dua = (velocity[a] + spin[a].cross(ref - m_.centroid[a])) * dt_;
+    const Vec3 dub = (velocity[b] + spin[b].cross(ref - m_.centroid[b])) * dt_;
+    ref += 0.5 * (dua + dub);
+    if (s_.contact.rotation_constant != 0.0)
+      ref += s_.contact.rotation_constant * cs.plane[c].normal.cross((spin[b] - spin[a]) * dt_);
+  }
+}
+
+void RigidSolver::move_blocks()
+{
+  const bool damp = !s_.dynamic && s_.local_damping > 0.0;
+  const double alpha = s_.local_damping;
+  // Velocities live at half steps (eq. 47). Those given at the start are at
+  // t = 0, so the first kick is half a step: without it every position is
+  // late by a t dt / 2 (a relative error of 1/n after n steps of free fall).
+  const double h = step_ == 0 ? 0.5 * dt_ : dt_;
+  double max_unbalanced = 0.0, sum_weight = 0.0;
+  unsigned int n_free = 0;
+  for (unsigned int b = 0; b < m_.n_blocks(); ++b)
+  {
+    if (fixed[b])
+    {
+      force[b].setZero();
+      moment[b].setZero();
+      continue;
+    }
+    const Vec3 f = force[b] + mass[b] * s_.gravity;
+    max_unbalanced = std::max(max_unbalanced, f.norm());
+    sum_weight += mass[b] * s_.gravity.norm();
+    ++n_free;
+    // Eq. 49 with local damping (eqs. 78-79) in place of viscous damping:
+    // the damping force opposes the velocity and scales with the unbalanced
+    // force, so it vanishes at equilibrium.
+    Vec3 damping_force = Vec3::Zero();
+    for (int d = 0; d < 3; ++d)
+    {
+      damping_force[d] = damp ? alpha * std::abs(f[d]) * sign(velocity[b][d]) : 0.0;
+      velocity[b][d] += (f[d] - damping_force[d]) * h / inertial_mass[b];
+    }
+    if (s_.principal_inertia)
+    {
+      // Eq. 49 for rotation about the principal axes, with the gyroscopic
+      // terms of Euler's equations (eq. 45) at the old spin.
+      const Eigen::Matrix3d& Q = axes[b];
+      const Vec3 w = Q.transpose() * spin[b];
+      const Vec3 mloc = Q.transpose() * moment[b];
+      const Vec3& I = principal_moments[b];
+      Vec3 wn;
+      wn[0] = w[0] + (mloc[0] - (I[2] - I[1]) * w[2] * w[1]) * h / I[0];
+      wn[1] = w[1] + (mloc[1] - (I[0] - I[2]) * w[0] * w[2]) * h / I[1];
+      wn[2] = w[2] + (mloc[2] - (I[1] - I[0]) * w[1] * w[0]) * h / I[2];
+      for (int d = 0; d < 3; ++d)
+        if (damp)
+          wn[d] -= alpha * std::abs(mloc[d]) * sign(w[d]) * h / I[d];
+      spin[b] = Q * wn;
+    }
+    else
+      for (int d = 0; d < 3; ++d)
+      {
+        const double md = damp ? alpha * std::abs(moment[b][d]) * sign(spin[b][d]) : 0.0;
+        spin[b][d] += (moment[b][d] - md) * h / inertia[b];
+      }
+    // Eqs. 50-52, with the rotation applied exactly so that blocks keep
+    // their shape through any number of turns.
+    const Vec3 dx = velocity[b] * dt_;
+    const Vec3 dtheta = spin[b] * dt_;
+    gravity_work_ += mass[b] * s_.gravity.dot(dx);
+    damping_work_ += damping_force.dot(dx);
+    const double angle = dtheta.norm();
+    const Eigen::Matrix3d R = angle > 0.0
+                                  ? Eigen::AngleAxisd(angle, dtheta / angle).toRotationMatrix()
+                                  : Eigen::Matrix3d::Identity();
+    const Vec3 c = m_.centroid[b];
+    double max_du = 0.0;
+    for (unsigned int v = m_.vertex_start[b]; v < m_.vertex_start[b + 1]; ++v)
+    {
+      const Vec3 moved_to = c + dx + R * (m_.vertex[v] - c);
+      max_du = std::max(max_du, (moved_to - m_.vertex[v]).cwiseAbs().maxCoeff());
+      m_.vertex[v] = moved_to;
+    }
+    for (unsigned int f = m_.face_start[b]; f < m_.face_start[b + 1]; ++f)
+      m_.face_normal[f] = R * m_.face_normal[f];
+    if (s_.principal_inertia)
+      axes[b] = R * axes[b];
+    m_.centroid[b] += dx;
+    displacement[b] += dx;
+    rotation[b] += dtheta;
+    moved[b] += max_du; // eq. 1
+    force[b].setZero();
+    moment[b].setZero();
+  }
+  ratio_ = n_free > 0 && sum_weight > 0.0 ? max_unbalanced / (sum_weight / n_free) : 0.0;
+}
+
+void RigidSolver::step()
+{
+  auto t0 = std::chrono::steady_clock::now();
+  if (step_ > 0 && step_ % s_.contact.update_period == 0)
+  {
+    detect_contacts(false);
+    timing_.seconds_detection += seconds_since(t0);
+    t0 = std::chrono::steady_clock::now();
+    contacts_.update(m_, s_.contact);
+    timing_.seconds_planes += seconds_since(t0);
+    t0 = std::chrono::steady_clock::now();
+  }
+  contact_forces();
+  timing_.seconds_forces += seconds_since(t0);
+  t0 = std::chrono::steady_clock::now();
+  move_blocks();
+  timing_.seconds_motion += seconds_since(t0);
+  time_ += dt_;
+  ++step_;
+}
+
+double RigidSolver::kinetic_energy() const
+{
+  // With the true masses: density scaling changes the path, not the physics.
+  double e = 0.0;
+  for (unsigned int b = 0; b < m_.n_blocks(); ++b)
+  {
+    e += 0.5 * mass[b] * velocity[b].squaredNorm();
+    if (s_.principal_inertia)
+    {
+      const Vec3 w = axes[b].transpose() * spin[b];
+      e += 0.5 * (principal_moments[b].array() * w.array().square()).sum() * mass[b] /
+           inertial_mass[b];
+    }
+    else
+      e += 0.5 * inertia[b] * mass[b] / inertial_mass[b] * spin[b].squaredNorm();
+  }
+  return e;
+}
+
+double RigidSolver::joint_energy() const
+{
+  const ContactSet& cs = contacts_;
+  double e = 0.0;
+  for (unsigned int i = 0; i < cs.n_subcontacts(); ++i)
+  {
+    const double a = cs.sc_area[i];
+    const double fs2 = cs.sc_fs[3 * i] * cs.sc_fs[3 * i] + cs.sc_fs[3 * i + 1] * cs.sc_fs[3 * i + 1] +
+                       cs.sc_fs[3 * i + 2] * cs.sc_fs[3 * i + 2];
+    e += 0.5 * cs.sc_fn[i] * cs.sc_fn[i] / (s_.joint.normal_stiffness * a) +
+         0.5 * fs2 / (s_.joint.shear_stiffness * a);
+  }
+  return e;
+}
+
+SolverReport RigidSolver::report() const
+{
+  SolverReport r = timing_;
+  r.steps = step_;
+  r.time = time_;
+  r.time_step = dt_;
+  r.ratio = ratio_;
+  r.contacts = contacts_.n_contacts();
+  r.subcontacts = contacts_.n_subcontacts();
+  return r;
+}
+
+} // namespace talus

@@ -1,0 +1,51 @@
+#pragma once
+
+// Runs a shipped scene of parameters/ without writing output, for the
+// verification tests of the rigid-block engine.
+
+#include <talus/io/scene.h>
+#include <talus/model/build_blocks.h>
+#include <talus/solver/rigid_solver.h>
+
+#include <memory>
+#include <string>
+
+struct RigidScene
+{
+  talus::Scene scene;
+  talus::BlockModel model;
+  std::unique_ptr<talus::RigidSolver> solver;
+
+  /// Reads parameters/<name>, applying `edit` to the scene before the
+  /// solver is built (to vary one value of a shipped scene).
+  template <typename Edit>
+  RigidScene(const std::string& name, Edit edit)
+  {
+    scene = talus::read_scene(std::string(SOURCE_DIR) + "/../../parameters/" + name, false);
+    edit(scene);
+    talus::BuildReport report;
+    model = talus::build_blocks(scene, report);
+    for (const std::string& g : scene.fixed_groups)
+      scene.solver.fixed_groups.push_back(model.group_index(g));
+    solver = std::make_unique<talus::RigidSolver>(model, scene.density, scene.solver);
+  }
+  explicit RigidScene(const std::string& name) : RigidScene(name, [](talus::Scene&) {}) {}
+
+  /// Steps until model time `t` (s).
+  void run_until(double t)
+  {
+    while (solver->time() + 0.5 * solver->dt() < t)
+      solver->step();
+  }
+  /// Steps (statics) until the unbalanced-force ratio is below `ratio`.
+  unsigned long run_to_ratio(double ratio, unsigned long max_steps)
+  {
+    unsigned long n = 0;
+    while ((n < 20 || solver->unbalanced_ratio() >= ratio) && n < max_steps)
+    {
+      solver->step();
+      ++n;
+    }
+    return n;
+  }
+};
