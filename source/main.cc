@@ -30,8 +30,7 @@ void solve(talus::Scene& scene, talus::BlockModel& model, talus::PvdSeries& seri
            const std::string& prefix)
 {
   using namespace talus;
-  for (const std::string& name : scene.fixed_groups)
-    scene.solver.fixed_groups.push_back(model.group_index(name));
+  resolve_group_names(scene, model);
   for (unsigned int b : scene.solver.history_blocks)
     if (b >= model.n_blocks())
       throw InputError(scene.parameter_file + ": entry 'History blocks' in subsection 'Solver': "

@@ -212,6 +212,51 @@ GroupSpec parse_group(ParameterFile& prm, const std::string& section)
   return g;
 }
 
+// ---- Loads -------------------------------------------------------------------
+
+void declare_load(ParameterFile& prm, const std::string& section)
+{
+  prm.enter(section);
+  prm.declare("Group", "", P::Anything(), "a group name", "Blocks this load acts on.");
+  prm.declare("Force", "0, 0, 0", vec3_pattern(), vec3_allowed,
+              "Force on each block of the group at its centroid (N).");
+  prm.declare("Force rate", "0, 0, 0", vec3_pattern(), vec3_allowed,
+              "Growth of that force per second of model time (N/s).");
+  prm.declare("Prescribe velocity", "false", P::Bool(), "true or false",
+              "Hold the blocks' velocity at 'Velocity' (they still rotate freely).");
+  prm.declare("Velocity", "0, 0, 0", vec3_pattern(), vec3_allowed, "Prescribed velocity (m/s).");
+  prm.declare("Held components", "x, y, z", P::MultipleSelection("x|y|z"),
+              "some of x, y, z separated by commas",
+              "Components of the velocity that are prescribed; the others stay free.");
+  prm.declare("Hold rotation", "false", P::Bool(), "true or false",
+              "The blocks do not rotate (like the platen of a shear box).");
+  prm.leave();
+}
+
+void parse_load(ParameterFile& prm, const std::string& section, Scene& scene)
+{
+  prm.enter(section);
+  BlockLoad load;
+  const std::string group = prm.get("Group");
+  bool known = group == scene.default_group;
+  for (const GroupSpec& spec : scene.groups)
+    known |= spec.name == group;
+  if (!known)
+    throw prm.error("Group", "names the unknown group '" + group + "'",
+                    "the default group '" + scene.default_group + "' or a 'Group N' name");
+  load.force = prm.get_vec3("Force");
+  load.force_rate = prm.get_vec3("Force rate");
+  load.prescribe_velocity = prm.get_bool("Prescribe velocity");
+  load.velocity = prm.get_vec3("Velocity");
+  const std::string held = prm.get("Held components");
+  for (int d = 0; d < 3; ++d)
+    load.held[d] = held.find("xyz"[d]) != std::string::npos;
+  load.hold_rotation = prm.get_bool("Hold rotation");
+  scene.solver.loads.push_back(load);
+  scene.load_groups.push_back(group);
+  prm.leave();
+}
+
 // ---- Output ------------------------------------------------------------------
 
 void declare_output(ParameterFile& prm)
@@ -360,7 +405,7 @@ Scene read_scene(const std::string& filename, bool prepare_output)
   ParameterFile prm(filename);
 
   // Numbered subsections exist exactly as the file names them.
-  const std::regex numbered("(Joint set|Joint|Excavation|Group) ([0-9]+)");
+  const std::regex numbered("(Joint set|Joint|Excavation|Group|Load) ([0-9]+)");
   std::vector<std::tuple<std::string, long, std::string>> found; // kind, number, name
   for (const std::string& s : prm.sections_in_file())
   {
@@ -386,6 +431,8 @@ Scene read_scene(const std::string& filename, bool prepare_output)
       declare_joint(prm, name);
     else if (kind == "Excavation")
       declare_excavation(prm, name);
+    else if (kind == "Load")
+      declare_load(prm, name);
     else
       declare_group(prm, name);
   }
@@ -405,10 +452,13 @@ Scene read_scene(const std::string& filename, bool prepare_output)
       scene.joint_planes.push_back(parse_joint(prm, name));
     else if (kind == "Excavation")
       scene.excavations.push_back(parse_excavation(prm, name));
-    else
+    else if (kind == "Group")
       scene.groups.push_back(parse_group(prm, name));
   }
   parse_solver(prm, scene);
+  for (const auto& [kind, name] : numbered_sections)
+    if (kind == "Load")
+      parse_load(prm, name, scene);
   scene.used_parameters = prm.used_parameters();
 
   // Last, once every value is known to be good: nothing is created on disk

@@ -36,4 +36,13 @@ BlockModel build_blocks(const Scene& scene, BuildReport& report)
   return model;
 }
 
+void resolve_group_names(Scene& scene, BlockModel& model)
+{
+  scene.solver.fixed_groups.clear();
+  for (const std::string& name : scene.fixed_groups)
+    scene.solver.fixed_groups.push_back(model.group_index(name));
+  for (std::size_t l = 0; l < scene.solver.loads.size(); ++l)
+    scene.solver.loads[l].group = model.group_index(scene.load_groups[l]);
+}
+
 } // namespace talus

@@ -33,6 +33,9 @@ RigidSolver::RigidSolver(BlockModel& blocks, double density, const SolverSetting
   displacement.assign(nb, Vec3::Zero());
   rotation.assign(nb, Vec3::Zero());
   fixed.assign(nb, 0);
+  applied_force.assign(nb, Vec3::Zero());
+  applied_force_rate.assign(nb, Vec3::Zero());
+  prescribed.assign(nb, 0);
   moved.assign(nb, 0.0);
   if (s_.principal_inertia)
   {
@@ -61,6 +64,21 @@ RigidSolver::RigidSolver(BlockModel& blocks, double density, const SolverSetting
     for (unsigned int g : s_.fixed_groups)
       if (m_.group[b] == g)
         fixed[b] = 1;
+    for (const BlockLoad& load : s_.loads)
+      if (m_.group[b] == load.group)
+      {
+        applied_force[b] += load.force;
+        applied_force_rate[b] += load.force_rate;
+        if (load.prescribe_velocity)
+          for (int d = 0; d < 3; ++d)
+            if (load.held[d])
+            {
+              prescribed[b] |= 1u << d;
+              velocity[b][d] = load.velocity[d];
+            }
+        if (load.hold_rotation)
+          prescribed[b] |= 8u;
+      }
   }
   // Density scaling for statics: no block lighter (in inertia) than the mean.
   inertial_mass = mass;
@@ -230,7 +248,7 @@ void RigidSolver::move_blocks()
       moment[b].setZero();
       continue;
     }
-    const Vec3 f = force[b] + mass[b] * s_.gravity;
+    const Vec3 f = force[b] + mass[b] * s_.gravity + applied_force[b] + applied_force_rate[b] * time_;
     max_unbalanced = std::max(max_unbalanced, f.norm());
     sum_weight += mass[b] * s_.gravity.norm();
     ++n_free;
@@ -241,9 +259,12 @@ void RigidSolver::move_blocks()
     for (int d = 0; d < 3; ++d)
     {
       damping_force[d] = damp ? alpha * std::abs(f[d]) * sign(velocity[b][d]) : 0.0;
-      velocity[b][d] += (f[d] - damping_force[d]) * h / inertial_mass[b];
+      if (!(prescribed[b] & (1u << d)))
+        velocity[b][d] += (f[d] - damping_force[d]) * h / inertial_mass[b];
     }
-    if (s_.principal_inertia)
+    if (prescribed[b] & 8u)
+      spin[b].setZero();
+    else if (s_.principal_inertia)
     {
       // Eq. 49 for rotation about the principal axes, with the gyroscopic
       // terms of Euler's equations (eq. 45) at the old spin.

@@ -25,8 +25,7 @@ struct RigidScene
     edit(scene);
     talus::BuildReport report;
     model = talus::build_blocks(scene, report);
-    for (const std::string& g : scene.fixed_groups)
-      scene.solver.fixed_groups.push_back(model.group_index(g));
+    talus::resolve_group_names(scene, model);
     solver = std::make_unique<talus::RigidSolver>(model, scene.density, scene.solver);
   }
   explicit RigidScene(const std::string& name) : RigidScene(name, [](talus::Scene&) {}) {}

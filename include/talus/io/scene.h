@@ -58,6 +58,7 @@ struct Scene
   /// The calculation (steps = 0: build and write the model only).
   SolverSettings solver;
   std::vector<std::string> fixed_groups; ///< names; resolved to solver.fixed_groups
+  std::vector<std::string> load_groups;  ///< group name of each solver.loads entry
   /// The parameters as used, every entry with its value (defaults included).
   std::string used_parameters;
 };

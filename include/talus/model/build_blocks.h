@@ -22,4 +22,8 @@ struct BuildReport
 /// polyhedron.
 BlockModel build_blocks(const Scene& scene, BuildReport& report);
 
+/// Turns the group names the scene's solver settings refer to (fixed
+/// groups, loads) into the model's group numbers.
+void resolve_group_names(Scene& scene, BlockModel& model);
+
 } // namespace talus

@@ -13,6 +13,19 @@
 namespace talus
 {
 
+/// Loads on the blocks of one group: a force at each block's centroid that
+/// may grow at a constant rate, or a prescribed velocity.
+struct BlockLoad
+{
+  unsigned int group = 0;
+  Vec3 force = Vec3::Zero();      ///< N, per block
+  Vec3 force_rate = Vec3::Zero(); ///< N/s, per block
+  bool prescribe_velocity = false;
+  Vec3 velocity = Vec3::Zero();   ///< m/s
+  bool held[3] = {true, true, true}; ///< which components of the velocity are held
+  bool hold_rotation = false;        ///< the blocks do not rotate (a stiff platen)
+};
+
 struct SolverSettings
 {
   bool dynamic = false;             ///< false: static solution with damping
@@ -31,6 +44,7 @@ struct SolverSettings
   ContactSettings contact;
   JointProperties joint;
   std::vector<unsigned int> fixed_groups;    ///< group indices of fixed blocks
+  std::vector<BlockLoad> loads;
   std::vector<unsigned int> history_blocks;  ///< blocks whose motion is recorded
   unsigned int history_interval = 10;        ///< steps between history rows
   unsigned long output_interval = 0;         ///< steps between VTU files (0: first and last)
@@ -87,6 +101,8 @@ public:
   std::vector<Vec3> displacement;        ///< m, since the start
   std::vector<Vec3> rotation;            ///< rad, sum of increments
   std::vector<char> fixed;
+  std::vector<Vec3> applied_force, applied_force_rate; ///< N, N/s
+  std::vector<unsigned char> prescribed; ///< bit d: velocity component d held; bit 3: no rotation
   std::vector<double> moved;             ///< u_acc of eq. 1, m
 
   const ContactSet& contacts() const { return contacts_; }
