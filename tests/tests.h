@@ -19,8 +19,8 @@ inline void check(const std::string& name, double computed, double expected, dou
 {
   const double scale = std::max(std::abs(expected), 1e-300);
   const double error = std::abs(computed - expected) / (expected == 0.0 ? 1.0 : scale);
-  std::printf("%s: %.10g (exact %.10g) %s\n", name.c_str(), computed, expected,
-              error <= tolerance ? "OK" : "WRONG");
+  std::printf("%s: %.10g (exact %.10g, relative error %.1e) %s\n", name.c_str(), computed, expected,
+              error, error <= tolerance ? "OK" : "WRONG");
 }
 
 } // namespace talus_test

@@ -27,7 +27,8 @@ double cross2(const Point2& o, const Point2& a, const Point2& b)
 std::vector<Point2> convex_hull(std::vector<Point2> p, double tol)
 {
   std::sort(p.begin(), p.end(),
-            [](const Point2& a, const Point2& b) { return a.x() < b.x() || (a.x() == b.x() && a.y() < b.y()); });
+            [](const Point2& a, const Point2& b)
+            { return a.x() < b.x() || (a.x() == b.x() && a.y() < b.y()); });
   if (p.size() < 3)
     return p;
   std::vector<Point2> h(2 * p.size());
@@ -88,7 +89,7 @@ struct FacingSide
   bool has_face = false;    ///< a face lies on the plane
   Vec3 face_normal;         ///< that face's outward normal
   double face_offset = 0.0;
-  double deepest = 0.0;     ///< height of the vertex nearest the other block
+  double deepest = 0.0; ///< height of the vertex nearest the other block
 };
 
 FacingSide facing_side(const BlockModel& m, unsigned int block, const Vec3& n, const Vec3& c,
@@ -149,10 +150,9 @@ void ContactSet::try_create(unsigned int a, unsigned int b, const BlockModel& m,
   CommonPlane cp = initial_common_plane(m.centroid[a], m.centroid[b]);
   CommonPlaneSettings cps = settings.common_plane;
   cps.contact_tolerance = settings.tolerance;
-  const CommonPlaneResult r =
-      update_common_plane(cp, &m.vertex[m.vertex_start[a]], m.vertex_start[a + 1] - m.vertex_start[a],
-                          &m.vertex[m.vertex_start[b]], m.vertex_start[b + 1] - m.vertex_start[b],
-                          cps, true);
+  const CommonPlaneResult r = update_common_plane(
+      cp, &m.vertex[m.vertex_start[a]], m.vertex_start[a + 1] - m.vertex_start[a],
+      &m.vertex[m.vertex_start[b]], m.vertex_start[b + 1] - m.vertex_start[b], cps, true);
   if (!r.within_tolerance || r.gap > settings.tolerance)
     return;
   unsigned int c;
@@ -166,6 +166,7 @@ void ContactSet::try_create(unsigned int a, unsigned int b, const BlockModel& m,
     gap[c] = r.gap;
     type[c] = r.type;
     alive[c] = 1;
+    path_at_update[c] = -1.0;
   }
   else
   {
@@ -176,6 +177,7 @@ void ContactSet::try_create(unsigned int a, unsigned int b, const BlockModel& m,
     gap.push_back(r.gap);
     type.push_back(r.type);
     alive.push_back(1);
+    path_at_update.push_back(-1.0);
   }
   slot_of_pair_[pair_key(a, b)] = c;
   ++n_alive_;
@@ -189,7 +191,8 @@ void ContactSet::remove(unsigned int c)
   --n_alive_;
 }
 
-void ContactSet::update(const BlockModel& m, const ContactSettings& settings)
+void ContactSet::update(const BlockModel& m, const ContactSettings& settings,
+                        const std::vector<double>* path)
 {
   // Keep the previous sub-contacts for carry-over.
   old_start_.assign(n_slots(), 0);
@@ -205,9 +208,12 @@ void ContactSet::update(const BlockModel& m, const ContactSettings& settings)
   std::swap(old_fn_, sc_fn);
   std::swap(old_fs_, sc_fs);
   std::swap(old_us_, sc_us);
+  std::swap(old_dilation_, sc_dilation);
   std::swap(old_state_, sc_state);
   std::vector<Vec3> old_position;
   std::swap(old_position, sc_position);
+  std::vector<double> old_area;
+  std::swap(old_area, sc_area);
   old_normal_.resize(n_slots());
   for (unsigned int c = 0; c < n_slots(); ++c)
     old_normal_[c] = plane[c].normal;
@@ -217,8 +223,9 @@ void ContactSet::update(const BlockModel& m, const ContactSettings& settings)
   sc_fn.clear();
   sc_fs.clear();
   sc_us.clear();
+  sc_dilation.clear();
   sc_state.clear();
-  sc_key.clear();
+  sc_fresh.clear();
 
   CommonPlaneSettings cps = settings.common_plane;
   cps.contact_tolerance = settings.tolerance;
@@ -227,6 +234,33 @@ void ContactSet::update(const BlockModel& m, const ContactSettings& settings)
     if (!alive[c])
       continue;
     const unsigned int a = block_a[c], b = block_b[c];
+    if (path != nullptr)
+    {
+      const double travelled = (*path)[a] + (*path)[b];
+      if (path_at_update[c] >= 0.0 &&
+          travelled - path_at_update[c] < settings.update_motion_fraction * settings.tolerance)
+      {
+        // Neither block has moved enough to change the plane: keep the
+        // sub-contacts as they are.
+        for (unsigned int o = old_start_[c]; o < old_end_[c]; ++o)
+        {
+          sc_contact.push_back(c);
+          sc_position.push_back(old_position[o]);
+          sc_area.push_back(old_area[o]);
+          sc_un.push_back(old_un_[o]);
+          sc_fn.push_back(old_fn_[o]);
+          for (int d = 0; d < 3; ++d)
+            sc_fs.push_back(old_fs_[3 * o + d]);
+          for (int d = 0; d < 3; ++d)
+            sc_us.push_back(old_us_[3 * o + d]);
+          sc_dilation.push_back(old_dilation_[o]);
+          sc_state.push_back(old_state_[o]);
+          sc_fresh.push_back(0);
+        }
+        continue;
+      }
+      path_at_update[c] = travelled;
+    }
     const CommonPlaneResult r = update_common_plane(
         plane[c], &m.vertex[m.vertex_start[a]], m.vertex_start[a + 1] - m.vertex_start[a],
         &m.vertex[m.vertex_start[b]], m.vertex_start[b + 1] - m.vertex_start[b], cps, false);
@@ -270,9 +304,14 @@ void ContactSet::update(const BlockModel& m, const ContactSettings& settings)
         const Eigen::Quaterniond turn = Eigen::Quaterniond::FromTwoVectors(old_normal_[c], n);
         Vec3 fs = turn * Vec3(old_fs_[3 * match], old_fs_[3 * match + 1], old_fs_[3 * match + 2]);
         fs -= n * n.dot(fs);
+        Vec3 us = turn * Vec3(old_us_[3 * match], old_us_[3 * match + 1], old_us_[3 * match + 2]);
+        us -= n * n.dot(us);
         for (int d = 0; d < 3; ++d)
+        {
           sc_fs[3 * i + d] = fs[d];
-        sc_us[i] = old_us_[match];
+          sc_us[3 * i + d] = us[d];
+        }
+        sc_dilation[i] = old_dilation_[match];
         sc_state[i] = old_state_[match];
       }
     }
@@ -339,8 +378,8 @@ void ContactSet::build_subcontacts(unsigned int c, const BlockModel& m,
   }
   else
   {
-    const double point_area = settings.point_area_fraction *
-                              std::pow(std::min(m.volume[a], m.volume[b]), 2.0 / 3.0);
+    const double point_area =
+        settings.point_area_fraction * std::pow(std::min(m.volume[a], m.volume[b]), 2.0 / 3.0);
     std::fill(weight.begin(), weight.end(), point_area);
   }
   for (std::size_t i = 0; i < region.size(); ++i)
@@ -357,9 +396,11 @@ void ContactSet::build_subcontacts(unsigned int c, const BlockModel& m,
     sc_fn.push_back(0.0);
     for (int d = 0; d < 3; ++d)
       sc_fs.push_back(0.0);
-    sc_us.push_back(0.0);
+    for (int d = 0; d < 3; ++d)
+      sc_us.push_back(0.0);
+    sc_dilation.push_back(0.0);
     sc_state.push_back(0);
-    sc_key.push_back(static_cast<std::int64_t>(i));
+    sc_fresh.push_back(1);
   }
 }
 

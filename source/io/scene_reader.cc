@@ -20,7 +20,10 @@ namespace P = dealii::Patterns;
 
 const std::string vec3_allowed = "three numbers separated by commas, e.g. 0, 0, 0";
 
-P::List vec3_pattern() { return P::List(P::Double(), 3, 3, ","); }
+P::List vec3_pattern()
+{
+  return P::List(P::Double(), 3, 3, ",");
+}
 
 /// Reads "Corner min"/"Corner max" of the current subsection as a box and
 /// checks that it has positive size in every direction.
@@ -275,8 +278,7 @@ void parse_output(ParameterFile& prm, Scene& scene)
   prm.enter("Output");
   scene.output.directory = prm.get("Directory");
   scene.output.base_name = prm.get("Base name");
-  if (scene.output.base_name.empty() ||
-      scene.output.base_name.find('/') != std::string::npos)
+  if (scene.output.base_name.empty() || scene.output.base_name.find('/') != std::string::npos)
     throw prm.error("Base name", "must be a plain file name", "a non-empty name without '/'");
   scene.output.write_vtu = prm.get_bool("Write VTU");
   prm.leave();
@@ -293,8 +295,14 @@ void declare_solver(ParameterFile& prm)
               "Step limit; 0 builds and writes the model only.");
   prm.declare("Target ratio", "1e-5", P::Double(0.0), "a number >= 0",
               "A static run stops when the unbalanced-force ratio falls below this (0: never).");
+  prm.declare("Damping", "local", P::Selection("local|combined|global"),
+              "local, combined or global",
+              "Damping of static runs: local (eqs. 78-79), combined (eq. 83, for steady motion) or "
+              "adaptive global (eq. 77).");
   prm.declare("Local damping", "0.8", P::Double(0.0, 1.0), "a number from 0 to 1",
-              "Local damping coefficient of static runs (eq. 79).");
+              "alpha of local and combined damping (eqs. 79, 83).");
+  prm.declare("Global damping ratio", "0.5", P::Double(0.0, 1.0), "a number from 0 to 1",
+              "R of eq. 77: damping power over the rate of change of kinetic energy.");
   prm.declare("Density scaling", "true", P::Bool(), "true or false",
               "Static runs: raise inertial masses to the mean block mass (faster convergence).");
   prm.declare("Rotation", "isotropic", P::Selection("isotropic|principal"),
@@ -310,31 +318,38 @@ void declare_solver(ParameterFile& prm)
               "Blocks of these groups do not move.");
   prm.declare("History blocks", "", P::List(P::Integer(0)), "block numbers separated by commas",
               "Blocks whose displacement and velocity are written to the history.");
-  prm.declare("History interval", "10", P::Integer(1), "an integer >= 1", "Steps between history rows.");
+  prm.declare("History interval", "10", P::Integer(1), "an integer >= 1",
+              "Steps between history rows.");
   prm.declare("Output interval", "0", P::Integer(0), "an integer >= 0 (0: first and last)",
               "Steps between VTU files.");
   prm.leave();
 
   prm.enter("Contacts");
-  prm.declare("Tolerance", "0", P::Double(0.0), "a number >= 0 (m; 0: 0.5 % of the mean block size)",
+  prm.declare("Tolerance", "0", P::Double(0.0),
+              "a number >= 0 (m; 0: 0.5 % of the mean block size)",
               "CTOL: contacts are made within this gap and deleted beyond it (m).");
   prm.declare("Update period", "10", P::Integer(1), "an integer >= 1",
               "Steps between common-plane and sub-contact updates.");
   prm.declare("Rotation constant", "0", P::Double(), "a number (m)", "K_T of eq. 12 (m).");
-  prm.declare("Point area fraction", "0.01", P::Double(0.0), "a number > 0",
-              "Area of a vertex or edge sub-contact, as a fraction of volume^(2/3) of the smaller block.");
+  prm.declare(
+      "Point area fraction", "0.01", P::Double(0.0), "a number > 0",
+      "Area of a vertex or edge sub-contact, as a fraction of volume^(2/3) of the smaller block.");
+  prm.declare(
+      "Update motion fraction", "0.01", P::Double(0.0), "a number >= 0 (0: update every contact)",
+      "At an update, a contact whose two blocks moved less than this fraction of the tolerance "
+      "since its last update keeps its plane and sub-contacts.");
   prm.leave();
 
   prm.enter("Joint properties");
   prm.declare("Normal stiffness", "1e10", P::Double(), "a number > 0 (Pa/m)", "kn (Pa/m).");
   prm.declare("Shear stiffness", "1e10", P::Double(), "a number > 0 (Pa/m)", "ks (Pa/m).");
-  prm.declare("Friction angle", "30", P::Double(0.0, 89.999), "a number from 0 to less than 90 (degrees)",
-              "phi (degrees).");
+  prm.declare("Friction angle", "30", P::Double(0.0, 89.999),
+              "a number from 0 to less than 90 (degrees)", "phi (degrees).");
   prm.declare("Cohesion", "0", P::Double(0.0), "a number >= 0 (Pa)", "c (Pa), lost at failure.");
   prm.declare("Tensile strength", "0", P::Double(0.0), "a number >= 0 (Pa)",
               "T (Pa), lost at failure.");
-  prm.declare("Dilation angle", "0", P::Double(0.0, 89.999), "a number from 0 to less than 90 (degrees)",
-              "psi (degrees), active while slipping.");
+  prm.declare("Dilation angle", "0", P::Double(0.0, 89.999),
+              "a number from 0 to less than 90 (degrees)", "psi (degrees), active while slipping.");
   prm.declare("Dilation limit", "0", P::Double(0.0), "a number >= 0 (m; 0: no limit)",
               "Shear displacement beyond which dilation stops (m).");
   prm.leave();
@@ -348,6 +363,14 @@ void parse_solver(ParameterFile& prm, Scene& scene)
   s.steps = static_cast<unsigned long>(prm.get_integer("Steps"));
   s.target_ratio = prm.get_double("Target ratio");
   s.local_damping = s.dynamic ? 0.0 : prm.get_double("Local damping");
+  const std::string damping = prm.get("Damping");
+  s.damping = damping == "local"      ? Damping::local
+              : damping == "combined" ? Damping::combined
+                                      : Damping::adaptive_global;
+  s.global_damping_ratio = prm.get_double("Global damping ratio");
+  if (!(s.global_damping_ratio > 0.0) && s.damping == Damping::adaptive_global)
+    throw prm.error("Global damping ratio", "must be positive for global damping",
+                    "a number > 0 and <= 1");
   s.density_scaling = prm.get_bool("Density scaling");
   s.principal_inertia = prm.get("Rotation") == "principal";
   s.time_step_fraction = prm.get_double("Time step fraction");
@@ -378,6 +401,7 @@ void parse_solver(ParameterFile& prm, Scene& scene)
   s.contact.update_period = static_cast<unsigned int>(prm.get_integer("Update period"));
   s.contact.rotation_constant = prm.get_double("Rotation constant");
   s.contact.point_area_fraction = prm.get_double("Point area fraction");
+  s.contact.update_motion_fraction = prm.get_double("Update motion fraction");
   if (!(s.contact.point_area_fraction > 0.0))
     throw prm.error("Point area fraction", "must be positive", "a number > 0");
   prm.leave();

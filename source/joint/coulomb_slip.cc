@@ -19,10 +19,11 @@ double coulomb_slip(const JointProperties& joint, SubContactBatch& s)
     const double* dus = s.du_shear + 3 * i;
     const bool has_failed = s.state[i] & failed;
 
-    // Normal force from the total normal displacement (closure positive
-    // force): equivalent to eqs. 24 and 26 but free of drift.
+    // Normal force from the total normal displacement less the dilation the
+    // joint has taken (closure gives compression): equivalent to eqs. 24 and
+    // 26 but free of drift.
     s.normal_displacement[i] += s.du_normal[i];
-    double fn = -kn * area * s.normal_displacement[i];
+    double fn = -kn * area * (s.normal_displacement[i] - s.dilation[i]);
 
     // Tension: an intact joint holds up to T A (eq. 34), a failed one none.
     const double t_max = has_failed ? 0.0 : -joint.tensile_strength * area;
@@ -39,31 +40,51 @@ double coulomb_slip(const JointProperties& joint, SubContactBatch& s)
       continue;
     }
 
-    // Elastic shear increment (eqs. 25, 27).
+    // Elastic shear increment (eqs. 25, 27); the total shear displacement
+    // before it gives the direction that dilation is measured against.
     const double f_old[3] = {fs[0], fs[1], fs[2]};
+    double* us = s.shear_displacement + 3 * i;
+    const double us_old[3] = {us[0], us[1], us[2]};
     for (int d = 0; d < 3; ++d)
+    {
       fs[d] -= ks * area * dus[d];
+      us[d] += dus[d];
+    }
     const double fs_mag = std::sqrt(fs[0] * fs[0] + fs[1] * fs[1] + fs[2] * fs[2]);
     // Eq. 35 (intact) or eq. 37 (failed): the shear strength.
     const double cohesion = has_failed ? 0.0 : joint.cohesion;
     const double fs_max = cohesion * area + std::max(fn, 0.0) * tan_phi;
     if (fs_mag > fs_max)
     {
-      // Eq. 39: scale back to the strength; failure removes cohesion and
-      // tension for good.
-      const double scale = fs_max / fs_mag;
-      for (int d = 0; d < 3; ++d)
-        fs[d] *= scale;
+      // Failure removes cohesion and tension for good.
       if (joint.cohesion > 0.0 || joint.tensile_strength > 0.0)
         state |= failed;
       state |= slipping;
-      // Dilation while slipping (eqs. 41-43), until the limiting shear
-      // displacement; opening the joint raises the normal force.
-      const double dus_mag = std::sqrt(dus[0] * dus[0] + dus[1] * dus[1] + dus[2] * dus[2]);
-      s.shear_displacement[i] += dus_mag;
-      if (tan_psi != 0.0 && (joint.dilation_limit <= 0.0 ||
-                             s.shear_displacement[i] < joint.dilation_limit))
-        s.normal_displacement[i] -= dus_mag * tan_psi;
+      // Dilation while slipping (eqs. 41-43), measured as the change of
+      // min(|U^s|, U^s_lim): shear away from the origin opens the joint,
+      // shear back towards it closes it again (the direction dependence),
+      // and beyond the limiting displacement nothing changes. Eq. 43: the
+      // normal force takes the opening at once, and the strength of this
+      // step follows it (otherwise the shear force would lag the normal
+      // force by one step of dilation: kn A tan(psi) dU^s).
+      double strength = fs_max;
+      if (tan_psi != 0.0)
+      {
+        const double limit = joint.dilation_limit > 0.0 ? joint.dilation_limit : 1e300;
+        const double before =
+            std::sqrt(us_old[0] * us_old[0] + us_old[1] * us_old[1] + us_old[2] * us_old[2]);
+        const double after = std::sqrt(us[0] * us[0] + us[1] * us[1] + us[2] * us[2]);
+        s.dilation[i] += (std::min(after, limit) - std::min(before, limit)) * tan_psi;
+        fn = std::max(-kn * area * (s.normal_displacement[i] - s.dilation[i]), 0.0);
+        strength = cohesion * area + fn * tan_phi;
+      }
+      // Eq. 39: scale back to the strength.
+      if (fs_mag > strength)
+      {
+        const double scale = strength / fs_mag;
+        for (int d = 0; d < 3; ++d)
+          fs[d] *= scale;
+      }
       // Work of the friction force against the slip (always dissipated).
       dissipated += 0.5 * std::abs((f_old[0] + fs[0]) * dus[0] + (f_old[1] + fs[1]) * dus[1] +
                                    (f_old[2] + fs[2]) * dus[2]);

@@ -17,7 +17,10 @@ double seconds_since(std::chrono::steady_clock::time_point t)
 {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - t).count();
 }
-double sign(double x) { return (x > 0.0) - (x < 0.0); }
+double sign(double x)
+{
+  return (x > 0.0) - (x < 0.0);
+}
 } // namespace
 
 RigidSolver::RigidSolver(BlockModel& blocks, double density, const SolverSettings& settings)
@@ -37,6 +40,9 @@ RigidSolver::RigidSolver(BlockModel& blocks, double density, const SolverSetting
   applied_force_rate.assign(nb, Vec3::Zero());
   prescribed.assign(nb, 0);
   moved.assign(nb, 0.0);
+  path.assign(nb, 0.0);
+  last_force_.assign(nb, Vec3::Zero());
+  last_moment_.assign(nb, Vec3::Zero());
   if (s_.principal_inertia)
   {
     principal_moments.resize(nb);
@@ -92,6 +98,8 @@ RigidSolver::RigidSolver(BlockModel& blocks, double density, const SolverSetting
         principal_moments[b] *= scale;
     }
   dt_ = s_.time_step > 0.0 ? s_.time_step : stable_time_step();
+  // The servo of eq. 77 starts light (c dt = 1 %) and finds its level.
+  global_damping_ = 0.01 / dt_;
 
   envelopes_.resize(nb);
   Box all{m_.vertex.empty() ? Vec3::Zero() : m_.vertex[0],
@@ -119,7 +127,8 @@ double RigidSolver::stable_time_step() const
     {
       Vec3 twice = Vec3::Zero();
       for (unsigned int k = 0; k < p.face_size(f); ++k)
-        twice += p.vertex(p.face_vertex(f, k)).cross(p.vertex(p.face_vertex(f, (k + 1) % p.face_size(f))));
+        twice += p.vertex(p.face_vertex(f, k))
+                     .cross(p.vertex(p.face_vertex(f, (k + 1) % p.face_size(f))));
       area_max = std::max(area_max, 0.5 * twice.norm());
     }
   }
@@ -179,7 +188,10 @@ void RigidSolver::contact_forces()
     const Vec3 du = vel * dt_;
     const Vec3& nrm = cs.plane[c].normal;
     const double dun = du.dot(nrm);
-    du_n_[i] = dun;
+    // A sub-contact built at this step already has the last motion in its
+    // geometric un; only the shear increment is new to it.
+    du_n_[i] = cs.sc_fresh[i] ? 0.0 : dun;
+    cs.sc_fresh[i] = 0;
     const Vec3 dus = du - dun * nrm;
     du_s_[3 * i] = dus[0];
     du_s_[3 * i + 1] = dus[1];
@@ -199,6 +211,7 @@ void RigidSolver::contact_forces()
   batch.normal_force = cs.sc_fn.data();
   batch.shear_force = cs.sc_fs.data();
   batch.shear_displacement = cs.sc_us.data();
+  batch.dilation = cs.sc_dilation.data();
   batch.state = cs.sc_state.data();
   friction_work_ += coulomb_slip(s_.joint, batch);
 
@@ -232,12 +245,44 @@ void RigidSolver::contact_forces()
 
 void RigidSolver::move_blocks()
 {
-  const bool damp = !s_.dynamic && s_.local_damping > 0.0;
+  const Damping mode = s_.dynamic ? Damping::none : s_.damping;
   const double alpha = s_.local_damping;
+  const double c_global = global_damping_; // 1/s, adaptive global damping only
   // Velocities live at half steps (eq. 47). Those given at the start are at
   // t = 0, so the first kick is half a step: without it every position is
   // late by a t dt / 2 (a relative error of 1/n after n steps of free fall).
   const double h = step_ == 0 ? 0.5 * dt_ : dt_;
+  // One velocity component: v += (F - F_d) h / m, returning F_d. Local
+  // damping (eqs. 78-79) opposes the velocity; combined damping (eq. 83)
+  // averages that with the sign of the force change, so a steady motion is
+  // not damped; adaptive global damping is viscous, c m v, taken
+  // semi-implicitly (stable for any c h < 2).
+  const auto kick = [&](double& v, double f, double f_before, double m)
+  {
+    double fd = 0.0;
+    switch (mode)
+    {
+    case Damping::local:
+      fd = alpha * std::abs(f) * sign(v);
+      break;
+    case Damping::combined:
+      fd = 0.5 * alpha * std::abs(f) * (sign(v) - sign(f - f_before));
+      break;
+    case Damping::adaptive_global:
+    {
+      const double v_old = v;
+      v = (v * (1.0 - 0.5 * c_global * h) + f * h / m) / (1.0 + 0.5 * c_global * h);
+      fd = c_global * m * 0.5 * (v_old + v);
+      servo_damping_power_ += fd * 0.5 * (v_old + v);
+      servo_force_power_ += std::abs(f * 0.5 * (v_old + v));
+      return fd;
+    }
+    case Damping::none:
+      break;
+    }
+    v += (f - fd) * h / m;
+    return fd;
+  };
   double max_unbalanced = 0.0, sum_weight = 0.0;
   unsigned int n_free = 0;
   for (unsigned int b = 0; b < m_.n_blocks(); ++b)
@@ -248,51 +293,50 @@ void RigidSolver::move_blocks()
       moment[b].setZero();
       continue;
     }
-    const Vec3 f = force[b] + mass[b] * s_.gravity + applied_force[b] + applied_force_rate[b] * time_;
+    const Vec3 f =
+        force[b] + mass[b] * s_.gravity + applied_force[b] + applied_force_rate[b] * time_;
     max_unbalanced = std::max(max_unbalanced, f.norm());
     sum_weight += mass[b] * s_.gravity.norm();
     ++n_free;
-    // Eq. 49 with local damping (eqs. 78-79) in place of viscous damping:
-    // the damping force opposes the velocity and scales with the unbalanced
-    // force, so it vanishes at equilibrium.
+    // Eq. 49 for translation, damped for statics.
     Vec3 damping_force = Vec3::Zero();
     for (int d = 0; d < 3; ++d)
-    {
-      damping_force[d] = damp ? alpha * std::abs(f[d]) * sign(velocity[b][d]) : 0.0;
       if (!(prescribed[b] & (1u << d)))
-        velocity[b][d] += (f[d] - damping_force[d]) * h / inertial_mass[b];
-    }
+        damping_force[d] = kick(velocity[b][d], f[d], last_force_[b][d], inertial_mass[b]);
+    last_force_[b] = f;
+    Vec3 damping_moment = Vec3::Zero();
+    const Vec3 spin_before = spin[b];
     if (prescribed[b] & 8u)
       spin[b].setZero();
     else if (s_.principal_inertia)
     {
       // Eq. 49 for rotation about the principal axes, with the gyroscopic
-      // terms of Euler's equations (eq. 45) at the old spin.
+      // terms of Euler's equations (eq. 45) at the old spin, damped in the
+      // principal frame.
       const Eigen::Matrix3d& Q = axes[b];
-      const Vec3 w = Q.transpose() * spin[b];
+      Vec3 w = Q.transpose() * spin[b];
       const Vec3 mloc = Q.transpose() * moment[b];
+      const Vec3 mloc_before = Q.transpose() * last_moment_[b];
       const Vec3& I = principal_moments[b];
-      Vec3 wn;
-      wn[0] = w[0] + (mloc[0] - (I[2] - I[1]) * w[2] * w[1]) * h / I[0];
-      wn[1] = w[1] + (mloc[1] - (I[0] - I[2]) * w[0] * w[2]) * h / I[1];
-      wn[2] = w[2] + (mloc[2] - (I[1] - I[0]) * w[1] * w[0]) * h / I[2];
+      const Vec3 gyro(-(I[2] - I[1]) * w[2] * w[1], -(I[0] - I[2]) * w[0] * w[2],
+                      -(I[1] - I[0]) * w[1] * w[0]);
+      Vec3 md;
       for (int d = 0; d < 3; ++d)
-        if (damp)
-          wn[d] -= alpha * std::abs(mloc[d]) * sign(w[d]) * h / I[d];
-      spin[b] = Q * wn;
+        md[d] = kick(w[d], mloc[d] + gyro[d], mloc_before[d] + gyro[d], I[d]);
+      spin[b] = Q * w;
+      damping_moment = Q * md;
     }
     else
       for (int d = 0; d < 3; ++d)
-      {
-        const double md = damp ? alpha * std::abs(moment[b][d]) * sign(spin[b][d]) : 0.0;
-        spin[b][d] += (moment[b][d] - md) * h / inertia[b];
-      }
+        damping_moment[d] = kick(spin[b][d], moment[b][d], last_moment_[b][d], inertia[b]);
+    last_moment_[b] = moment[b];
     // Eqs. 50-52, with the rotation applied exactly so that blocks keep
     // their shape through any number of turns.
     const Vec3 dx = velocity[b] * dt_;
     const Vec3 dtheta = spin[b] * dt_;
     gravity_work_ += mass[b] * s_.gravity.dot(dx);
-    damping_work_ += damping_force.dot(dx);
+    damping_work_ +=
+        damping_force.dot(dx) + damping_moment.dot(0.5 * (spin_before + spin[b]) * dt_);
     const double angle = dtheta.norm();
     const Eigen::Matrix3d R = angle > 0.0
                                   ? Eigen::AngleAxisd(angle, dtheta / angle).toRotationMatrix()
@@ -313,6 +357,7 @@ void RigidSolver::move_blocks()
     displacement[b] += dx;
     rotation[b] += dtheta;
     moved[b] += max_du; // eq. 1
+    path[b] += max_du;
     force[b].setZero();
     moment[b].setZero();
   }
@@ -327,7 +372,7 @@ void RigidSolver::step()
     detect_contacts(false);
     timing_.seconds_detection += seconds_since(t0);
     t0 = std::chrono::steady_clock::now();
-    contacts_.update(m_, s_.contact);
+    contacts_.update(m_, s_.contact, &path);
     timing_.seconds_planes += seconds_since(t0);
     t0 = std::chrono::steady_clock::now();
   }
@@ -335,9 +380,28 @@ void RigidSolver::step()
   timing_.seconds_forces += seconds_since(t0);
   t0 = std::chrono::steady_clock::now();
   move_blocks();
+  if (!s_.dynamic && s_.damping == Damping::adaptive_global && (step_ + 1) % servo_period == 0)
+    adjust_global_damping();
   timing_.seconds_motion += seconds_since(t0);
   time_ += dt_;
   ++step_;
+}
+
+void RigidSolver::adjust_global_damping()
+{
+  // Eq. 77: the servo keeps the power absorbed by damping a set fraction R
+  // of the power of the unbalanced forces (our measure of the rate of
+  // change of kinetic energy: sum over blocks and components of |F v|).
+  // The constant moves by at most 25 % per period, so it follows the
+  // system without hunting; c dt stays below 1 (stable, not overdamped).
+  if (servo_force_power_ > 0.0)
+  {
+    const double ratio = servo_damping_power_ / servo_force_power_;
+    const double factor =
+        ratio > 0.0 ? std::clamp(s_.global_damping_ratio / ratio, 0.8, 1.25) : 1.25;
+    global_damping_ = std::clamp(global_damping_ * factor, 1e-6 / dt_, 1.0 / dt_);
+  }
+  servo_damping_power_ = servo_force_power_ = 0.0;
 }
 
 double RigidSolver::kinetic_energy() const
@@ -366,7 +430,8 @@ double RigidSolver::joint_energy() const
   for (unsigned int i = 0; i < cs.n_subcontacts(); ++i)
   {
     const double a = cs.sc_area[i];
-    const double fs2 = cs.sc_fs[3 * i] * cs.sc_fs[3 * i] + cs.sc_fs[3 * i + 1] * cs.sc_fs[3 * i + 1] +
+    const double fs2 = cs.sc_fs[3 * i] * cs.sc_fs[3 * i] +
+                       cs.sc_fs[3 * i + 1] * cs.sc_fs[3 * i + 1] +
                        cs.sc_fs[3 * i + 2] * cs.sc_fs[3 * i + 2];
     e += 0.5 * cs.sc_fn[i] * cs.sc_fn[i] / (s_.joint.normal_stiffness * a) +
          0.5 * fs2 / (s_.joint.shear_stiffness * a);

@@ -18,6 +18,10 @@ struct ContactSettings
   /// Area given to a sub-contact of a vertex or edge contact (no face on
   /// one side), as a fraction of the smaller block's volume^(2/3).
   double point_area_fraction = 0.01;
+  /// A contact whose two blocks together moved less than this fraction of
+  /// the tolerance since its last update keeps its plane and sub-contacts
+  /// (their forces still change every step): no work for blocks at rest.
+  double update_motion_fraction = 0.01;
   CommonPlaneSettings common_plane;
 };
 
@@ -33,9 +37,12 @@ public:
   void try_create(unsigned int a, unsigned int b, const BlockModel& blocks,
                   const ContactSettings& settings);
 
-  /// Updates every common plane (deleting contacts whose gap exceeds the
-  /// tolerance) and rebuilds the sub-contacts.
-  void update(const BlockModel& blocks, const ContactSettings& settings);
+  /// Updates the common planes (deleting contacts whose gap exceeds the
+  /// tolerance) and rebuilds the sub-contacts of every contact whose blocks
+  /// have moved: `path[b]` is the distance block b's vertices have travelled
+  /// since the start (m, never reset). Without `path`, every contact.
+  void update(const BlockModel& blocks, const ContactSettings& settings,
+              const std::vector<double>* path = nullptr);
 
   unsigned int n_contacts() const { return n_alive_; }
   unsigned int n_slots() const { return static_cast<unsigned int>(block_a.size()); }
@@ -47,17 +54,21 @@ public:
   std::vector<double> gap;
   std::vector<ContactType> type;
   std::vector<char> alive;
+  std::vector<double> path_at_update; ///< path[a] + path[b] when last updated
 
   // Sub-contacts.
-  std::vector<unsigned int> sc_contact;   ///< contact slot
-  std::vector<Vec3> sc_position;          ///< m, on the common plane
-  std::vector<double> sc_area;            ///< m^2
-  std::vector<double> sc_un;              ///< normal displacement, m (negative = closure)
-  std::vector<double> sc_fn;              ///< normal force, N
-  std::vector<double> sc_fs;              ///< shear force, 3 per sub-contact, N
-  std::vector<double> sc_us;              ///< accumulated slip, m
+  std::vector<unsigned int> sc_contact; ///< contact slot
+  std::vector<Vec3> sc_position;        ///< m, on the common plane
+  std::vector<double> sc_area;          ///< m^2
+  std::vector<double> sc_un;            ///< normal displacement, m (negative = closure)
+  std::vector<double> sc_fn;            ///< normal force, N
+  std::vector<double> sc_fs;            ///< shear force, 3 per sub-contact, N
+  std::vector<double> sc_dilation;      ///< opening from dilation (eq. 42), m
+  std::vector<double> sc_us;            ///< total shear displacement U^s, 3 per sub-contact, m
   std::vector<unsigned char> sc_state;
-  std::vector<std::int64_t> sc_key;       ///< what the sub-contact sits on, for carry-over
+  /// 1 while un was just measured from the geometry: the next force
+  /// calculation must not add the last step's motion to it a second time.
+  std::vector<unsigned char> sc_fresh;
 
 private:
   void remove(unsigned int c);
@@ -69,7 +80,7 @@ private:
   unsigned int n_alive_ = 0;
   // Sub-contacts of the previous update, indexed by contact slot, for carry-over.
   std::vector<unsigned int> old_start_, old_end_;
-  std::vector<double> old_un_, old_fn_, old_fs_, old_us_;
+  std::vector<double> old_un_, old_fn_, old_fs_, old_us_, old_dilation_;
   std::vector<unsigned char> old_state_;
   std::vector<Vec3> old_normal_;
 };

@@ -8,10 +8,10 @@ namespace talus
 /// Sub-contact state flags.
 enum SubContactState : unsigned char
 {
-  intact = 0,     ///< never failed: cohesion and tensile strength hold
-  slipping = 1,   ///< at the shear limit this step
-  open = 2,       ///< separated (no normal force) this step
-  failed = 4      ///< has failed once: residual strength (eqs. 36-37)
+  intact = 0,   ///< never failed: cohesion and tensile strength hold
+  slipping = 1, ///< at the shear limit this step
+  open = 2,     ///< separated (no normal force) this step
+  failed = 4    ///< has failed once: residual strength (eqs. 36-37)
 };
 
 /// The arrays of one batch of sub-contacts that a joint model reads and
@@ -20,13 +20,15 @@ enum SubContactState : unsigned char
 struct SubContactBatch
 {
   unsigned int size = 0;
-  const double* area = nullptr;   ///< A_c, m^2
-  const double* du_normal = nullptr; ///< eq. 21, m (positive = opening)
-  const double* du_shear = nullptr;  ///< eq. 22, 3 per sub-contact, m
+  const double* area = nullptr;          ///< A_c, m^2
+  const double* du_normal = nullptr;     ///< eq. 21, m (positive = opening)
+  const double* du_shear = nullptr;      ///< eq. 22, 3 per sub-contact, m
   double* normal_displacement = nullptr; ///< U^n: < 0 = closure, m
-  double* normal_force = nullptr; ///< F^n, N (compression positive)
-  double* shear_force = nullptr;  ///< F^s, 3 per sub-contact, N
-  double* shear_displacement = nullptr; ///< accumulated |U^s| while slipping, m (for the dilation limit)
+  double* normal_force = nullptr;        ///< F^n, N (compression positive)
+  double* shear_force = nullptr;         ///< F^s, 3 per sub-contact, N
+  double* shear_displacement = nullptr;  ///< total shear displacement U^s, 3 per sub-contact, m
+                                         ///< (dilation limit and direction)
+  double* dilation = nullptr;            ///< opening from dilation so far (eq. 42), m
   unsigned char* state = nullptr;
 };
 

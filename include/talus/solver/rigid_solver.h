@@ -21,9 +21,18 @@ struct BlockLoad
   Vec3 force = Vec3::Zero();      ///< N, per block
   Vec3 force_rate = Vec3::Zero(); ///< N/s, per block
   bool prescribe_velocity = false;
-  Vec3 velocity = Vec3::Zero();   ///< m/s
+  Vec3 velocity = Vec3::Zero();      ///< m/s
   bool held[3] = {true, true, true}; ///< which components of the velocity are held
   bool hold_rotation = false;        ///< the blocks do not rotate (a stiff platen)
+};
+
+/// Damping of static runs (dynamic runs are undamped).
+enum class Damping
+{
+  local,           ///< eqs. 78-79: opposes the velocity, scales with the unbalanced force
+  combined,        ///< eq. 83: half local, half by the sign of the force change (steady motion)
+  adaptive_global, ///< eq. 77: viscous, its constant set by a servo
+  none
 };
 
 struct SolverSettings
@@ -31,7 +40,9 @@ struct SolverSettings
   bool dynamic = false;             ///< false: static solution with damping
   unsigned long steps = 0;          ///< step limit (0: build the model only)
   double target_ratio = 1e-5;       ///< static runs stop below this unbalanced-force ratio (0: off)
-  double local_damping = 0.8;       ///< alpha of eq. 79 (statics)
+  Damping damping = Damping::local; ///< statics
+  double local_damping = 0.8;       ///< alpha of eqs. 79 and 83
+  double global_damping_ratio = 0.5; ///< R of eq. 77 that the servo keeps
   /// Statics only: inertial masses raised to the mean block mass so that the
   /// time step follows the mean block, not the smallest (density scaling).
   bool density_scaling = true;
@@ -43,11 +54,11 @@ struct SolverSettings
   Vec3 gravity = Vec3(0, 0, -9.81); ///< m/s^2
   ContactSettings contact;
   JointProperties joint;
-  std::vector<unsigned int> fixed_groups;    ///< group indices of fixed blocks
+  std::vector<unsigned int> fixed_groups; ///< group indices of fixed blocks
   std::vector<BlockLoad> loads;
-  std::vector<unsigned int> history_blocks;  ///< blocks whose motion is recorded
-  unsigned int history_interval = 10;        ///< steps between history rows
-  unsigned long output_interval = 0;         ///< steps between VTU files (0: first and last)
+  std::vector<unsigned int> history_blocks; ///< blocks whose motion is recorded
+  unsigned int history_interval = 10;       ///< steps between history rows
+  unsigned long output_interval = 0;        ///< steps between VTU files (0: first and last)
 };
 
 /// What a run did, for the summary.
@@ -91,19 +102,20 @@ public:
   double damping_dissipation() const { return damping_work_; }
 
   // Block state (per block).
-  std::vector<double> mass;              ///< kg, gravitational
-  std::vector<double> inertial_mass;     ///< kg, after density scaling
-  std::vector<double> inertia;           ///< kg m^2, isotropic (see constructor), scaled
-  std::vector<Vec3> principal_moments;   ///< kg m^2, scaled (principal inertia only)
-  std::vector<Eigen::Matrix3d> axes;     ///< principal axes as columns (principal inertia only)
-  std::vector<Vec3> velocity, spin;      ///< m/s, rad/s
-  std::vector<Vec3> force, moment;       ///< N, N m (reset every cycle)
-  std::vector<Vec3> displacement;        ///< m, since the start
-  std::vector<Vec3> rotation;            ///< rad, sum of increments
+  std::vector<double> mass;            ///< kg, gravitational
+  std::vector<double> inertial_mass;   ///< kg, after density scaling
+  std::vector<double> inertia;         ///< kg m^2, isotropic (see constructor), scaled
+  std::vector<Vec3> principal_moments; ///< kg m^2, scaled (principal inertia only)
+  std::vector<Eigen::Matrix3d> axes;   ///< principal axes as columns (principal inertia only)
+  std::vector<Vec3> velocity, spin;    ///< m/s, rad/s
+  std::vector<Vec3> force, moment;     ///< N, N m (reset every cycle)
+  std::vector<Vec3> displacement;      ///< m, since the start
+  std::vector<Vec3> rotation;          ///< rad, sum of increments
   std::vector<char> fixed;
   std::vector<Vec3> applied_force, applied_force_rate; ///< N, N/s
   std::vector<unsigned char> prescribed; ///< bit d: velocity component d held; bit 3: no rotation
   std::vector<double> moved;             ///< u_acc of eq. 1, m
+  std::vector<double> path;              ///< m, distance travelled since the start (never reset)
 
   const ContactSet& contacts() const { return contacts_; }
   double time() const { return time_; }
@@ -115,6 +127,8 @@ private:
   void detect_contacts(bool everything);
   void contact_forces();
   void move_blocks();
+  void adjust_global_damping();
+  static constexpr unsigned int servo_period = 10; ///< steps between servo adjustments
 
   BlockModel& m_;
   SolverSettings s_;
@@ -123,6 +137,10 @@ private:
   std::vector<Box> envelopes_;
   std::vector<std::pair<unsigned int, unsigned int>> pairs_;
   std::vector<double> du_n_, du_s_;
+  std::vector<Vec3> last_force_,
+      last_moment_;             ///< unbalanced force and moment of the last step (eq. 83)
+  double global_damping_ = 0.0; ///< c of adaptive global damping, 1/s
+  double servo_damping_power_ = 0.0, servo_force_power_ = 0.0; ///< W, summed over a servo period
   double dt_ = 0.0, time_ = 0.0, ratio_ = 1.0;
   double gravity_work_ = 0.0, friction_work_ = 0.0, damping_work_ = 0.0;
   unsigned long step_ = 0;
