@@ -94,9 +94,17 @@ void solve(talus::Scene& scene, talus::BlockModel& model, talus::PvdSeries& seri
     history.record(row);
   };
   const SolverReport r = solver.run(output, record);
+  progress.finish();
   std::printf("Steps:        %lu (time %.6g s)\n", r.steps, r.time);
   std::printf("Contacts:     %u with %u sub-contacts\n", r.contacts, r.subcontacts);
   std::printf("Unbalanced force ratio: %.3g\n", r.ratio);
+  unsigned int moved_most = 0;
+  for (unsigned int b = 0; b < model.n_blocks(); ++b)
+    if (solver.displacement[b].norm() > solver.displacement[moved_most].norm())
+      moved_most = b;
+  if (model.n_blocks() > 0)
+    std::printf("Largest displacement: %.6g m (block %u)\n", solver.displacement[moved_most].norm(),
+                moved_most);
   for (unsigned int b : scene.solver.history_blocks)
     std::printf("Block %u displacement: %.9g, %.9g, %.9g m\n", b, solver.displacement[b][0],
                 solver.displacement[b][1], solver.displacement[b][2]);

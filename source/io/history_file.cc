@@ -1,6 +1,9 @@
 #include <talus/base/exceptions.h>
 #include <talus/io/history_file.h>
 
+#include <unistd.h>
+#include <cstdio>
+
 #include <chrono>
 #include <cstdio>
 #include <iostream>
@@ -46,12 +49,16 @@ ProgressLine::ProgressLine(unsigned long total_steps, double interval)
     : total_(total_steps), interval_(interval), start_(wall_seconds())
 {
   last_ = start_;
+  terminal_ = isatty(fileno(stderr)) != 0;
 }
 
-ProgressLine::~ProgressLine()
+ProgressLine::~ProgressLine() { finish(); }
+
+void ProgressLine::finish()
 {
   if (shown_)
-    std::cerr << std::endl;
+    std::cerr << '\r' << std::string(79, ' ') << '\r' << std::flush;
+  shown_ = false;
 }
 
 std::string ProgressLine::format(unsigned long step, unsigned long total, double time,
@@ -68,6 +75,8 @@ std::string ProgressLine::format(unsigned long step, unsigned long total, double
 
 void ProgressLine::update(unsigned long step, double time)
 {
+  if (!terminal_)
+    return;
   const double now = wall_seconds();
   if (now - last_ < interval_)
     return;

@@ -39,7 +39,11 @@ public:
   ~ProgressLine();
 
   /// Reports step `step` at model time `time` (s) if `interval` has passed.
+  /// Shown only when standard error is a terminal, so logs stay clean.
   void update(unsigned long step, double time);
+
+  /// Clears the line, so that what is printed next starts on a clean line.
+  void finish();
 
   /// The text shown for the given state (separated out for testing).
   static std::string format(unsigned long step, unsigned long total, double time,
@@ -51,6 +55,7 @@ private:
   double start_;
   double last_ = 0.0;
   bool shown_ = false;
+  bool terminal_ = false;
 };
 
 } // namespace talus
