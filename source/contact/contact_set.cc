@@ -253,7 +253,8 @@ void ContactSet::update(const BlockModel& m, const ContactSettings& settings,
             sc_fs.push_back(old_fs_[3 * o + d]);
           for (int d = 0; d < 3; ++d)
             sc_us.push_back(old_us_[3 * o + d]);
-          sc_dilation.push_back(old_dilation_[o]);
+          if (settings.dilation)
+            sc_dilation.push_back(old_dilation_[o]);
           sc_state.push_back(old_state_[o]);
           sc_fresh.push_back(0);
         }
@@ -311,7 +312,8 @@ void ContactSet::update(const BlockModel& m, const ContactSettings& settings,
           sc_fs[3 * i + d] = fs[d];
           sc_us[3 * i + d] = us[d];
         }
-        sc_dilation[i] = old_dilation_[match];
+        if (settings.dilation)
+          sc_dilation[i] = old_dilation_[match];
         sc_state[i] = old_state_[match];
       }
     }
@@ -398,7 +400,8 @@ void ContactSet::build_subcontacts(unsigned int c, const BlockModel& m,
       sc_fs.push_back(0.0);
     for (int d = 0; d < 3; ++d)
       sc_us.push_back(0.0);
-    sc_dilation.push_back(0.0);
+    if (settings.dilation)
+      sc_dilation.push_back(0.0);
     sc_state.push_back(0);
     sc_fresh.push_back(1);
   }

@@ -23,7 +23,7 @@ double coulomb_slip(const JointProperties& joint, SubContactBatch& s)
     // joint has taken (closure gives compression): equivalent to eqs. 24 and
     // 26 but free of drift.
     s.normal_displacement[i] += s.du_normal[i];
-    double fn = -kn * area * (s.normal_displacement[i] - s.dilation[i]);
+    double fn = -kn * area * (s.normal_displacement[i] - (s.dilation ? s.dilation[i] : 0.0));
 
     // Tension: an intact joint holds up to T A (eq. 34), a failed one none.
     const double t_max = has_failed ? 0.0 : -joint.tensile_strength * area;
@@ -68,7 +68,7 @@ double coulomb_slip(const JointProperties& joint, SubContactBatch& s)
       // step follows it (otherwise the shear force would lag the normal
       // force by one step of dilation: kn A tan(psi) dU^s).
       double strength = fs_max;
-      if (tan_psi != 0.0)
+      if (tan_psi != 0.0 && s.dilation)
       {
         const double limit = joint.dilation_limit > 0.0 ? joint.dilation_limit : 1e300;
         const double before =

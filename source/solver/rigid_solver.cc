@@ -1,5 +1,5 @@
 #include <talus/geometry/mass_properties.h>
-#include <talus/joint/coulomb_slip.h>
+#include <talus/joint/joint_model.h>
 #include <talus/solver/rigid_solver.h>
 
 #include <Eigen/Geometry>
@@ -26,6 +26,8 @@ double sign(double x)
 RigidSolver::RigidSolver(BlockModel& blocks, double density, const SolverSettings& settings)
     : m_(blocks), s_(settings)
 {
+  // No dilation state for joints that do not dilate.
+  s_.contact.dilation = s_.joint.dilation_angle != 0.0;
   const unsigned int nb = m_.n_blocks();
   mass.resize(nb);
   inertia.resize(nb);
@@ -211,9 +213,9 @@ void RigidSolver::contact_forces()
   batch.normal_force = cs.sc_fn.data();
   batch.shear_force = cs.sc_fs.data();
   batch.shear_displacement = cs.sc_us.data();
-  batch.dilation = cs.sc_dilation.data();
+  batch.dilation = cs.sc_dilation.empty() ? nullptr : cs.sc_dilation.data();
   batch.state = cs.sc_state.data();
-  friction_work_ += coulomb_slip(s_.joint, batch);
+  friction_work_ += apply_joint_model(s_.joint, batch);
 
   // Force and moment sums (eqs. 28-32): A pushes B along +n.
   for (unsigned int i = 0; i < n; ++i)

@@ -22,6 +22,8 @@ struct ContactSettings
   /// the tolerance since its last update keeps its plane and sub-contacts
   /// (their forces still change every step): no work for blocks at rest.
   double update_motion_fraction = 0.01;
+  /// Whether sub-contacts keep a dilation state (only joints that dilate).
+  bool dilation = false;
   CommonPlaneSettings common_plane;
 };
 
