@@ -1,0 +1,124 @@
+#pragma once
+
+#include <talus/geometry/plane.h>
+#include <talus/solver/rigid_solver.h>
+#include <talus/zone/stress_batch.h>
+#include <talus/zone/tet4_kernel.h>
+#include <talus/zone/tet_mesh.h>
+#include <talus/zone/zone_material.h>
+
+#include <memory>
+#include <vector>
+
+namespace talus
+{
+
+/// Velocity held on some components of the gridpoints in a region (fixed
+/// when it is zero): velocity + velocity_gradient x, with x the
+/// gridpoint's initial position (a linear field, for patch tests and
+/// boundaries moving with a uniform strain rate).
+struct GridpointCondition
+{
+  Box region;
+  bool held[3] = {true, true, true};
+  Vec3 velocity = Vec3::Zero();                                ///< m/s
+  Eigen::Matrix3d velocity_gradient = Eigen::Matrix3d::Zero(); ///< 1/s
+};
+
+/// A normal pressure (Pa, positive pushing into the block) on the boundary
+/// faces whose centroid lies in a region.
+struct FacePressure
+{
+  Box region;
+  double pressure = 0.0;
+};
+
+/// Initial stress of the zones: sigma = base + gradient * (z - z0) for each
+/// of the six components (Pa, tension positive; gradient in Pa/m).
+struct InitialStress
+{
+  double base[6] = {0, 0, 0, 0, 0, 0};
+  double gradient[6] = {0, 0, 0, 0, 0, 0};
+  double z0 = 0.0;
+};
+
+/// The explicit cycle of deformable blocks: zone forces from the stresses
+/// (matrix-free, constant-strain tetrahedra), gridpoint motion (eq. 57) with
+/// local damping for statics (eqs. 78-79), the time step of eqs. 84-86, and
+/// density scaling for statics. Gridpoint state (position, velocity, force,
+/// mass) lives in PETSc vectors; the kernels take their raw arrays once per
+/// stage. PETSc must have been initialised (talus::ParallelEnvironment).
+class DeformableSolver
+{
+public:
+  /// `material_of_zone[z]` indexes `materials`.
+  DeformableSolver(const TetMesh& mesh, std::vector<ZoneMaterial> materials,
+                   std::vector<unsigned int> material_of_zone, const SolverSettings& settings,
+                   std::vector<GridpointCondition> conditions = {},
+                   std::vector<FacePressure> pressures = {},
+                   const InitialStress* initial = nullptr);
+  ~DeformableSolver();
+
+  /// Time step of eqs. 84-86 with the true masses (s).
+  double stable_time_step() const;
+
+  void step();
+  /// Steps (statics) until the unbalanced-force ratio is below `ratio`;
+  /// returns the steps taken.
+  unsigned long run_to_ratio(double ratio, unsigned long max_steps);
+
+  double dt() const { return dt_; }
+  double time() const { return time_; }
+  unsigned long steps_done() const { return step_; }
+  /// Largest unbalanced gridpoint force over the mean gravity force of a
+  /// gridpoint (or, without gravity, over the mean zone force magnitude).
+  double unbalanced_ratio() const { return ratio_; }
+
+  const TetMesh& mesh() const { return mesh_; }
+  /// Copies of the gridpoint state (3 per gridpoint).
+  std::vector<double> positions() const;
+  std::vector<double> displacements() const;
+  std::vector<double> velocities() const;
+  /// Zone stresses, 6 per zone (xx, yy, zz, xy, yz, zx), Pa.
+  const std::vector<double>& stress() const { return stress_; }
+  const std::vector<unsigned char>& plastic_state() const { return state_; }
+  /// Holds every component of gridpoint g at velocity `v` (m/s) from now on.
+  void hold_gridpoint(unsigned int g, const Vec3& v);
+
+  /// Reaction: the sum of the internal forces on the gridpoints of a region
+  /// whose motion is held (N); equal and opposite to what the support takes.
+  Vec3 support_force(const Box& region) const;
+
+private:
+  struct PetscState;
+  static double stable_time_step_of(const std::vector<double>& mass,
+                                    const std::vector<double>& stiffness);
+  void zone_forces();
+  void move_gridpoints();
+
+  const TetMesh& mesh_;
+  std::vector<ZoneMaterial> materials_;
+  std::vector<unsigned int> material_of_zone_;
+  SolverSettings s_;
+  std::vector<GridpointCondition> conditions_;
+  std::vector<FacePressure> pressures_;
+  std::unique_ptr<PetscState> petsc_;
+  /// Runs of consecutive zones with one material (the mesher keeps each
+  /// block's zones together): batch k is [batch_start_[k], batch_start_[k+1]).
+  std::vector<unsigned int> batch_start_;
+  std::vector<double> stress_;          ///< 6 per zone, Pa
+  std::vector<unsigned char> state_;    ///< per zone
+  std::vector<double> gravity_force_;   ///< 3 per gridpoint, N
+  std::vector<double> true_mass_;       ///< kg, per gridpoint
+  std::vector<double> nodal_stiffness_; ///< N/m, per gridpoint (eqs. 85-86)
+  std::vector<unsigned char> held_;     ///< per gridpoint, bit d: component d held
+  std::vector<double> held_velocity_;   ///< 3 per gridpoint, m/s
+  std::vector<unsigned int> pressed_faces_;
+  std::vector<double> face_pressure_; ///< Pa, per pressed face
+  std::vector<double> force_size_;    ///< 3 per gridpoint: sum of |zone force| (N), for the ratio
+  Tet4Scratch scratch_;
+  double dt_ = 0.0, time_ = 0.0, ratio_ = 1.0, force_scale_ = 1.0;
+  unsigned long step_ = 0;
+};
+
+} // namespace talus

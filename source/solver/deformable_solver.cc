@@ -1,0 +1,355 @@
+#include <talus/base/exceptions.h>
+#include <talus/solver/deformable_solver.h>
+#include <talus/zone/zone_models.h>
+
+#include <deal.II/lac/petsc_vector.h>
+
+#include <petscsys.h>
+#include <petscvec.h>
+
+#include <algorithm>
+#include <cmath>
+
+namespace talus
+{
+
+namespace
+{
+double sign(double x)
+{
+  return (x > 0.0) - (x < 0.0);
+}
+
+bool inside(const Box& b, const double* p)
+{
+  return p[0] >= b.lo.x() && p[0] <= b.hi.x() && p[1] >= b.lo.y() && p[1] <= b.hi.y() &&
+         p[2] >= b.lo.z() && p[2] <= b.hi.z();
+}
+
+/// The raw local array of a PETSc vector for the length of one stage.
+class LocalArray
+{
+public:
+  explicit LocalArray(const dealii::PETScWrappers::MPI::Vector& v) : vec_(v)
+  {
+    VecGetArray(vec_, &data_);
+  }
+  ~LocalArray() { VecRestoreArray(vec_, &data_); }
+  double* data() { return data_; }
+  double& operator[](std::size_t i) { return data_[i]; }
+
+private:
+  Vec vec_;
+  double* data_ = nullptr;
+};
+
+constexpr unsigned int zone_batch = 1024; ///< zones per kernel call (fits in cache)
+} // namespace
+
+/// Gridpoint state, 3 numbers per gridpoint in each vector.
+struct DeformableSolver::PetscState
+{
+  dealii::PETScWrappers::MPI::Vector position, velocity, force, inertial_mass;
+};
+
+DeformableSolver::DeformableSolver(const TetMesh& mesh, std::vector<ZoneMaterial> materials,
+                                   std::vector<unsigned int> material_of_zone,
+                                   const SolverSettings& settings,
+                                   std::vector<GridpointCondition> conditions,
+                                   std::vector<FacePressure> pressures,
+                                   const InitialStress* initial)
+    : mesh_(mesh), materials_(std::move(materials)), material_of_zone_(std::move(material_of_zone)),
+      s_(settings), conditions_(std::move(conditions)), pressures_(std::move(pressures))
+{
+  PetscBool petsc_ready = PETSC_FALSE;
+  PetscInitialized(&petsc_ready);
+  if (!petsc_ready)
+    throw InputError(
+        "internal: PETSc is not initialised (create a talus::ParallelEnvironment first)");
+  const unsigned int ng = mesh_.n_gridpoints(), nz = mesh_.n_zones();
+  if (material_of_zone_.size() != nz)
+    throw InputError("internal: one material index per zone is needed");
+
+  // Batches: runs of one material.
+  for (unsigned int z = 0; z < nz; ++z)
+    if (z == 0 || material_of_zone_[z] != material_of_zone_[z - 1])
+      batch_start_.push_back(z);
+  batch_start_.push_back(nz);
+
+  // Initial stress.
+  stress_.assign(6 * nz, 0.0);
+  state_.assign(nz, 0);
+  if (initial != nullptr)
+    for (unsigned int z = 0; z < nz; ++z)
+    {
+      double zc = 0.0;
+      for (unsigned int a = 0; a < 4; ++a)
+        zc += 0.25 * mesh_.position[3 * mesh_.zone_gridpoint[z][a] + 2];
+      for (int c = 0; c < 6; ++c)
+        stress_[6 * z + c] = initial->base[c] + initial->gradient[c] * (zc - initial->z0);
+    }
+
+  // Masses: a quarter of each zone's mass to each of its gridpoints; and
+  // the stiffness of eq. 86 summed at each gridpoint (eq. 85).
+  std::vector<double> mass(ng, 0.0), stiffness(ng, 0.0);
+  const auto P = [&](unsigned int g)
+  { return Vec3(mesh_.position[3 * g], mesh_.position[3 * g + 1], mesh_.position[3 * g + 2]); };
+  for (unsigned int z = 0; z < nz; ++z)
+  {
+    const auto& t = mesh_.zone_gridpoint[z];
+    const ZoneMaterial& mat = materials_[material_of_zone_[z]];
+    const double V = (P(t[1]) - P(t[0])).dot((P(t[2]) - P(t[0])).cross(P(t[3]) - P(t[0]))) / 6.0;
+    double b_max = 0.0, largest_face = 0.0;
+    for (int i = 0; i < 4; ++i)
+      for (int j = i + 1; j < 4; ++j)
+      {
+        b_max = std::max(b_max, (P(t[i]) - P(t[j])).norm());
+        for (int k = j + 1; k < 4; ++k)
+          largest_face =
+              std::max(largest_face, 0.5 * (P(t[j]) - P(t[i])).cross(P(t[k]) - P(t[i])).norm());
+      }
+    const double h_min = 3.0 * V / largest_face;
+    const double k_zone =
+        8.0 / 3.0 * (mat.bulk_modulus + 4.0 / 3.0 * mat.shear_modulus) * b_max * b_max / h_min;
+    for (int a = 0; a < 4; ++a)
+    {
+      mass[t[a]] += 0.25 * mat.density * V;
+      stiffness[t[a]] += k_zone;
+    }
+  }
+  gravity_force_.assign(3 * ng, 0.0);
+  for (unsigned int g = 0; g < ng; ++g)
+    for (int d = 0; d < 3; ++d)
+      gravity_force_[3 * g + d] = mass[g] * s_.gravity[d]; // eq. 56
+
+  // Time step (eq. 84); statics with density scaling: unit time step and
+  // each gridpoint's inertial mass set from its stiffness, m = k dt^2 / 4.
+  const bool scaled = !s_.dynamic && s_.density_scaling;
+  if (s_.time_step > 0.0)
+    dt_ = s_.time_step;
+  else
+    dt_ = scaled ? 1.0 : stable_time_step_of(mass, stiffness);
+  petsc_ = std::make_unique<PetscState>();
+  for (auto* v : {&petsc_->position, &petsc_->velocity, &petsc_->force, &petsc_->inertial_mass})
+    v->reinit(MPI_COMM_WORLD, 3 * ng, 3 * ng);
+  {
+    LocalArray x(petsc_->position), m(petsc_->inertial_mass);
+    for (unsigned int g = 0; g < ng; ++g)
+      for (int d = 0; d < 3; ++d)
+      {
+        x[3 * g + d] = mesh_.position[3 * g + d];
+        m[3 * g + d] = scaled ? stiffness[g] * dt_ * dt_ / 4.0 : mass[g];
+      }
+  }
+  true_mass_ = mass;
+  nodal_stiffness_ = stiffness;
+
+  // Boundary conditions, by the gridpoints' initial positions.
+  held_.assign(ng, 0);
+  held_velocity_.assign(3 * ng, 0.0);
+  for (unsigned int g = 0; g < ng; ++g)
+    for (const GridpointCondition& c : conditions_)
+      if (inside(c.region, &mesh_.position[3 * g]))
+        for (int d = 0; d < 3; ++d)
+          if (c.held[d])
+          {
+            held_[g] |= 1u << d;
+            held_velocity_[3 * g + d] =
+                c.velocity[d] + c.velocity_gradient.row(d).dot(Vec3(mesh_.position[3 * g],
+                                                                    mesh_.position[3 * g + 1],
+                                                                    mesh_.position[3 * g + 2]));
+          }
+  {
+    LocalArray v(petsc_->velocity);
+    for (unsigned int i = 0; i < 3 * ng; ++i)
+      v[i] = held_velocity_[i];
+  }
+  for (unsigned int f = 0; f < mesh_.n_faces(); ++f)
+  {
+    double c[3] = {0, 0, 0};
+    for (unsigned int g : mesh_.face_gridpoint[f])
+      for (int d = 0; d < 3; ++d)
+        c[d] += mesh_.position[3 * g + d] / 3.0;
+    for (const FacePressure& p : pressures_)
+      if (inside(p.region, c))
+      {
+        pressed_faces_.push_back(f);
+        face_pressure_.push_back(p.pressure);
+        break;
+      }
+  }
+  force_size_.assign(3 * ng, 0.0);
+}
+
+DeformableSolver::~DeformableSolver() = default;
+
+double DeformableSolver::stable_time_step_of(const std::vector<double>& mass,
+                                             const std::vector<double>& stiffness)
+{
+  // Eq. 84: dt = 2 min sqrt(m_i / k_i).
+  double ratio = 1e300;
+  for (std::size_t g = 0; g < mass.size(); ++g)
+    if (stiffness[g] > 0.0)
+      ratio = std::min(ratio, mass[g] / stiffness[g]);
+  return 2.0 * std::sqrt(ratio);
+}
+
+double DeformableSolver::stable_time_step() const
+{
+  return stable_time_step_of(true_mass_, nodal_stiffness_);
+}
+
+void DeformableSolver::zone_forces()
+{
+  LocalArray x(petsc_->position), v(petsc_->velocity), f(petsc_->force);
+  const unsigned int ng = mesh_.n_gridpoints();
+  for (unsigned int i = 0; i < 3 * ng; ++i)
+  {
+    f[i] = gravity_force_[i];
+    force_size_[i] = std::abs(gravity_force_[i]);
+  }
+  // Pressure on boundary faces, in the current geometry: -p n A / 3 on each
+  // of the face's gridpoints.
+  for (std::size_t k = 0; k < pressed_faces_.size(); ++k)
+  {
+    const auto& t = mesh_.face_gridpoint[pressed_faces_[k]];
+    const Vec3 a(x[3 * t[0]], x[3 * t[0] + 1], x[3 * t[0] + 2]);
+    const Vec3 b(x[3 * t[1]], x[3 * t[1] + 1], x[3 * t[1] + 2]);
+    const Vec3 c(x[3 * t[2]], x[3 * t[2] + 1], x[3 * t[2] + 2]);
+    const Vec3 area_normal = 0.5 * (b - a).cross(c - a); // outward, |.| = area
+    const Vec3 share = -face_pressure_[k] * area_normal / 3.0;
+    for (unsigned int g : t)
+      for (int d = 0; d < 3; ++d)
+      {
+        f[3 * g + d] += share[d];
+        force_size_[3 * g + d] += std::abs(share[d]);
+      }
+  }
+  // Zones, one batch of one material at a time: strain increments, the
+  // material model once for the batch, nodal forces.
+  scratch_.resize(zone_batch);
+  // The velocities are those of the last motion (x - v dt -> x); before the
+  // first motion there is none, so no strain.
+  const double strain_dt = step_ == 0 ? 0.0 : dt_;
+  for (std::size_t r = 0; r + 1 < batch_start_.size(); ++r)
+  {
+    const ZoneMaterial& mat = materials_[material_of_zone_[batch_start_[r]]];
+    for (unsigned int first = batch_start_[r]; first < batch_start_[r + 1]; first += zone_batch)
+    {
+      const unsigned int n = std::min(zone_batch, batch_start_[r + 1] - first);
+      tet4_strain_increments(mesh_, first, n, x.data(), v.data(), strain_dt, stress_.data(),
+                             scratch_);
+      StressBatch batch;
+      batch.size = n;
+      batch.strain_increment = scratch_.strain_increment.data();
+      batch.stress = stress_.data() + 6 * first;
+      batch.state = state_.data() + first;
+      apply_zone_model(mat, batch);
+      tet4_nodal_forces(mesh_, first, n, stress_.data(), scratch_, f.data(), force_size_.data());
+    }
+  }
+}
+
+void DeformableSolver::move_gridpoints()
+{
+  LocalArray x(petsc_->position), v(petsc_->velocity), f(petsc_->force), m(petsc_->inertial_mass);
+  const bool damp = !s_.dynamic && s_.local_damping > 0.0;
+  const double alpha = s_.local_damping;
+  // Velocities at half steps (eq. 57): the first kick is half a step.
+  const double h = step_ == 0 ? 0.5 * dt_ : dt_;
+  double largest = 0.0, size_sum = 0.0;
+  unsigned int n_free = 0;
+  const unsigned int ng = mesh_.n_gridpoints();
+  for (unsigned int g = 0; g < ng; ++g)
+  {
+    double f2 = 0.0, size2 = 0.0;
+    for (int d = 0; d < 3; ++d)
+    {
+      const unsigned int i = 3 * g + d;
+      if (held_[g] & (1u << d))
+      {
+        v[i] = held_velocity_[i];
+        continue;
+      }
+      f2 += f[i] * f[i];
+      size2 += force_size_[i] * force_size_[i];
+      // Eqs. 78-79: local damping opposes the velocity, in proportion to the
+      // unbalanced force.
+      const double fd = damp ? alpha * std::abs(f[i]) * sign(v[i]) : 0.0;
+      v[i] += (f[i] - fd) * h / m[i];
+    }
+    if (held_[g] != 7u)
+    {
+      largest = std::max(largest, std::sqrt(f2));
+      size_sum += std::sqrt(size2);
+      ++n_free;
+    }
+    for (int d = 0; d < 3; ++d)
+      x[3 * g + d] += v[3 * g + d] * dt_;
+  }
+  ratio_ = n_free > 0 && size_sum > 0.0 ? largest / (size_sum / n_free) : 0.0;
+}
+
+void DeformableSolver::step()
+{
+  zone_forces();
+  move_gridpoints();
+  time_ += dt_;
+  ++step_;
+}
+
+unsigned long DeformableSolver::run_to_ratio(double ratio, unsigned long max_steps)
+{
+  unsigned long n = 0;
+  while ((n < 20 || ratio_ >= ratio) && n < max_steps)
+  {
+    step();
+    ++n;
+  }
+  return n;
+}
+
+std::vector<double> DeformableSolver::positions() const
+{
+  LocalArray x(petsc_->position);
+  return std::vector<double>(x.data(), x.data() + 3 * mesh_.n_gridpoints());
+}
+
+std::vector<double> DeformableSolver::displacements() const
+{
+  std::vector<double> u = positions();
+  for (std::size_t i = 0; i < u.size(); ++i)
+    u[i] -= mesh_.position[i];
+  return u;
+}
+
+std::vector<double> DeformableSolver::velocities() const
+{
+  LocalArray v(petsc_->velocity);
+  return std::vector<double>(v.data(), v.data() + 3 * mesh_.n_gridpoints());
+}
+
+void DeformableSolver::hold_gridpoint(unsigned int g, const Vec3& v)
+{
+  // Takes effect at the next motion: the velocity that brought the
+  // gridpoint here is still needed for the strain of the coming step.
+  held_[g] = 7u;
+  for (int d = 0; d < 3; ++d)
+    held_velocity_[3 * g + d] = v[d];
+}
+
+Vec3 DeformableSolver::support_force(const Box& region) const
+{
+  // The unbalanced force of the last step at held gridpoints is what the
+  // support must supply, reversed.
+  LocalArray f(petsc_->force);
+  Vec3 sum = Vec3::Zero();
+  for (unsigned int g = 0; g < mesh_.n_gridpoints(); ++g)
+    if (held_[g] != 0 && inside(region, &mesh_.position[3 * g]))
+      for (int d = 0; d < 3; ++d)
+        if (held_[g] & (1u << d))
+          sum[d] += f[3 * g + d];
+  return sum;
+}
+
+} // namespace talus

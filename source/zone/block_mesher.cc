@@ -1,0 +1,193 @@
+#include <talus/base/exceptions.h>
+#include <talus/zone/block_mesher.h>
+
+#include <deal.II/grid/grid_generator.h>
+#include <deal.II/grid/tria.h>
+
+#include <algorithm>
+#include <cmath>
+#include <map>
+
+namespace talus
+{
+
+namespace
+{
+using dealii::Point;
+
+/// True when the block is an axis-aligned box (six faces, normals along
+/// the axes): deal.II's generator meshes it directly.
+bool is_axis_aligned_box(const BlockModel& m, unsigned int b, Box& box)
+{
+  if (m.face_start[b + 1] - m.face_start[b] != 6 || m.vertex_start[b + 1] - m.vertex_start[b] != 8)
+    return false;
+  for (unsigned int f = m.face_start[b]; f < m.face_start[b + 1]; ++f)
+  {
+    const Vec3& n = m.face_normal[f];
+    if (std::abs(std::abs(n.x()) + std::abs(n.y()) + std::abs(n.z()) - 1.0) > 1e-12 ||
+        n.cwiseAbs().maxCoeff() < 1.0 - 1e-12)
+      return false;
+  }
+  box.lo = box.hi = m.vertex[m.vertex_start[b]];
+  for (unsigned int v = m.vertex_start[b]; v < m.vertex_start[b + 1]; ++v)
+  {
+    box.lo = box.lo.cwiseMin(m.vertex[v]);
+    box.hi = box.hi.cwiseMax(m.vertex[v]);
+  }
+  return true;
+}
+
+double signed_volume(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& d)
+{
+  return (b - a).dot((c - a).cross(d - a)) / 6.0;
+}
+
+/// The fine mesh of one block as its own small triangulation.
+void mesh_one_block(const BlockModel& m, unsigned int b, double edge,
+                    dealii::Triangulation<3>& tria)
+{
+  Box box;
+  if (is_axis_aligned_box(m, b, box))
+  {
+    std::vector<unsigned int> n(3);
+    for (int d = 0; d < 3; ++d)
+      n[d] =
+          std::max(1u, static_cast<unsigned int>(std::ceil((box.hi[d] - box.lo[d]) / edge - 1e-9)));
+    dealii::GridGenerator::subdivided_hyper_rectangle_with_simplices(
+        tria, n, Point<3>(box.lo.x(), box.lo.y(), box.lo.z()),
+        Point<3>(box.hi.x(), box.hi.y(), box.hi.z()));
+    return;
+  }
+  // Any convex block: tetrahedra from the centroid to every triangle of a
+  // fan over each face, then uniform refinement (each tetrahedron into
+  // eight) until the longest edge is at most `edge`.
+  std::vector<Point<3>> vertices;
+  for (unsigned int v = m.vertex_start[b]; v < m.vertex_start[b + 1]; ++v)
+    vertices.emplace_back(m.vertex[v].x(), m.vertex[v].y(), m.vertex[v].z());
+  const unsigned int centre = static_cast<unsigned int>(vertices.size());
+  const Vec3 c = m.centroid[b];
+  vertices.emplace_back(c.x(), c.y(), c.z());
+  std::vector<dealii::CellData<3>> cells;
+  double longest = 0.0;
+  for (unsigned int f = m.face_start[b]; f < m.face_start[b + 1]; ++f)
+  {
+    const unsigned int first = m.face_loop_start[f], n = m.face_loop_start[f + 1] - first;
+    for (unsigned int k = 1; k + 1 < n; ++k)
+    {
+      std::array<unsigned int, 4> t{m.face_vertex[first] - m.vertex_start[b],
+                                    m.face_vertex[first + k] - m.vertex_start[b],
+                                    m.face_vertex[first + k + 1] - m.vertex_start[b], centre};
+      const auto P = [&](unsigned int i)
+      { return Vec3(vertices[t[i]][0], vertices[t[i]][1], vertices[t[i]][2]); };
+      if (signed_volume(P(0), P(1), P(2), P(3)) < 0.0)
+        std::swap(t[1], t[2]);
+      for (int i = 0; i < 4; ++i)
+        for (int j = i + 1; j < 4; ++j)
+          longest = std::max(longest, (P(i) - P(j)).norm());
+      dealii::CellData<3> cell(4);
+      for (int i = 0; i < 4; ++i)
+        cell.vertices[i] = t[i];
+      cells.push_back(cell);
+    }
+  }
+  tria.create_triangulation(vertices, cells, dealii::SubCellData());
+  const unsigned int levels =
+      longest > edge ? static_cast<unsigned int>(std::ceil(std::log2(longest / edge) - 1e-9)) : 0;
+  if (levels > 0)
+    tria.refine_global(levels);
+}
+
+} // namespace
+
+TetMesh mesh_blocks(const BlockModel& m, const std::vector<unsigned int>& which, double edge_length,
+                    MeshReport& report)
+{
+  if (!(edge_length > 0.0))
+    throw InputError("zone edge length must be positive");
+  TetMesh mesh;
+  const auto P = [&](unsigned int g)
+  { return Vec3(mesh.position[3 * g], mesh.position[3 * g + 1], mesh.position[3 * g + 2]); };
+  for (unsigned int b : which)
+  {
+    // The block's fine cells, with its own gridpoints (blocks never share).
+    dealii::Triangulation<3> one;
+    mesh_one_block(m, b, edge_length, one);
+    const unsigned int offset = mesh.n_gridpoints();
+    std::vector<int> local(one.n_vertices(), -1);
+    const std::size_t first_zone = mesh.zone_gridpoint.size();
+    for (const auto& cell : one.active_cell_iterators())
+    {
+      std::array<unsigned int, 4> t;
+      for (unsigned int i = 0; i < 4; ++i)
+      {
+        const unsigned int v = cell->vertex_index(i);
+        if (local[v] < 0)
+        {
+          local[v] = static_cast<int>(mesh.n_gridpoints() - offset);
+          for (int d = 0; d < 3; ++d)
+            mesh.position.push_back(one.get_vertices()[v][d]);
+          mesh.gridpoint_block.push_back(b);
+        }
+        t[i] = offset + static_cast<unsigned int>(local[v]);
+      }
+      if (signed_volume(P(t[0]), P(t[1]), P(t[2]), P(t[3])) < 0.0)
+        std::swap(t[1], t[2]);
+      mesh.zone_gridpoint.push_back(t);
+      mesh.zone_block.push_back(b);
+    }
+    // Boundary faces of this block: the zone faces that appear once.
+    std::map<std::array<unsigned int, 3>, std::pair<unsigned int, int>> seen;
+    static const int face_of[4][3] = {{1, 2, 3}, {0, 3, 2}, {0, 1, 3}, {0, 2, 1}};
+    for (std::size_t z = first_zone; z < mesh.zone_gridpoint.size(); ++z)
+      for (int f = 0; f < 4; ++f)
+      {
+        std::array<unsigned int, 3> key{mesh.zone_gridpoint[z][face_of[f][0]],
+                                        mesh.zone_gridpoint[z][face_of[f][1]],
+                                        mesh.zone_gridpoint[z][face_of[f][2]]};
+        std::sort(key.begin(), key.end());
+        auto [it, fresh] = seen.emplace(key, std::make_pair(static_cast<unsigned int>(z), f));
+        if (!fresh)
+          seen.erase(it);
+      }
+    for (const auto& [key, where] : seen)
+    {
+      const auto& t = mesh.zone_gridpoint[where.first];
+      // The local numbering above makes (face_of) normals point away from
+      // the fourth vertex for a positively oriented zone.
+      std::array<unsigned int, 3> face{t[face_of[where.second][0]], t[face_of[where.second][1]],
+                                       t[face_of[where.second][2]]};
+      const Vec3 n = (P(face[1]) - P(face[0])).cross(P(face[2]) - P(face[0]));
+      if (n.dot(P(face[0]) - P(t[where.second])) < 0.0)
+        std::swap(face[1], face[2]);
+      mesh.face_gridpoint.push_back(face);
+      mesh.face_zone.push_back(where.first);
+    }
+  }
+  // Figures for the summary and the time step (eq. 86).
+  report = MeshReport();
+  report.blocks = static_cast<unsigned int>(which.size());
+  report.zones = mesh.n_zones();
+  report.gridpoints = mesh.n_gridpoints();
+  report.boundary_faces = mesh.n_faces();
+  report.smallest_height = 1e300;
+  for (const auto& t : mesh.zone_gridpoint)
+  {
+    const double v = signed_volume(P(t[0]), P(t[1]), P(t[2]), P(t[3]));
+    if (!(v > 0.0))
+      throw InputError("meshing produced a zone of zero volume (a degenerate block?)");
+    report.zone_volume += v;
+    double largest_face = 0.0;
+    for (int i = 0; i < 4; ++i)
+      for (int j = i + 1; j < 4; ++j)
+      {
+        report.largest_edge = std::max(report.largest_edge, (P(t[i]) - P(t[j])).norm());
+        for (int k = j + 1; k < 4; ++k)
+          largest_face =
+              std::max(largest_face, 0.5 * (P(t[j]) - P(t[i])).cross(P(t[k]) - P(t[i])).norm());
+      }
+    report.smallest_height = std::min(report.smallest_height, 3.0 * v / largest_face);
+  }
+  return mesh;
+}
+
+} // namespace talus
