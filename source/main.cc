@@ -2,28 +2,134 @@
 // Usage: talus scene.prm
 
 #include <talus/base/exceptions.h>
+#include <talus/base/parallel_environment.h>
 #include <talus/io/block_vtu_writer.h>
 #include <talus/io/contact_vtu_writer.h>
 #include <talus/io/file_output.h>
 #include <talus/io/history_file.h>
-#include <talus/solver/rigid_solver.h>
 #include <talus/io/scene.h>
+#include <talus/io/zone_vtu_writer.h>
 #include <talus/model/build_blocks.h>
+#include <talus/solver/rigid_solver.h>
+#include <talus/zone/block_mesher.h>
 
 #include <chrono>
-#include <filesystem>
+#include <cmath>
 #include <cstdio>
 #include <cstring>
+#include <filesystem>
 #include <iostream>
 #include <map>
 
 namespace
 {
 
-constexpr const char* usage = "usage: talus SCENE.prm\n"
-                              "  Builds the block model the parameter file describes, writes it\n"
-                              "  for ParaView into the output folder it names, and prints a summary.\n"
-                              "  Shipped scenes are in the parameters/ folder.\n";
+constexpr const char* usage =
+    "usage: talus SCENE.prm\n"
+    "  Builds the block model the parameter file describes, writes it\n"
+    "  for ParaView into the output folder it names, and prints a summary.\n"
+    "  Shipped scenes are in the parameters/ folder.\n";
+
+/// Runs a scene of deformable blocks: meshes them, then the explicit zone
+/// cycle with output and histories.
+void solve_deformable(talus::Scene& scene, talus::BlockModel& model, const std::string& prefix)
+{
+  using namespace talus;
+  std::vector<unsigned int> deformable;
+  for (unsigned int b = 0; b < model.n_blocks(); ++b)
+    for (const std::string& g : scene.deformable.groups)
+      if (model.group_names[model.group[b]] == g)
+        deformable.push_back(b);
+  if (deformable.size() != 1 || model.n_blocks() != 1)
+    throw InputError(
+        scene.parameter_file + ": entry 'Groups' in subsection 'Deformable': the model has " +
+        std::to_string(model.n_blocks()) + " blocks, " + std::to_string(deformable.size()) +
+        " of them deformable; contacts with deformable blocks are not available yet, so a "
+        "deformable scene must be one block; allowed: a model of one block, in a listed group");
+  MeshReport mesh_report;
+  const TetMesh mesh = mesh_blocks(model, deformable, scene.deformable.edge_length, mesh_report);
+  std::printf("Zones:        %u tetrahedra, %u gridpoints, %u boundary faces (edge length %g m; "
+              "largest edge %.4g m, smallest height %.4g m)\n",
+              mesh_report.zones, mesh_report.gridpoints, mesh_report.boundary_faces,
+              scene.deformable.edge_length, mesh_report.largest_edge, mesh_report.smallest_height);
+  int argc = 1;
+  char name[] = "talus";
+  char* args[] = {name, nullptr};
+  char** argv = args;
+  ParallelEnvironment parallel(argc, argv);
+  DeformableSolver solver(mesh, {scene.deformable.material},
+                          std::vector<unsigned int>(mesh.n_zones(), 0), scene.solver,
+                          scene.gridpoint_conditions, scene.face_pressures,
+                          scene.has_initial_stress ? &scene.initial_stress : nullptr);
+  std::printf("Time step:    %.6g s (eq. 84%s)\n", solver.dt(),
+              !scene.solver.dynamic && scene.solver.density_scaling ? ", density scaling: unit step"
+                                                                    : "");
+
+  PvdSeries series(prefix + "_zones.pvd");
+  HistoryFile history(prefix + "_history.csv",
+                      {"step", "time (s)", "unbalanced ratio", "largest displacement (m)"});
+  ProgressLine progress(scene.solver.steps);
+  unsigned int frame = 0;
+  const auto largest_displacement = [&]()
+  {
+    const std::vector<double> u = solver.displacements();
+    double largest = 0.0;
+    for (std::size_t g = 0; g < u.size() / 3; ++g)
+      largest = std::max(largest, std::sqrt(u[3 * g] * u[3 * g] + u[3 * g + 1] * u[3 * g + 1] +
+                                            u[3 * g + 2] * u[3 * g + 2]));
+    return largest;
+  };
+  const auto output = [&]()
+  {
+    if (!scene.output.write_vtu)
+      return;
+    char file[64];
+    std::snprintf(file, sizeof file, "_zones_%05u.vtu", frame++);
+    const std::string vtu = scene.output.base_name + file;
+    std::vector<ZoneField> cells{
+        {"stress", 6, solver.stress()}, {"principal_stress", 3, {}}, {"plastic_state", 1, {}}};
+    cells[1].values.resize(3 * mesh.n_zones());
+    for (unsigned int z = 0; z < mesh.n_zones(); ++z)
+    {
+      principal_stresses(&solver.stress()[6 * z], &cells[1].values[3 * z]);
+      cells[2].values.push_back(solver.plastic_state()[z]);
+    }
+    write_zones_vtu(
+        scene.output.directory + "/" + vtu, mesh, solver.positions(),
+        {{"displacement", 3, solver.displacements()}, {"velocity", 3, solver.velocities()}}, cells);
+    series.add(solver.time(), vtu);
+  };
+  output();
+  unsigned long last_output = 0;
+  while (solver.steps_done() < scene.solver.steps)
+  {
+    solver.step();
+    const unsigned long n = solver.steps_done();
+    if (n % scene.solver.history_interval == 0)
+      history.record({double(n), solver.time(), solver.unbalanced_ratio(), largest_displacement()});
+    progress.update(n, solver.time());
+    if (scene.solver.output_interval > 0 && n - last_output >= scene.solver.output_interval)
+    {
+      output();
+      last_output = n;
+    }
+    if (!scene.solver.dynamic && scene.solver.target_ratio > 0.0 && n >= 20 &&
+        solver.unbalanced_ratio() < scene.solver.target_ratio)
+      break;
+  }
+  progress.finish();
+  if (last_output != solver.steps_done())
+    output();
+  std::printf("Steps:        %lu (time %.6g s)\n", solver.steps_done(), solver.time());
+  std::printf("Unbalanced force ratio: %.3g\n", solver.unbalanced_ratio());
+  std::printf("Largest displacement: %.6g m\n", largest_displacement());
+  unsigned int yielding = 0;
+  for (unsigned char st : solver.plastic_state())
+    yielding += st != 0;
+  if (scene.deformable.material.model == ZoneModel::mohr_coulomb)
+    std::printf("Plastic zones: %u of %u\n", yielding, mesh.n_zones());
+  std::printf("Output:       %s_zones.pvd, %s_history.csv\n", prefix.c_str(), prefix.c_str());
+}
 
 /// Runs the calculation the scene asks for, with output and histories.
 void solve(talus::Scene& scene, talus::BlockModel& model, talus::PvdSeries& series,
@@ -33,8 +139,10 @@ void solve(talus::Scene& scene, talus::BlockModel& model, talus::PvdSeries& seri
   resolve_group_names(scene, model);
   for (unsigned int b : scene.solver.history_blocks)
     if (b >= model.n_blocks())
-      throw InputError(scene.parameter_file + ": entry 'History blocks' in subsection 'Solver': "
-                       "block " + std::to_string(b) + " does not exist; allowed: 0 to " +
+      throw InputError(scene.parameter_file +
+                       ": entry 'History blocks' in subsection 'Solver': "
+                       "block " +
+                       std::to_string(b) + " does not exist; allowed: 0 to " +
                        std::to_string(model.n_blocks() - 1));
   RigidSolver solver(model, scene.density, scene.solver);
   std::printf("Time step:    %.6g s (eq. 87, fraction %g)\n", solver.dt(),
@@ -55,14 +163,16 @@ void solve(talus::Scene& scene, talus::BlockModel& model, talus::PvdSeries& seri
   ProgressLine progress(scene.solver.steps);
   unsigned int frame = 0;
   PvdSeries contact_series(prefix + "_contacts.pvd");
-  const auto output = [&](unsigned long step, double time) {
+  const auto output = [&](unsigned long step, double time)
+  {
     progress.update(step, time);
     if (!scene.output.write_vtu)
       return;
     char name[64];
     std::snprintf(name, sizeof name, "_blocks_%05u.vtu", frame++);
     const std::string vtu = scene.output.base_name + name;
-    std::vector<BlockField> fields{{"displacement", 3, {}}, {"velocity", 3, {}}, {"rotation", 3, {}}};
+    std::vector<BlockField> fields{
+        {"displacement", 3, {}}, {"velocity", 3, {}}, {"rotation", 3, {}}};
     for (unsigned int b = 0; b < model.n_blocks(); ++b)
       for (int d = 0; d < 3; ++d)
       {
@@ -77,7 +187,8 @@ void solve(talus::Scene& scene, talus::BlockModel& model, talus::PvdSeries& seri
     write_contacts_vtu(scene.output.directory + "/" + contacts_vtu, solver.contacts());
     contact_series.add(time, contacts_vtu);
   };
-  const auto record = [&](unsigned long step, double time) {
+  const auto record = [&](unsigned long step, double time)
+  {
     progress.update(step, time);
     std::vector<double> row{double(step),
                             time,
@@ -109,10 +220,11 @@ void solve(talus::Scene& scene, talus::BlockModel& model, talus::PvdSeries& seri
     std::printf("Block %u displacement: %.9g, %.9g, %.9g m\n", b, solver.displacement[b][0],
                 solver.displacement[b][1], solver.displacement[b][2]);
   const double total = r.seconds_detection + r.seconds_planes + r.seconds_forces + r.seconds_motion;
-  std::printf("   Time = %.3f s in the cycle: detection %.0f %%, common planes %.0f %%, forces %.0f %%, "
-              "motion %.0f %%\n",
-              total, 100 * r.seconds_detection / total, 100 * r.seconds_planes / total,
-              100 * r.seconds_forces / total, 100 * r.seconds_motion / total);
+  std::printf(
+      "   Time = %.3f s in the cycle: detection %.0f %%, common planes %.0f %%, forces %.0f %%, "
+      "motion %.0f %%\n",
+      total, 100 * r.seconds_detection / total, 100 * r.seconds_planes / total,
+      100 * r.seconds_forces / total, 100 * r.seconds_motion / total);
   std::printf("Output:       %s_blocks.pvd, %s_contacts.pvd, %s_history.csv\n", prefix.c_str(),
               prefix.c_str(), prefix.c_str());
 }
@@ -138,9 +250,8 @@ int run(const std::string& filename)
   std::printf("Total volume: %.9g m^3 (brick %.9g m^3)\n", model.total_volume(),
               scene.brick.volume());
   for (std::size_t e = 0; e < scene.excavations.size(); ++e)
-    std::printf("Excavated:    %.9g m^3 (%s; region volume %.9g m^3)\n",
-                report.excavated_volume[e], scene.excavations[e].description.c_str(),
-                scene.excavations[e].region.volume);
+    std::printf("Excavated:    %.9g m^3 (%s; region volume %.9g m^3)\n", report.excavated_volume[e],
+                scene.excavations[e].description.c_str(), scene.excavations[e].region.volume);
   std::printf("Mass:         %.9g kg (density %g kg/m^3)\n", model.total_volume() * scene.density,
               scene.density);
   std::map<unsigned int, unsigned int> per_group;
@@ -167,6 +278,8 @@ int run(const std::string& filename)
       std::printf("Output:       %s_blocks.pvd\n", prefix.c_str());
     }
   }
+  else if (!scene.deformable.groups.empty())
+    solve_deformable(scene, model, prefix);
   else
     solve(scene, model, series, prefix);
   const auto done = std::chrono::steady_clock::now();

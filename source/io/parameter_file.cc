@@ -158,7 +158,7 @@ void ParameterFile::rethrow(const dealii::ExceptionBase& e) const
       if (!d.first.empty() && d.first.find(" / ") == std::string::npos)
         names += (names.empty() ? "" : ", ") + d.first;
     throw InputError(where + ": unknown subsection '" + trim(m[1]) + "'; allowed: " + names +
-                     " (numbered ones: 'Joint set N', 'Joint N', 'Excavation N', 'Group N', 'Load N')");
+                     " (numbered ones: 'Joint set N', 'Joint N', 'Excavation N', 'Group N', 'Load N', 'Boundary N')");
   }
   if (std::regex_search(text, m, std::regex("unequal numbers of 'subsection' and 'end'")))
     throw InputError(filename_ +

@@ -260,6 +260,134 @@ void parse_load(ParameterFile& prm, const std::string& section, Scene& scene)
   prm.leave();
 }
 
+// ---- Deformable blocks, their boundaries and initial stress --------------------
+
+void declare_deformable(ParameterFile& prm)
+{
+  prm.enter("Deformable");
+  prm.declare("Groups", "", P::List(P::Anything()), "group names separated by commas",
+              "Blocks of these groups are deformable (meshed into tetrahedral zones).");
+  prm.declare("Edge length", "1", P::Double(), "a number > 0 (m)", "Target zone edge length (m).");
+  prm.declare("Zone model", "elastic", P::Selection("elastic|mohr-coulomb"),
+              "elastic or mohr-coulomb", "Constitutive model of the zones.");
+  prm.declare("Young's modulus", "5e10", P::Double(), "a number > 0 (Pa)", "E (Pa).");
+  prm.declare("Poisson's ratio", "0.25", P::Double(), "a number > -1 and < 0.5", "nu.");
+  prm.declare("Friction angle", "30", P::Double(), "a number from 0 to below 90 (degrees)",
+              "phi of the Mohr-Coulomb zones (degrees).");
+  prm.declare("Dilation angle", "0", P::Double(), "a number from 0 to the friction angle (degrees)",
+              "psi of the Mohr-Coulomb zones (degrees).");
+  prm.declare("Cohesion", "0", P::Double(), "a number >= 0 (Pa)",
+              "c of the Mohr-Coulomb zones (Pa).");
+  prm.declare("Tensile strength", "0", P::Double(), "a number >= 0 (Pa)",
+              "Tension cut-off of the Mohr-Coulomb zones (Pa).");
+  prm.leave();
+  prm.enter("Initial stress");
+  prm.declare("Stress", "0, 0, 0, 0, 0, 0", P::List(P::Double(), 6, 6, ","),
+              "six numbers: xx, yy, zz, xy, yz, zx (Pa, tension positive)",
+              "Zone stress at the reference height (Pa).");
+  prm.declare("Gradient", "0, 0, 0, 0, 0, 0", P::List(P::Double(), 6, 6, ","), "six numbers (Pa/m)",
+              "Change of each component per metre of height (Pa/m).");
+  prm.declare("Reference z", "0", P::Double(), "a number (m)", "Height where 'Stress' holds (m).");
+  prm.leave();
+}
+
+void parse_deformable(ParameterFile& prm, Scene& scene)
+{
+  prm.enter("Deformable");
+  DeformableSpec& d = scene.deformable;
+  for (const std::string& g : dealii::Utilities::split_string_list(prm.get("Groups")))
+  {
+    bool known = g == scene.default_group;
+    for (const GroupSpec& spec : scene.groups)
+      known |= spec.name == g;
+    if (!known)
+      throw prm.error("Groups", "names the unknown group '" + g + "'",
+                      "the default group '" + scene.default_group + "' or 'Group N' names");
+    d.groups.push_back(g);
+  }
+  d.edge_length = prm.get_double("Edge length");
+  if (!(d.edge_length > 0.0))
+    throw prm.error("Edge length", "must be positive", "a number > 0 (m)");
+  const double E = prm.get_double("Young's modulus"), nu = prm.get_double("Poisson's ratio");
+  if (!(E > 0.0))
+    throw prm.error("Young's modulus", "must be positive", "a number > 0 (Pa)");
+  if (!(nu > -1.0 && nu < 0.5))
+    throw prm.error("Poisson's ratio", "must lie between -1 and 0.5 (0.5 would be incompressible)",
+                    "a number > -1 and < 0.5");
+  d.material.set_young_poisson(E, nu);
+  d.material.density = scene.density;
+  d.material.model =
+      prm.get("Zone model") == "elastic" ? ZoneModel::elastic : ZoneModel::mohr_coulomb;
+  d.material.friction_angle = prm.get_double("Friction angle");
+  if (!(d.material.friction_angle >= 0.0 && d.material.friction_angle < 90.0))
+    throw prm.error("Friction angle", "must be at least 0 and below 90 degrees",
+                    "a number from 0 to below 90");
+  d.material.dilation_angle = prm.get_double("Dilation angle");
+  if (!(d.material.dilation_angle >= 0.0 && d.material.dilation_angle <= d.material.friction_angle))
+    throw prm.error("Dilation angle", "must lie between 0 and the friction angle",
+                    "a number from 0 to the friction angle (degrees)");
+  d.material.cohesion = prm.get_double("Cohesion");
+  if (!(d.material.cohesion >= 0.0))
+    throw prm.error("Cohesion", "must not be negative", "a number >= 0 (Pa)");
+  d.material.tensile_strength = prm.get_double("Tensile strength");
+  if (!(d.material.tensile_strength >= 0.0))
+    throw prm.error("Tensile strength", "must not be negative", "a number >= 0 (Pa)");
+  prm.leave();
+
+  prm.enter("Initial stress");
+  const auto six = [&](const std::string& name, double* out)
+  {
+    const auto parts = dealii::Utilities::split_string_list(prm.get(name));
+    for (int c = 0; c < 6; ++c)
+      out[c] = std::stod(parts[c]);
+  };
+  six("Stress", scene.initial_stress.base);
+  six("Gradient", scene.initial_stress.gradient);
+  scene.initial_stress.z0 = prm.get_double("Reference z");
+  for (int c = 0; c < 6; ++c)
+    scene.has_initial_stress |=
+        scene.initial_stress.base[c] != 0.0 || scene.initial_stress.gradient[c] != 0.0;
+  prm.leave();
+}
+
+void declare_boundary(ParameterFile& prm, const std::string& section)
+{
+  prm.enter(section);
+  declare_box(prm, "Corner min", "Corner max",
+              "the region (gridpoints or face centroids of deformable blocks)");
+  prm.declare("Condition", "fixed", P::Selection("fixed|velocity|pressure"),
+              "fixed, velocity or pressure",
+              "fixed: held in place; velocity: held at 'Velocity'; pressure: 'Pressure' on the "
+              "boundary faces.");
+  prm.declare("Held components", "x, y, z", P::MultipleSelection("x|y|z"),
+              "some of x, y, z separated by commas", "Components held (fixed or velocity).");
+  prm.declare("Velocity", "0, 0, 0", vec3_pattern(), vec3_allowed, "Held velocity (m/s).");
+  prm.declare("Pressure", "0", P::Double(), "a number (Pa; positive pushes into the block)",
+              "Normal pressure on the boundary faces whose centroid lies in the region (Pa).");
+  prm.leave();
+}
+
+void parse_boundary(ParameterFile& prm, const std::string& section, Scene& scene)
+{
+  prm.enter(section);
+  const Box region = read_box(prm, "Corner min", "Corner max");
+  const std::string condition = prm.get("Condition");
+  if (condition == "pressure")
+    scene.face_pressures.push_back(FacePressure{region, prm.get_double("Pressure")});
+  else
+  {
+    GridpointCondition c;
+    c.region = region;
+    const std::string held = prm.get("Held components");
+    for (int d = 0; d < 3; ++d)
+      c.held[d] = held.find("xyz"[d]) != std::string::npos;
+    if (condition == "velocity")
+      c.velocity = prm.get_vec3("Velocity");
+    scene.gridpoint_conditions.push_back(c);
+  }
+  prm.leave();
+}
+
 // ---- Output ------------------------------------------------------------------
 
 void declare_output(ParameterFile& prm)
@@ -429,7 +557,7 @@ Scene read_scene(const std::string& filename, bool prepare_output)
   ParameterFile prm(filename);
 
   // Numbered subsections exist exactly as the file names them.
-  const std::regex numbered("(Joint set|Joint|Excavation|Group|Load) ([0-9]+)");
+  const std::regex numbered("(Joint set|Joint|Excavation|Group|Load|Boundary) ([0-9]+)");
   std::vector<std::tuple<std::string, long, std::string>> found; // kind, number, name
   for (const std::string& s : prm.sections_in_file())
   {
@@ -447,6 +575,7 @@ Scene read_scene(const std::string& filename, bool prepare_output)
   declare_material(prm);
   declare_output(prm);
   declare_solver(prm);
+  declare_deformable(prm);
   for (const auto& [kind, name] : numbered_sections)
   {
     if (kind == "Joint set")
@@ -457,6 +586,8 @@ Scene read_scene(const std::string& filename, bool prepare_output)
       declare_excavation(prm, name);
     else if (kind == "Load")
       declare_load(prm, name);
+    else if (kind == "Boundary")
+      declare_boundary(prm, name);
     else
       declare_group(prm, name);
   }
@@ -483,6 +614,9 @@ Scene read_scene(const std::string& filename, bool prepare_output)
   for (const auto& [kind, name] : numbered_sections)
     if (kind == "Load")
       parse_load(prm, name, scene);
+    else if (kind == "Boundary")
+      parse_boundary(prm, name, scene);
+  parse_deformable(prm, scene);
   scene.used_parameters = prm.used_parameters();
 
   // Last, once every value is known to be good: nothing is created on disk

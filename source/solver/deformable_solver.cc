@@ -179,6 +179,10 @@ DeformableSolver::DeformableSolver(const TetMesh& mesh, std::vector<ZoneMaterial
       }
   }
   force_size_.assign(3 * ng, 0.0);
+  damper_ = Damper(s_.dynamic ? Damping::none : s_.damping, s_.local_damping,
+                   s_.global_damping_ratio, dt_);
+  if (!s_.dynamic && s_.damping == Damping::combined)
+    last_force_.assign(3 * ng, 0.0);
 }
 
 DeformableSolver::~DeformableSolver() = default;
@@ -253,8 +257,7 @@ void DeformableSolver::zone_forces()
 void DeformableSolver::move_gridpoints()
 {
   LocalArray x(petsc_->position), v(petsc_->velocity), f(petsc_->force), m(petsc_->inertial_mass);
-  const bool damp = !s_.dynamic && s_.local_damping > 0.0;
-  const double alpha = s_.local_damping;
+  const bool combined = !s_.dynamic && s_.damping == Damping::combined;
   // Velocities at half steps (eq. 57): the first kick is half a step.
   const double h = step_ == 0 ? 0.5 * dt_ : dt_;
   double largest = 0.0, size_sum = 0.0;
@@ -273,10 +276,10 @@ void DeformableSolver::move_gridpoints()
       }
       f2 += f[i] * f[i];
       size2 += force_size_[i] * force_size_[i];
-      // Eqs. 78-79: local damping opposes the velocity, in proportion to the
-      // unbalanced force.
-      const double fd = damp ? alpha * std::abs(f[i]) * sign(v[i]) : 0.0;
-      v[i] += (f[i] - fd) * h / m[i];
+      // Eq. 57 with the static damping chosen (eqs. 77-79, 83).
+      damper_.kick(v[i], f[i], combined ? last_force_[i] : 0.0, m[i], h);
+      if (combined)
+        last_force_[i] = f[i];
     }
     if (held_[g] != 7u)
     {
@@ -294,6 +297,8 @@ void DeformableSolver::step()
 {
   zone_forces();
   move_gridpoints();
+  if ((step_ + 1) % Damper::servo_period == 0)
+    damper_.adjust();
   time_ += dt_;
   ++step_;
 }

@@ -1,5 +1,6 @@
 #include <talus/geometry/mass_properties.h>
 #include <talus/joint/joint_model.h>
+#include <talus/solver/damper.h>
 #include <talus/solver/rigid_solver.h>
 
 #include <Eigen/Geometry>
@@ -100,8 +101,8 @@ RigidSolver::RigidSolver(BlockModel& blocks, double density, const SolverSetting
         principal_moments[b] *= scale;
     }
   dt_ = s_.time_step > 0.0 ? s_.time_step : stable_time_step();
-  // The servo of eq. 77 starts light (c dt = 1 %) and finds its level.
-  global_damping_ = 0.01 / dt_;
+  damper_ = Damper(s_.dynamic ? Damping::none : s_.damping, s_.local_damping,
+                   s_.global_damping_ratio, dt_);
 
   envelopes_.resize(nb);
   Box all{m_.vertex.empty() ? Vec3::Zero() : m_.vertex[0],
@@ -247,44 +248,12 @@ void RigidSolver::contact_forces()
 
 void RigidSolver::move_blocks()
 {
-  const Damping mode = s_.dynamic ? Damping::none : s_.damping;
-  const double alpha = s_.local_damping;
-  const double c_global = global_damping_; // 1/s, adaptive global damping only
   // Velocities live at half steps (eq. 47). Those given at the start are at
   // t = 0, so the first kick is half a step: without it every position is
   // late by a t dt / 2 (a relative error of 1/n after n steps of free fall).
   const double h = step_ == 0 ? 0.5 * dt_ : dt_;
-  // One velocity component: v += (F - F_d) h / m, returning F_d. Local
-  // damping (eqs. 78-79) opposes the velocity; combined damping (eq. 83)
-  // averages that with the sign of the force change, so a steady motion is
-  // not damped; adaptive global damping is viscous, c m v, taken
-  // semi-implicitly (stable for any c h < 2).
   const auto kick = [&](double& v, double f, double f_before, double m)
-  {
-    double fd = 0.0;
-    switch (mode)
-    {
-    case Damping::local:
-      fd = alpha * std::abs(f) * sign(v);
-      break;
-    case Damping::combined:
-      fd = 0.5 * alpha * std::abs(f) * (sign(v) - sign(f - f_before));
-      break;
-    case Damping::adaptive_global:
-    {
-      const double v_old = v;
-      v = (v * (1.0 - 0.5 * c_global * h) + f * h / m) / (1.0 + 0.5 * c_global * h);
-      fd = c_global * m * 0.5 * (v_old + v);
-      servo_damping_power_ += fd * 0.5 * (v_old + v);
-      servo_force_power_ += std::abs(f * 0.5 * (v_old + v));
-      return fd;
-    }
-    case Damping::none:
-      break;
-    }
-    v += (f - fd) * h / m;
-    return fd;
-  };
+  { return damper_.kick(v, f, f_before, m, h); };
   double max_unbalanced = 0.0, sum_weight = 0.0;
   unsigned int n_free = 0;
   for (unsigned int b = 0; b < m_.n_blocks(); ++b)
@@ -382,28 +351,11 @@ void RigidSolver::step()
   timing_.seconds_forces += seconds_since(t0);
   t0 = std::chrono::steady_clock::now();
   move_blocks();
-  if (!s_.dynamic && s_.damping == Damping::adaptive_global && (step_ + 1) % servo_period == 0)
-    adjust_global_damping();
+  if ((step_ + 1) % Damper::servo_period == 0)
+    damper_.adjust();
   timing_.seconds_motion += seconds_since(t0);
   time_ += dt_;
   ++step_;
-}
-
-void RigidSolver::adjust_global_damping()
-{
-  // Eq. 77: the servo keeps the power absorbed by damping a set fraction R
-  // of the power of the unbalanced forces (our measure of the rate of
-  // change of kinetic energy: sum over blocks and components of |F v|).
-  // The constant moves by at most 25 % per period, so it follows the
-  // system without hunting; c dt stays below 1 (stable, not overdamped).
-  if (servo_force_power_ > 0.0)
-  {
-    const double ratio = servo_damping_power_ / servo_force_power_;
-    const double factor =
-        ratio > 0.0 ? std::clamp(s_.global_damping_ratio / ratio, 0.8, 1.25) : 1.25;
-    global_damping_ = std::clamp(global_damping_ * factor, 1e-6 / dt_, 1.0 / dt_);
-  }
-  servo_damping_power_ = servo_force_power_ = 0.0;
 }
 
 double RigidSolver::kinetic_energy() const

@@ -2,6 +2,7 @@
 
 #include <talus/geometry/block_generator.h>
 #include <talus/geometry/region.h>
+#include <talus/solver/deformable_solver.h>
 #include <talus/solver/rigid_solver.h>
 
 #include <string>
@@ -34,6 +35,14 @@ struct ExcavationSpec
   std::string description;
 };
 
+/// Which blocks are deformable and what they are made of.
+struct DeformableSpec
+{
+  std::vector<std::string> groups; ///< groups whose blocks are meshed into zones
+  double edge_length = 1.0;        ///< m, target zone edge
+  ZoneMaterial material;           ///< density taken from 'Material'
+};
+
 struct OutputSettings
 {
   std::string directory = "output"; ///< created if missing
@@ -59,6 +68,11 @@ struct Scene
   SolverSettings solver;
   std::vector<std::string> fixed_groups; ///< names; resolved to solver.fixed_groups
   std::vector<std::string> load_groups;  ///< group name of each solver.loads entry
+  DeformableSpec deformable;
+  std::vector<GridpointCondition> gridpoint_conditions; ///< from 'Boundary N' (velocity)
+  std::vector<FacePressure> face_pressures;             ///< from 'Boundary N' (pressure)
+  bool has_initial_stress = false;
+  InitialStress initial_stress;
   /// The parameters as used, every entry with its value (defaults included).
   std::string used_parameters;
 };

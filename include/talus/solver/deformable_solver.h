@@ -117,6 +117,8 @@ private:
   std::vector<double> face_pressure_; ///< Pa, per pressed face
   std::vector<double> force_size_;    ///< 3 per gridpoint: sum of |zone force| (N), for the ratio
   Tet4Scratch scratch_;
+  Damper damper_{Damping::none, 0.0, 0.5, 1.0};
+  std::vector<double> last_force_; ///< 3 per gridpoint, N (combined damping only)
   double dt_ = 0.0, time_ = 0.0, ratio_ = 1.0, force_scale_ = 1.0;
   unsigned long step_ = 0;
 };

@@ -4,6 +4,7 @@
 #include <talus/contact/contact_set.h>
 #include <talus/joint/joint_properties.h>
 #include <talus/model/block_model.h>
+#include <talus/solver/damper.h>
 
 #include <Eigen/Core>
 
@@ -24,15 +25,6 @@ struct BlockLoad
   Vec3 velocity = Vec3::Zero();      ///< m/s
   bool held[3] = {true, true, true}; ///< which components of the velocity are held
   bool hold_rotation = false;        ///< the blocks do not rotate (a stiff platen)
-};
-
-/// Damping of static runs (dynamic runs are undamped).
-enum class Damping
-{
-  local,           ///< eqs. 78-79: opposes the velocity, scales with the unbalanced force
-  combined,        ///< eq. 83: half local, half by the sign of the force change (steady motion)
-  adaptive_global, ///< eq. 77: viscous, its constant set by a servo
-  none
 };
 
 struct SolverSettings
@@ -127,8 +119,6 @@ private:
   void detect_contacts(bool everything);
   void contact_forces();
   void move_blocks();
-  void adjust_global_damping();
-  static constexpr unsigned int servo_period = 10; ///< steps between servo adjustments
 
   BlockModel& m_;
   SolverSettings s_;
@@ -137,10 +127,9 @@ private:
   std::vector<Box> envelopes_;
   std::vector<std::pair<unsigned int, unsigned int>> pairs_;
   std::vector<double> du_n_, du_s_;
-  std::vector<Vec3> last_force_,
-      last_moment_;             ///< unbalanced force and moment of the last step (eq. 83)
-  double global_damping_ = 0.0; ///< c of adaptive global damping, 1/s
-  double servo_damping_power_ = 0.0, servo_force_power_ = 0.0; ///< W, summed over a servo period
+  /// Unbalanced force and moment of the last step (combined damping, eq. 83).
+  std::vector<Vec3> last_force_, last_moment_;
+  Damper damper_{Damping::none, 0.0, 0.5, 1.0};
   double dt_ = 0.0, time_ = 0.0, ratio_ = 1.0;
   double gravity_work_ = 0.0, friction_work_ = 0.0, damping_work_ = 0.0;
   unsigned long step_ = 0;

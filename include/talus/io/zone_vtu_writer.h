@@ -1,0 +1,31 @@
+#pragma once
+
+#include <talus/zone/tet_mesh.h>
+
+#include <string>
+#include <vector>
+
+namespace talus
+{
+
+/// A quantity to show in ParaView, per gridpoint or per zone.
+struct ZoneField
+{
+  std::string name;
+  unsigned int components = 1;
+  std::vector<double> values;
+};
+
+/// Writes the zones of deformable blocks as VTK tetrahedra (type 10) at the
+/// gridpoints' current positions (3 per gridpoint, m), with block id as
+/// cell data plus `point_fields` and `cell_fields`.
+void write_zones_vtu(const std::string& path, const TetMesh& mesh,
+                     const std::vector<double>& positions,
+                     const std::vector<ZoneField>& point_fields,
+                     const std::vector<ZoneField>& cell_fields);
+
+/// Principal stresses of a symmetric stress (xx, yy, zz, xy, yz, zx), in
+/// ascending order (most compressive first, tension positive), Pa.
+void principal_stresses(const double* stress, double* principal);
+
+} // namespace talus

@@ -1,0 +1,91 @@
+#pragma once
+
+#include <algorithm>
+#include <cmath>
+
+namespace talus
+{
+
+/// Damping of static runs (dynamic runs are undamped).
+enum class Damping
+{
+  local,           ///< eqs. 78-79: opposes the velocity, scales with the unbalanced force
+  combined,        ///< eq. 83: half local, half by the sign of the force change (steady motion)
+  adaptive_global, ///< eq. 77: viscous, its constant set by a servo
+  none
+};
+
+/// Static damping of one velocity component at a time, shared by rigid
+/// blocks and gridpoints. Local damping (eqs. 78-79) opposes the velocity
+/// in proportion to the unbalanced force; combined damping (eq. 83)
+/// averages that with the sign of the force change, so that a steady
+/// motion is not damped; adaptive global damping (eq. 77) is viscous, c m v,
+/// with c set by a servo, taken semi-implicitly (stable for any c h < 2).
+class Damper
+{
+public:
+  /// `dt` (s) sets the servo's starting value and bounds.
+  Damper(Damping mode, double alpha, double ratio, double dt)
+      : mode_(mode), alpha_(alpha), ratio_(ratio), dt_(dt), c_(0.01 / dt)
+  {
+  }
+
+  /// v += (f - f_d) h / m; returns the damping force f_d (N). `f_before`
+  /// is the unbalanced force of the last step (combined damping).
+  double kick(double& v, double f, double f_before, double m, double h)
+  {
+    double fd = 0.0;
+    switch (mode_)
+    {
+    case Damping::local:
+      fd = alpha_ * std::abs(f) * sign(v);
+      break;
+    case Damping::combined:
+      fd = 0.5 * alpha_ * std::abs(f) * (sign(v) - sign(f - f_before));
+      break;
+    case Damping::adaptive_global:
+    {
+      const double v_old = v;
+      v = (v * (1.0 - 0.5 * c_ * h) + f * h / m) / (1.0 + 0.5 * c_ * h);
+      const double v_mid = 0.5 * (v_old + v);
+      fd = c_ * m * v_mid;
+      damping_power_ += fd * v_mid;
+      force_power_ += std::abs(f * v_mid);
+      return fd;
+    }
+    case Damping::none:
+      break;
+    }
+    v += (f - fd) * h / m;
+    return fd;
+  }
+
+  /// Eq. 77: keeps the power absorbed by damping the fraction R of the
+  /// power of the unbalanced forces (our measure of the rate of change of
+  /// kinetic energy: the sum of |F v| over all components). Call every few
+  /// steps; c moves by at most 25 % per call, so it follows the system
+  /// without hunting, and c dt stays in [1e-6, 1].
+  void adjust()
+  {
+    if (mode_ != Damping::adaptive_global)
+      return;
+    if (force_power_ > 0.0)
+    {
+      const double r = damping_power_ / force_power_;
+      const double factor = r > 0.0 ? std::clamp(ratio_ / r, 0.8, 1.25) : 1.25;
+      c_ = std::clamp(c_ * factor, 1e-6 / dt_, 1.0 / dt_);
+    }
+    damping_power_ = force_power_ = 0.0;
+  }
+
+  static constexpr unsigned int servo_period = 10; ///< steps between adjust() calls
+
+private:
+  static double sign(double x) { return (x > 0.0) - (x < 0.0); }
+  Damping mode_;
+  double alpha_, ratio_, dt_;
+  double c_;                                       ///< 1/s
+  double damping_power_ = 0.0, force_power_ = 0.0; ///< W, since the last adjust()
+};
+
+} // namespace talus
