@@ -29,4 +29,12 @@ public:
   explicit GeometryError(const std::string& message) : std::runtime_error(message) {}
 };
 
+/// A numerical solve that cannot be done (a singular system, inconsistent
+/// arrays) or did not converge. The message says which and by how much.
+class SolverError : public std::runtime_error
+{
+public:
+  explicit SolverError(const std::string& message) : std::runtime_error(message) {}
+};
+
 } // namespace talus
