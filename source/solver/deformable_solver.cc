@@ -8,6 +8,7 @@
 #include <petscvec.h>
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 
 namespace talus
@@ -295,8 +296,13 @@ void DeformableSolver::move_gridpoints()
 
 void DeformableSolver::step()
 {
+  const auto t0 = std::chrono::steady_clock::now();
   zone_forces();
+  const auto t1 = std::chrono::steady_clock::now();
   move_gridpoints();
+  seconds_zones_ += std::chrono::duration<double>(t1 - t0).count();
+  seconds_gridpoints_ +=
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - t1).count();
   if ((step_ + 1) % Damper::servo_period == 0)
     damper_.adjust();
   time_ += dt_;

@@ -99,82 +99,86 @@ void mesh_one_block(const BlockModel& m, unsigned int b, double edge,
 
 } // namespace
 
-TetMesh mesh_blocks(const BlockModel& m, const std::vector<unsigned int>& which, double edge_length,
-                    MeshReport& report)
+void append_tetrahedra(TetMesh& mesh, const dealii::Triangulation<3>& tria, unsigned int block)
 {
-  if (!(edge_length > 0.0))
-    throw InputError("zone edge length must be positive");
-  TetMesh mesh;
   const auto P = [&](unsigned int g)
   { return Vec3(mesh.position[3 * g], mesh.position[3 * g + 1], mesh.position[3 * g + 2]); };
-  for (unsigned int b : which)
+  // The block's cells, with its own gridpoints (blocks never share one).
+  const unsigned int offset = mesh.n_gridpoints();
+  std::vector<int> local(tria.n_vertices(), -1);
+  const std::size_t first_zone = mesh.zone_gridpoint.size();
+  for (const auto& cell : tria.active_cell_iterators())
   {
-    // The block's fine cells, with its own gridpoints (blocks never share).
-    dealii::Triangulation<3> one;
-    mesh_one_block(m, b, edge_length, one);
-    const unsigned int offset = mesh.n_gridpoints();
-    std::vector<int> local(one.n_vertices(), -1);
-    const std::size_t first_zone = mesh.zone_gridpoint.size();
-    for (const auto& cell : one.active_cell_iterators())
+    if (cell->n_vertices() != 4)
+      throw InputError("a deformable block's mesh must be made of tetrahedra only");
+    std::array<unsigned int, 4> t;
+    for (unsigned int i = 0; i < 4; ++i)
     {
-      std::array<unsigned int, 4> t;
-      for (unsigned int i = 0; i < 4; ++i)
+      const unsigned int v = cell->vertex_index(i);
+      if (local[v] < 0)
       {
-        const unsigned int v = cell->vertex_index(i);
-        if (local[v] < 0)
-        {
-          local[v] = static_cast<int>(mesh.n_gridpoints() - offset);
-          for (int d = 0; d < 3; ++d)
-            mesh.position.push_back(one.get_vertices()[v][d]);
-          mesh.gridpoint_block.push_back(b);
-        }
-        t[i] = offset + static_cast<unsigned int>(local[v]);
+        local[v] = static_cast<int>(mesh.n_gridpoints() - offset);
+        for (int d = 0; d < 3; ++d)
+          mesh.position.push_back(tria.get_vertices()[v][d]);
+        mesh.gridpoint_block.push_back(block);
       }
-      if (signed_volume(P(t[0]), P(t[1]), P(t[2]), P(t[3])) < 0.0)
-        std::swap(t[1], t[2]);
-      mesh.zone_gridpoint.push_back(t);
-      mesh.zone_block.push_back(b);
+      t[i] = offset + static_cast<unsigned int>(local[v]);
     }
-    // Boundary faces of this block: the zone faces that appear once.
-    std::map<std::array<unsigned int, 3>, std::pair<unsigned int, int>> seen;
-    static const int face_of[4][3] = {{1, 2, 3}, {0, 3, 2}, {0, 1, 3}, {0, 2, 1}};
-    for (std::size_t z = first_zone; z < mesh.zone_gridpoint.size(); ++z)
-      for (int f = 0; f < 4; ++f)
-      {
-        std::array<unsigned int, 3> key{mesh.zone_gridpoint[z][face_of[f][0]],
-                                        mesh.zone_gridpoint[z][face_of[f][1]],
-                                        mesh.zone_gridpoint[z][face_of[f][2]]};
-        std::sort(key.begin(), key.end());
-        auto [it, fresh] = seen.emplace(key, std::make_pair(static_cast<unsigned int>(z), f));
-        if (!fresh)
-          seen.erase(it);
-      }
-    for (const auto& [key, where] : seen)
-    {
-      const auto& t = mesh.zone_gridpoint[where.first];
-      // The local numbering above makes (face_of) normals point away from
-      // the fourth vertex for a positively oriented zone.
-      std::array<unsigned int, 3> face{t[face_of[where.second][0]], t[face_of[where.second][1]],
-                                       t[face_of[where.second][2]]};
-      const Vec3 n = (P(face[1]) - P(face[0])).cross(P(face[2]) - P(face[0]));
-      if (n.dot(P(face[0]) - P(t[where.second])) < 0.0)
-        std::swap(face[1], face[2]);
-      mesh.face_gridpoint.push_back(face);
-      mesh.face_zone.push_back(where.first);
-    }
+    if (signed_volume(P(t[0]), P(t[1]), P(t[2]), P(t[3])) < 0.0)
+      std::swap(t[1], t[2]);
+    mesh.zone_gridpoint.push_back(t);
+    mesh.zone_block.push_back(block);
   }
-  // Figures for the summary and the time step (eq. 86).
-  report = MeshReport();
-  report.blocks = static_cast<unsigned int>(which.size());
+  // Boundary faces of this block: the zone faces that appear once.
+  std::map<std::array<unsigned int, 3>, std::pair<unsigned int, int>> seen;
+  static const int face_of[4][3] = {{1, 2, 3}, {0, 3, 2}, {0, 1, 3}, {0, 2, 1}};
+  for (std::size_t z = first_zone; z < mesh.zone_gridpoint.size(); ++z)
+    for (int f = 0; f < 4; ++f)
+    {
+      std::array<unsigned int, 3> key{mesh.zone_gridpoint[z][face_of[f][0]],
+                                      mesh.zone_gridpoint[z][face_of[f][1]],
+                                      mesh.zone_gridpoint[z][face_of[f][2]]};
+      std::sort(key.begin(), key.end());
+      auto [it, fresh] = seen.emplace(key, std::make_pair(static_cast<unsigned int>(z), f));
+      if (!fresh)
+        seen.erase(it);
+    }
+  for (const auto& [key, where] : seen)
+  {
+    const auto& t = mesh.zone_gridpoint[where.first];
+    // Face f of the zone is opposite its vertex f: turn it to face away.
+    std::array<unsigned int, 3> face{t[face_of[where.second][0]], t[face_of[where.second][1]],
+                                     t[face_of[where.second][2]]};
+    const Vec3 n = (P(face[1]) - P(face[0])).cross(P(face[2]) - P(face[0]));
+    if (n.dot(P(face[0]) - P(t[where.second])) < 0.0)
+      std::swap(face[1], face[2]);
+    mesh.face_gridpoint.push_back(face);
+    mesh.face_zone.push_back(where.first);
+  }
+}
+
+MeshReport measure_mesh(const TetMesh& mesh)
+{
+  const auto P = [&](unsigned int g)
+  { return Vec3(mesh.position[3 * g], mesh.position[3 * g + 1], mesh.position[3 * g + 2]); };
+  MeshReport report;
   report.zones = mesh.n_zones();
   report.gridpoints = mesh.n_gridpoints();
   report.boundary_faces = mesh.n_faces();
   report.smallest_height = 1e300;
+  std::vector<char> seen_block;
+  for (unsigned int b : mesh.zone_block)
+  {
+    if (b >= seen_block.size())
+      seen_block.resize(b + 1, 0);
+    report.blocks += seen_block[b] == 0;
+    seen_block[b] = 1;
+  }
   for (const auto& t : mesh.zone_gridpoint)
   {
     const double v = signed_volume(P(t[0]), P(t[1]), P(t[2]), P(t[3]));
     if (!(v > 0.0))
-      throw InputError("meshing produced a zone of zero volume (a degenerate block?)");
+      throw InputError("a zone has zero volume (a degenerate block or mesh)");
     report.zone_volume += v;
     double largest_face = 0.0;
     for (int i = 0; i < 4; ++i)
@@ -187,6 +191,22 @@ TetMesh mesh_blocks(const BlockModel& m, const std::vector<unsigned int>& which,
       }
     report.smallest_height = std::min(report.smallest_height, 3.0 * v / largest_face);
   }
+  return report;
+}
+
+TetMesh mesh_blocks(const BlockModel& m, const std::vector<unsigned int>& which, double edge_length,
+                    MeshReport& report)
+{
+  if (!(edge_length > 0.0))
+    throw InputError("zone edge length must be positive");
+  TetMesh mesh;
+  for (unsigned int b : which)
+  {
+    dealii::Triangulation<3> one;
+    mesh_one_block(m, b, edge_length, one);
+    append_tetrahedra(mesh, one, b);
+  }
+  report = measure_mesh(mesh);
   return mesh;
 }
 

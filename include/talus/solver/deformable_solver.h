@@ -68,6 +68,10 @@ public:
   unsigned long run_to_ratio(double ratio, unsigned long max_steps);
 
   double dt() const { return dt_; }
+  /// Wall time spent so far in the zone stage (strain, model, nodal forces)
+  /// and in the gridpoint stage (motion, damping), s.
+  double seconds_zones() const { return seconds_zones_; }
+  double seconds_gridpoints() const { return seconds_gridpoints_; }
   double time() const { return time_; }
   unsigned long steps_done() const { return step_; }
   /// Largest unbalanced gridpoint force over the mean gravity force of a
@@ -119,7 +123,8 @@ private:
   Tet4Scratch scratch_;
   Damper damper_{Damping::none, 0.0, 0.5, 1.0};
   std::vector<double> last_force_; ///< 3 per gridpoint, N (combined damping only)
-  double dt_ = 0.0, time_ = 0.0, ratio_ = 1.0, force_scale_ = 1.0;
+  double dt_ = 0.0, time_ = 0.0, ratio_ = 1.0;
+  double seconds_zones_ = 0.0, seconds_gridpoints_ = 0.0;
   unsigned long step_ = 0;
 };
 

@@ -6,6 +6,12 @@
 #include <string>
 #include <vector>
 
+namespace dealii
+{
+template <int dim, int spacedim>
+class Triangulation;
+}
+
 namespace talus
 {
 
@@ -18,14 +24,21 @@ struct MeshReport
   double largest_edge = 0.0;    ///< m, largest zone edge (eq. 86)
 };
 
+/// Appends every cell of `tria` (tetrahedra only) as a zone of block
+/// `block`, with gridpoints of its own, and the block's boundary faces.
+void append_tetrahedra(TetMesh& mesh, const dealii::Triangulation<3, 3>& tria, unsigned int block);
+
+/// Counts and sizes of a mesh (throws if a zone has no volume).
+MeshReport measure_mesh(const TetMesh& mesh);
+
 /// Meshes the given blocks into 4-node tetrahedra with edges no longer than
 /// about `edge_length` (m), every block with its own gridpoints, all in one
-/// deal.II Triangulation<3> of simplices (material id = block number) from
-/// which the flat TetMesh is taken. Axis-aligned bricks are divided by
-/// deal.II's generator into n_x n_y n_z hexahedra of five... six tetrahedra
-/// each; any other convex block is split into tetrahedra from its centroid
-/// over its triangulated faces, which are then refined until the edge
-/// length is reached.
+/// deal.II triangulation of simplices per block, from which the flat
+/// TetMesh is taken. Axis-aligned bricks are divided by deal.II's generator
+/// (n_x n_y n_z hexahedra of five tetrahedra each); any other convex block
+/// is split into tetrahedra from its centroid over its triangulated faces,
+/// which are then refined (each into eight) until the edge length is
+/// reached.
 TetMesh mesh_blocks(const BlockModel& blocks, const std::vector<unsigned int>& which,
                     double edge_length, MeshReport& report);
 
