@@ -30,6 +30,34 @@ constexpr const char* usage =
     "  for ParaView into the output folder it names, and prints a summary.\n"
     "  Shipped scenes are in the parameters/ folder.\n";
 
+/// Solves the static elastic problem of a deformable run implicitly and
+/// prints how far the explicit answer is from it.
+void implicit_check(const talus::Scene& scene, const talus::DeformableSolver& solver)
+{
+  using namespace talus;
+  const auto refuse = [](const char* why) { std::printf("Implicit check: not made (%s)\n", why); };
+  if (scene.solver.dynamic)
+    return refuse("the run is dynamic");
+  if (scene.deformable.material.model != ZoneModel::elastic)
+    return refuse("the zones are not elastic");
+  if (scene.has_initial_stress)
+    return refuse("the zones have an initial stress");
+  for (const GridpointCondition& c : scene.gridpoint_conditions)
+    if (c.velocity.norm() > 0.0)
+      return refuse("a boundary moves at a velocity");
+  const ImplicitElasticResult r = solve_implicit_elastic(solver.implicit_problem());
+  const std::vector<double> u = solver.displacements();
+  double largest = 0.0, difference = 0.0;
+  for (std::size_t i = 0; i < u.size(); ++i)
+  {
+    largest = std::max(largest, std::abs(r.displacement[i]));
+    difference = std::max(difference, std::abs(u[i] - r.displacement[i]));
+  }
+  std::printf("Implicit check: largest displacement component %.6g m (CG with AMG, %u iterations); "
+              "largest difference from the explicit answer %.3g m, %.2g of it\n",
+              largest, r.iterations, difference, largest > 0.0 ? difference / largest : 0.0);
+}
+
 /// Runs a scene of deformable blocks: meshes them, then the explicit zone
 /// cycle with output and histories.
 void solve_deformable(talus::Scene& scene, talus::BlockModel& model, const std::string& prefix)
@@ -47,11 +75,20 @@ void solve_deformable(talus::Scene& scene, talus::BlockModel& model, const std::
         " of them deformable; contacts with deformable blocks are not available yet, so a "
         "deformable scene must be one block; allowed: a model of one block, in a listed group");
   MeshReport mesh_report;
-  const TetMesh mesh = mesh_blocks(model, deformable, scene.deformable.edge_length, mesh_report);
-  std::printf("Zones:        %u tetrahedra, %u gridpoints, %u boundary faces (edge length %g m; "
-              "largest edge %.4g m, smallest height %.4g m)\n",
-              mesh_report.zones, mesh_report.gridpoints, mesh_report.boundary_faces,
-              scene.deformable.edge_length, mesh_report.largest_edge, mesh_report.smallest_height);
+  const bool from_file = !scene.deformable.mesh_file.empty();
+  const TetMesh mesh =
+      from_file ? *scene.deformable.mesh
+                : mesh_blocks(model, deformable, scene.deformable.edge_length, mesh_report);
+  if (from_file)
+    mesh_report = measure_mesh(mesh);
+  std::printf(
+      "Zones:        %u tetrahedra, %u gridpoints, %u boundary faces (%s; largest edge %.4g m, "
+      "smallest height %.4g m), zone volume %.9g m^3\n",
+      mesh_report.zones, mesh_report.gridpoints, mesh_report.boundary_faces,
+      from_file ? ("from " + std::filesystem::path(scene.deformable.mesh_file).filename().string())
+                      .c_str()
+                : ("edge length " + std::to_string(scene.deformable.edge_length) + " m").c_str(),
+      mesh_report.largest_edge, mesh_report.smallest_height, mesh_report.zone_volume);
   int argc = 1;
   char name[] = "talus";
   char* args[] = {name, nullptr};
@@ -128,6 +165,8 @@ void solve_deformable(talus::Scene& scene, talus::BlockModel& model, const std::
     yielding += st != 0;
   if (scene.deformable.material.model == ZoneModel::mohr_coulomb)
     std::printf("Plastic zones: %u of %u\n", yielding, mesh.n_zones());
+  if (scene.deformable.implicit_check)
+    implicit_check(scene, solver);
   std::printf("Output:       %s_zones.pvd, %s_history.csv\n", prefix.c_str(), prefix.c_str());
 }
 

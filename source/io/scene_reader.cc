@@ -1,12 +1,14 @@
 #include <talus/io/scene.h>
 
 #include <talus/io/file_output.h>
+#include <talus/zone/block_mesher.h>
 
 #include "parameter_file.h"
 
 #include <cmath>
 
 #include <algorithm>
+#include <filesystem>
 #include <regex>
 #include <tuple>
 
@@ -268,6 +270,12 @@ void declare_deformable(ParameterFile& prm)
   prm.declare("Groups", "", P::List(P::Anything()), "group names separated by commas",
               "Blocks of these groups are deformable (meshed into tetrahedral zones).");
   prm.declare("Edge length", "1", P::Double(), "a number > 0 (m)", "Target zone edge length (m).");
+  prm.declare("Mesh file", "", P::Anything(), "a gmsh .msh file of linear tetrahedra (or empty)",
+              "The deformable body's zones from a gmsh file instead of meshing the block (relative "
+              "paths start at this parameter file's folder).");
+  prm.declare("Implicit check", "false", P::Bool(), "true or false",
+              "After a static run of elastic zones, solve the same problem implicitly (CG with "
+              "algebraic multigrid) and print the difference.");
   prm.declare("Zone model", "elastic", P::Selection("elastic|mohr-coulomb"),
               "elastic or mohr-coulomb", "Constitutive model of the zones.");
   prm.declare("Young's modulus", "5e10", P::Double(), "a number > 0 (Pa)", "E (Pa).");
@@ -306,6 +314,29 @@ void parse_deformable(ParameterFile& prm, Scene& scene)
     d.groups.push_back(g);
   }
   d.edge_length = prm.get_double("Edge length");
+  d.implicit_check = prm.get_bool("Implicit check");
+  d.mesh_file = prm.get("Mesh file");
+  if (!d.mesh_file.empty())
+  {
+    std::filesystem::path path(d.mesh_file);
+    if (path.is_relative())
+      path = std::filesystem::path(scene.parameter_file).parent_path() / path;
+    if (!std::filesystem::is_regular_file(path))
+      throw prm.error("Mesh file", "names '" + path.string() + "', which is not a readable file",
+                      "a gmsh .msh file of linear tetrahedra");
+    d.mesh_file = path.string();
+    // Read it now, so that a bad mesh stops the run before anything is
+    // written.
+    try
+    {
+      d.mesh = std::make_shared<TetMesh>(read_gmsh_block(d.mesh_file, 0));
+      measure_mesh(*d.mesh);
+    }
+    catch (const InputError& e)
+    {
+      throw prm.error("Mesh file", e.what(), "a gmsh .msh file (2.2 or 4.1) of linear tetrahedra");
+    }
+  }
   if (!(d.edge_length > 0.0))
     throw prm.error("Edge length", "must be positive", "a number > 0 (m)");
   const double E = prm.get_double("Young's modulus"), nu = prm.get_double("Poisson's ratio");

@@ -363,4 +363,29 @@ Vec3 DeformableSolver::support_force(const Box& region) const
   return sum;
 }
 
+ImplicitElasticProblem DeformableSolver::implicit_problem() const
+{
+  ImplicitElasticProblem p;
+  p.mesh = &mesh_;
+  for (unsigned int z = 0; z < mesh_.n_zones(); ++z)
+  {
+    p.zone_bulk.push_back(materials_[material_of_zone_[z]].bulk_modulus);
+    p.zone_shear.push_back(materials_[material_of_zone_[z]].shear_modulus);
+  }
+  p.nodal_force = gravity_force_;
+  const auto P = [&](unsigned int g)
+  { return Vec3(mesh_.position[3 * g], mesh_.position[3 * g + 1], mesh_.position[3 * g + 2]); };
+  for (std::size_t k = 0; k < pressed_faces_.size(); ++k)
+  {
+    const auto& t = mesh_.face_gridpoint[pressed_faces_[k]];
+    const Vec3 share =
+        -face_pressure_[k] * 0.5 * (P(t[1]) - P(t[0])).cross(P(t[2]) - P(t[0])) / 3.0;
+    for (unsigned int g : t)
+      for (int d = 0; d < 3; ++d)
+        p.nodal_force[3 * g + d] += share[d];
+  }
+  p.fixed = held_;
+  return p;
+}
+
 } // namespace talus

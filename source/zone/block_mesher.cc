@@ -2,10 +2,12 @@
 #include <talus/zone/block_mesher.h>
 
 #include <deal.II/grid/grid_generator.h>
+#include <deal.II/grid/grid_in.h>
 #include <deal.II/grid/tria.h>
 
 #include <algorithm>
 #include <cmath>
+#include <fstream>
 #include <map>
 
 namespace talus
@@ -155,6 +157,42 @@ void append_tetrahedra(TetMesh& mesh, const dealii::Triangulation<3>& tria, unsi
     mesh.face_gridpoint.push_back(face);
     mesh.face_zone.push_back(where.first);
   }
+}
+
+TetMesh read_gmsh_block(const std::string& path, unsigned int block)
+{
+  std::ifstream in(path);
+  if (!in)
+    throw InputError(path + ": cannot open the mesh file");
+  dealii::Triangulation<3> tria;
+  try
+  {
+    dealii::GridIn<3> reader;
+    reader.attach_triangulation(tria);
+    reader.read_msh(in);
+  }
+  catch (const std::exception& e)
+  {
+    std::string why = e.what();
+    // deal.II's messages span many lines; keep the line that says what.
+    const std::size_t at = why.find("Additional information:");
+    if (at != std::string::npos)
+      why = why.substr(at + 23);
+    why = why.substr(0, why.find("Stacktrace"));
+    std::replace(why.begin(), why.end(), '\n', ' ');
+    // Squeeze runs of spaces left by the line breaks.
+    why.erase(
+        std::unique(why.begin(), why.end(), [](char a, char b) { return a == ' ' && b == ' '; }),
+        why.end());
+    while (!why.empty() && why.back() == ' ')
+      why.pop_back();
+    while (!why.empty() && why.front() == ' ')
+      why.erase(why.begin());
+    throw InputError(path + ": not a gmsh mesh talus can read: " + why);
+  }
+  TetMesh mesh;
+  append_tetrahedra(mesh, tria, block);
+  return mesh;
 }
 
 MeshReport measure_mesh(const TetMesh& mesh)

@@ -5,6 +5,7 @@
 #include <talus/solver/deformable_solver.h>
 #include <talus/solver/rigid_solver.h>
 
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -38,9 +39,12 @@ struct ExcavationSpec
 /// Which blocks are deformable and what they are made of.
 struct DeformableSpec
 {
-  std::vector<std::string> groups; ///< groups whose blocks are meshed into zones
-  double edge_length = 1.0;        ///< m, target zone edge
-  ZoneMaterial material;           ///< density taken from 'Material'
+  std::vector<std::string> groups;     ///< groups whose blocks are meshed into zones
+  double edge_length = 1.0;            ///< m, target zone edge
+  ZoneMaterial material;               ///< density taken from 'Material'
+  std::string mesh_file;               ///< gmsh file of the body's zones (empty: mesh the block)
+  std::shared_ptr<const TetMesh> mesh; ///< the zones read from mesh_file (block 0)
+  bool implicit_check = false;         ///< compare a static run with the implicit elastic solve
 };
 
 struct OutputSettings

@@ -2,6 +2,7 @@
 
 #include <talus/geometry/plane.h>
 #include <talus/solver/rigid_solver.h>
+#include <talus/zone/implicit_elastic.h>
 #include <talus/zone/stress_batch.h>
 #include <talus/zone/tet4_kernel.h>
 #include <talus/zone/tet_mesh.h>
@@ -86,6 +87,12 @@ public:
   /// Zone stresses, 6 per zone (xx, yy, zz, xy, yz, zx), Pa.
   const std::vector<double>& stress() const { return stress_; }
   const std::vector<unsigned char>& plastic_state() const { return state_; }
+  /// The same problem for the implicit elastic reference solve: gravity and
+  /// face pressures as nodal forces on the initial geometry, held
+  /// components prescribed at zero (only meaningful for elastic zones
+  /// without initial stress, held at rest).
+  ImplicitElasticProblem implicit_problem() const;
+
   /// Holds every component of gridpoint g at velocity `v` (m/s) from now on.
   void hold_gridpoint(unsigned int g, const Vec3& v);
 

@@ -28,6 +28,12 @@ struct MeshReport
 /// `block`, with gridpoints of its own, and the block's boundary faces.
 void append_tetrahedra(TetMesh& mesh, const dealii::Triangulation<3, 3>& tria, unsigned int block);
 
+/// Reads a gmsh .msh file (format 2.2 or 4.1) of linear tetrahedra as the
+/// zones of block `block`; the file's nodes become the block's gridpoints.
+/// Throws InputError naming the file when it cannot be read or holds
+/// other cells.
+TetMesh read_gmsh_block(const std::string& path, unsigned int block);
+
 /// Counts and sizes of a mesh (throws if a zone has no volume).
 MeshReport measure_mesh(const TetMesh& mesh);
 
