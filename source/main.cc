@@ -10,6 +10,7 @@
 #include <talus/io/scene.h>
 #include <talus/io/zone_vtu_writer.h>
 #include <talus/model/build_blocks.h>
+#include <talus/solver/block_system.h>
 #include <talus/solver/rigid_solver.h>
 #include <talus/zone/block_mesher.h>
 
@@ -20,6 +21,7 @@
 #include <filesystem>
 #include <iostream>
 #include <map>
+#include <memory>
 
 namespace
 {
@@ -29,6 +31,30 @@ constexpr const char* usage =
     "  Builds the block model the parameter file describes, writes it\n"
     "  for ParaView into the output folder it names, and prints a summary.\n"
     "  Shipped scenes are in the parameters/ folder.\n";
+
+/// Writes the zones of deformable blocks at their current state as frame
+/// `frame` of the zone series.
+void write_zone_frame(const talus::Scene& scene, const talus::TetMesh& mesh,
+                      const talus::DeformableSolver& solver, talus::PvdSeries& series,
+                      unsigned int frame)
+{
+  using namespace talus;
+  char file[64];
+  std::snprintf(file, sizeof file, "_zones_%05u.vtu", frame);
+  const std::string vtu = scene.output.base_name + file;
+  std::vector<ZoneField> cells{
+      {"stress", 6, solver.stress()}, {"principal_stress", 3, {}}, {"plastic_state", 1, {}}};
+  cells[1].values.resize(3 * mesh.n_zones());
+  for (unsigned int z = 0; z < mesh.n_zones(); ++z)
+  {
+    principal_stresses(&solver.stress()[6 * z], &cells[1].values[3 * z]);
+    cells[2].values.push_back(solver.plastic_state()[z]);
+  }
+  write_zones_vtu(
+      scene.output.directory + "/" + vtu, mesh, solver.positions(),
+      {{"displacement", 3, solver.displacements()}, {"velocity", 3, solver.velocities()}}, cells);
+  series.add(solver.time(), vtu);
+}
 
 /// Solves the static elastic problem of a deformable run implicitly and
 /// prints how far the explicit answer is from it.
@@ -68,12 +94,10 @@ void solve_deformable(talus::Scene& scene, talus::BlockModel& model, const std::
     for (const std::string& g : scene.deformable.groups)
       if (model.group_names[model.group[b]] == g)
         deformable.push_back(b);
-  if (deformable.size() != 1 || model.n_blocks() != 1)
-    throw InputError(
-        scene.parameter_file + ": entry 'Groups' in subsection 'Deformable': the model has " +
-        std::to_string(model.n_blocks()) + " blocks, " + std::to_string(deformable.size()) +
-        " of them deformable; contacts with deformable blocks are not available yet, so a "
-        "deformable scene must be one block; allowed: a model of one block, in a listed group");
+  if (deformable.empty())
+    throw InputError(scene.parameter_file +
+                     ": entry 'Groups' in subsection 'Deformable': no block of the "
+                     "model is in these groups; allowed: groups that hold blocks");
   MeshReport mesh_report;
   const bool from_file = !scene.deformable.mesh_file.empty();
   const TetMesh mesh =
@@ -118,23 +142,8 @@ void solve_deformable(talus::Scene& scene, talus::BlockModel& model, const std::
   };
   const auto output = [&]()
   {
-    if (!scene.output.write_vtu)
-      return;
-    char file[64];
-    std::snprintf(file, sizeof file, "_zones_%05u.vtu", frame++);
-    const std::string vtu = scene.output.base_name + file;
-    std::vector<ZoneField> cells{
-        {"stress", 6, solver.stress()}, {"principal_stress", 3, {}}, {"plastic_state", 1, {}}};
-    cells[1].values.resize(3 * mesh.n_zones());
-    for (unsigned int z = 0; z < mesh.n_zones(); ++z)
-    {
-      principal_stresses(&solver.stress()[6 * z], &cells[1].values[3 * z]);
-      cells[2].values.push_back(solver.plastic_state()[z]);
-    }
-    write_zones_vtu(
-        scene.output.directory + "/" + vtu, mesh, solver.positions(),
-        {{"displacement", 3, solver.displacements()}, {"velocity", 3, solver.velocities()}}, cells);
-    series.add(solver.time(), vtu);
+    if (scene.output.write_vtu)
+      write_zone_frame(scene, mesh, solver, series, frame++);
   };
   output();
   unsigned long last_output = 0;
@@ -183,9 +192,30 @@ void solve(talus::Scene& scene, talus::BlockModel& model, talus::PvdSeries& seri
                        "block " +
                        std::to_string(b) + " does not exist; allowed: 0 to " +
                        std::to_string(model.n_blocks() - 1));
-  RigidSolver solver(model, scene.density, scene.solver);
-  std::printf("Time step:    %.6g s (eq. 87, fraction %g)\n", solver.dt(),
-              scene.solver.time_step_fraction);
+  // Deformable blocks among rigid ones: their zones, and their surfaces as
+  // their shapes for the contacts.
+  std::unique_ptr<ParallelEnvironment> parallel;
+  if (!scene.deformable.groups.empty())
+  {
+    int argc = 1;
+    char name[] = "talus";
+    char* args[] = {name, nullptr};
+    char** argv = args;
+    parallel = std::make_unique<ParallelEnvironment>(argc, argv);
+  }
+  BlockSystem system = build_block_system(scene, model);
+  RigidSolver& solver = *system.solver;
+  const TetMesh& mesh = system.mesh;
+  DeformableSolver* zones = system.zones.get();
+  if (zones)
+    std::printf(
+        "Zones:        %u tetrahedra in %u deformable blocks, %u gridpoints (edge length %g m)\n",
+        system.mesh_report.zones, system.mesh_report.blocks, system.mesh_report.gridpoints,
+        scene.deformable.edge_length);
+  std::printf("Time step:    %.6g s (eq. 87, fraction %g%s)\n", solver.dt(),
+              scene.solver.time_step_fraction, zones ? "; eq. 84 for the zones" : "");
+  PvdSeries zone_series(prefix + "_zones.pvd");
+  unsigned int zone_frame = 0;
 
   std::vector<std::string> columns{"step",
                                    "time (s)",
@@ -225,6 +255,8 @@ void solve(talus::Scene& scene, talus::BlockModel& model, talus::PvdSeries& seri
     const std::string contacts_vtu = scene.output.base_name + name;
     write_contacts_vtu(scene.output.directory + "/" + contacts_vtu, solver.contacts());
     contact_series.add(time, contacts_vtu);
+    if (zones)
+      write_zone_frame(scene, mesh, *zones, zone_series, zone_frame++);
   };
   const auto record = [&](unsigned long step, double time)
   {
@@ -317,7 +349,7 @@ int run(const std::string& filename)
       std::printf("Output:       %s_blocks.pvd\n", prefix.c_str());
     }
   }
-  else if (!scene.deformable.groups.empty())
+  else if (!scene.deformable.groups.empty() && model.n_blocks() == 1)
     solve_deformable(scene, model, prefix);
   else
     solve(scene, model, series, prefix);

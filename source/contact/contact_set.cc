@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <tuple>
 
 namespace talus
 {
@@ -214,6 +215,10 @@ void ContactSet::update(const BlockModel& m, const ContactSettings& settings,
   std::swap(old_position, sc_position);
   std::vector<double> old_area;
   std::swap(old_area, sc_area);
+  std::vector<int> old_node;
+  std::swap(old_node, sc_node);
+  std::vector<double> old_weight;
+  std::swap(old_weight, sc_weight);
   old_normal_.resize(n_slots());
   for (unsigned int c = 0; c < n_slots(); ++c)
     old_normal_[c] = plane[c].normal;
@@ -226,6 +231,8 @@ void ContactSet::update(const BlockModel& m, const ContactSettings& settings,
   sc_dilation.clear();
   sc_state.clear();
   sc_fresh.clear();
+  sc_node.clear();
+  sc_weight.clear();
 
   CommonPlaneSettings cps = settings.common_plane;
   cps.contact_tolerance = settings.tolerance;
@@ -257,6 +264,12 @@ void ContactSet::update(const BlockModel& m, const ContactSettings& settings,
             sc_dilation.push_back(old_dilation_[o]);
           sc_state.push_back(old_state_[o]);
           sc_fresh.push_back(0);
+          if (has_deformable())
+            for (int k = 0; k < 6; ++k)
+            {
+              sc_node.push_back(old_node[6 * o + k]);
+              sc_weight.push_back(old_weight[6 * o + k]);
+            }
         }
         continue;
       }
@@ -384,16 +397,163 @@ void ContactSet::build_subcontacts(unsigned int c, const BlockModel& m,
         settings.point_area_fraction * std::pow(std::min(m.volume[a], m.volume[b]), 2.0 / 3.0);
     std::fill(weight.begin(), weight.end(), point_area);
   }
-  for (std::size_t i = 0; i < region.size(); ++i)
+  // What carries each sub-contact on side A and side B (deformable blocks
+  // only): gridpoints and weights, -1 for a rigid side.
+  struct Seed
   {
-    if (!(weight[i] > 0.0))
+    Point2 at;
+    double area;
+    int node[6] = {-1, -1, -1, -1, -1, -1};
+    double w[6] = {0, 0, 0, 0, 0, 0};
+    Vec3 point[2]; ///< where the carrying gridpoints are, side A and B
+  };
+  std::vector<Seed> seeds;
+  const bool da = has_deformable() && (*is_deformable_)[a];
+  const bool db = has_deformable() && (*is_deformable_)[b];
+  const auto project = [&](const Vec3& x) { return Point2(u.dot(x - ref), v.dot(x - ref)); };
+  // The point of a deformable side under q: barycentric on the facing
+  // boundary triangle whose projection holds q, else its nearest facing
+  // gridpoint.
+  const auto support =
+      [&](unsigned int blk, double sign, const Point2& q, int* node, double* w, Vec3& point)
+  {
+    double nearest = 1e300;
+    for (unsigned int f = m.face_start[blk]; f < m.face_start[blk + 1]; ++f)
+    {
+      if (sign * m.face_normal[f].dot(n) <= 0.0)
+        continue;
+      const unsigned int k = m.face_loop_start[f];
+      const Point2 p0 = project(m.vertex[m.face_vertex[k]]),
+                   p1 = project(m.vertex[m.face_vertex[k + 1]]),
+                   p2 = project(m.vertex[m.face_vertex[k + 2]]);
+      const double total = cross2(p0, p1, p2);
+      if (std::abs(total) <= 0.0)
+        continue;
+      const double l0 = cross2(q, p1, p2) / total, l1 = cross2(p0, q, p2) / total,
+                   l2 = 1.0 - l0 - l1;
+      const double outside = std::max({-l0, -l1, -l2, 0.0});
+      if (outside < nearest)
+      {
+        nearest = outside;
+        const double l[3] = {l0, l1, l2};
+        for (int j = 0; j < 3; ++j)
+        {
+          node[j] = (*vertex_gridpoint_)[m.face_vertex[k + j]];
+          w[j] = std::clamp(l[j], 0.0, 1.0);
+        }
+        const double sum = w[0] + w[1] + w[2];
+        point = Vec3::Zero();
+        for (int j = 0; j < 3; ++j)
+        {
+          w[j] /= sum;
+          point += w[j] * m.vertex[m.face_vertex[k + j]];
+        }
+      }
+    }
+    if (node[0] < 0)
+    {
+      // No facing triangle (a vertex or edge touching): the nearest vertex.
+      double best = 1e300;
+      for (unsigned int vtx = m.vertex_start[blk]; vtx < m.vertex_start[blk + 1]; ++vtx)
+      {
+        const double d =
+            (project(m.vertex[vtx]) - q).squaredNorm() + std::pow(n.dot(m.vertex[vtx] - ref), 2);
+        if (d < best)
+        {
+          best = d;
+          node[0] = (*vertex_gridpoint_)[vtx];
+          w[0] = 1.0;
+          point = m.vertex[vtx];
+        }
+      }
+    }
+  };
+  const bool has_area = region.size() >= 3 && area > 0.0;
+  if (has_area && (da || db))
+  {
+    // Sub-contacts at the gridpoints of deformable sides that lie over the
+    // contact region, each with a third of the facing boundary triangles
+    // around it; two deformable sides make two sets of springs in
+    // parallel, each with half the area.
+    const double share = da && db ? 0.5 : 1.0;
+    for (const auto& [blk, sign, side] : {std::tuple<unsigned int, double, int>{a, 1.0, 0},
+                                          std::tuple<unsigned int, double, int>{b, -1.0, 1}})
+    {
+      if (!(*is_deformable_)[blk])
+        continue;
+      std::vector<double> vertex_area(m.vertex_start[blk + 1] - m.vertex_start[blk], 0.0);
+      for (unsigned int f = m.face_start[blk]; f < m.face_start[blk + 1]; ++f)
+      {
+        if (sign * m.face_normal[f].dot(n) < 0.5)
+          continue;
+        const unsigned int k = m.face_loop_start[f];
+        const Vec3& x0 = m.vertex[m.face_vertex[k]];
+        const double third = (m.vertex[m.face_vertex[k + 1]] - x0)
+                                 .cross(m.vertex[m.face_vertex[k + 2]] - x0)
+                                 .norm() /
+                             6.0;
+        for (int j = 0; j < 3; ++j)
+          vertex_area[m.face_vertex[k + j] - m.vertex_start[blk]] += third;
+      }
+      for (unsigned int vtx = m.vertex_start[blk]; vtx < m.vertex_start[blk + 1]; ++vtx)
+      {
+        const double h = n.dot(m.vertex[vtx] - ref);
+        if (vertex_area[vtx - m.vertex_start[blk]] <= 0.0 || sign * h < -band)
+          continue;
+        const Point2 q = project(m.vertex[vtx]);
+        // Over the region, or off it by less than the contact tolerance (a
+        // block squeezed sideways by its load bulges past the edge it
+        // stands on by a little).
+        bool inside = true;
+        for (std::size_t e = 0; e < region.size() && inside; ++e)
+        {
+          const Point2& e0 = region[e];
+          const Point2& e1 = region[(e + 1) % region.size()];
+          inside = cross2(e0, e1, q) >= -band * (e1 - e0).norm();
+        }
+        if (!inside)
+          continue;
+        Seed seed;
+        seed.at = q;
+        seed.area = share * vertex_area[vtx - m.vertex_start[blk]];
+        seed.node[3 * side] = (*vertex_gridpoint_)[vtx];
+        seed.w[3 * side] = 1.0;
+        seed.point[side] = m.vertex[vtx];
+        const unsigned int other = side == 0 ? b : a;
+        if ((*is_deformable_)[other])
+          support(other, -sign, q, seed.node + 3 * (1 - side), seed.w + 3 * (1 - side),
+                  seed.point[1 - side]);
+        seeds.push_back(seed);
+      }
+    }
+  }
+  else
+    for (std::size_t i = 0; i < region.size(); ++i)
+    {
+      Seed seed;
+      seed.at = region[i];
+      seed.area = weight[i];
+      if (da)
+        support(a, 1.0, seed.at, seed.node, seed.w, seed.point[0]);
+      if (db)
+        support(b, -1.0, seed.at, seed.node + 3, seed.w + 3, seed.point[1]);
+      seeds.push_back(seed);
+    }
+
+  for (const Seed& seed : seeds)
+  {
+    if (!(seed.area > 0.0))
       continue;
-    const Vec3 on_plane = ref + region[i].x() * u + region[i].y() * v;
-    const double ha = surface_height(sa, n, on_plane);
-    const double hb = surface_height(sb, n, on_plane);
+    const Vec3 on_plane = ref + seed.at.x() * u + seed.at.y() * v;
+    // Height of each side's surface above the plane point: the carrying
+    // gridpoints' for a deformable side.
+    const auto height = [&](const FacingSide& side, const int* node, const Vec3& point)
+    { return node[0] < 0 ? surface_height(side, n, on_plane) : n.dot(point - ref); };
+    const double ha = height(sa, seed.node, seed.point[0]);
+    const double hb = height(sb, seed.node + 3, seed.point[1]);
     sc_contact.push_back(c);
     sc_position.push_back(on_plane + 0.5 * (ha + hb) * n);
-    sc_area.push_back(weight[i]);
+    sc_area.push_back(seed.area);
     sc_un.push_back(hb - ha);
     sc_fn.push_back(0.0);
     for (int d = 0; d < 3; ++d)
@@ -404,6 +564,12 @@ void ContactSet::build_subcontacts(unsigned int c, const BlockModel& m,
       sc_dilation.push_back(0.0);
     sc_state.push_back(0);
     sc_fresh.push_back(1);
+    if (has_deformable())
+      for (int k = 0; k < 6; ++k)
+      {
+        sc_node.push_back(seed.node[k]);
+        sc_weight.push_back(seed.w[k]);
+      }
   }
 }
 

@@ -199,9 +199,12 @@ double DeformableSolver::stable_time_step_of(const std::vector<double>& mass,
   return 2.0 * std::sqrt(ratio);
 }
 
-double DeformableSolver::stable_time_step() const
+double DeformableSolver::stable_time_step(const std::vector<double>& joint_stiffness) const
 {
-  return stable_time_step_of(true_mass_, nodal_stiffness_);
+  std::vector<double> k = nodal_stiffness_;
+  for (std::size_t g = 0; g < k.size() && g < joint_stiffness.size(); ++g)
+    k[g] += joint_stiffness[g];
+  return stable_time_step_of(true_mass_, k);
 }
 
 void DeformableSolver::zone_forces()
@@ -296,17 +299,61 @@ void DeformableSolver::move_gridpoints()
 
 void DeformableSolver::step()
 {
+  compute_forces();
+  move();
+}
+
+void DeformableSolver::compute_forces()
+{
   const auto t0 = std::chrono::steady_clock::now();
   zone_forces();
-  const auto t1 = std::chrono::steady_clock::now();
+  seconds_zones_ += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+}
+
+void DeformableSolver::move()
+{
+  const auto t0 = std::chrono::steady_clock::now();
   move_gridpoints();
-  seconds_zones_ += std::chrono::duration<double>(t1 - t0).count();
-  seconds_gridpoints_ +=
-      std::chrono::duration<double>(std::chrono::steady_clock::now() - t1).count();
   if ((step_ + 1) % Damper::servo_period == 0)
     damper_.adjust();
   time_ += dt_;
   ++step_;
+  seconds_gridpoints_ +=
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+}
+
+DeformableSolver::View::View(DeformableSolver& solver) : solver_(solver)
+{
+  VecGetArray(static_cast<const Vec&>(solver_.petsc_->position), &x);
+  VecGetArray(static_cast<const Vec&>(solver_.petsc_->velocity), &v);
+  VecGetArray(static_cast<const Vec&>(solver_.petsc_->force), &f);
+}
+
+DeformableSolver::View::~View()
+{
+  VecRestoreArray(static_cast<const Vec&>(solver_.petsc_->position), &x);
+  VecRestoreArray(static_cast<const Vec&>(solver_.petsc_->velocity), &v);
+  VecRestoreArray(static_cast<const Vec&>(solver_.petsc_->force), &f);
+}
+
+void DeformableSolver::use_time_step(double dt, const std::vector<double>& joint_stiffness)
+{
+  const unsigned int ng = mesh_.n_gridpoints();
+  std::vector<double> k = nodal_stiffness_;
+  for (unsigned int g = 0; g < ng && g < joint_stiffness.size(); ++g)
+    k[g] += joint_stiffness[g];
+  const bool scaled = !s_.dynamic && s_.density_scaling;
+  if (!scaled && dt > stable_time_step_of(true_mass_, k) * (1.0 + 1e-12))
+    throw InputError("the time step " + std::to_string(dt) +
+                     " s exceeds the stable step of the zones, " +
+                     std::to_string(stable_time_step_of(true_mass_, k)) + " s (eq. 84)");
+  dt_ = dt;
+  LocalArray m(petsc_->inertial_mass);
+  for (unsigned int g = 0; g < ng; ++g)
+    for (int d = 0; d < 3; ++d)
+      m[3 * g + d] = scaled ? k[g] * dt * dt / 4.0 : true_mass_[g];
+  damper_ = Damper(s_.dynamic ? Damping::none : s_.damping, s_.local_damping,
+                   s_.global_damping_ratio, dt_);
 }
 
 unsigned long DeformableSolver::run_to_ratio(double ratio, unsigned long max_steps)

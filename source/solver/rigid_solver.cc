@@ -1,7 +1,9 @@
 #include <talus/geometry/mass_properties.h>
 #include <talus/joint/joint_model.h>
 #include <talus/solver/damper.h>
+#include <talus/solver/deformable_solver.h>
 #include <talus/solver/rigid_solver.h>
+#include <talus/zone/zone_surface.h>
 
 #include <Eigen/Geometry>
 
@@ -24,8 +26,9 @@ double sign(double x)
 }
 } // namespace
 
-RigidSolver::RigidSolver(BlockModel& blocks, double density, const SolverSettings& settings)
-    : m_(blocks), s_(settings)
+RigidSolver::RigidSolver(BlockModel& blocks, double density, const SolverSettings& settings,
+                         DeformableSolver* zones, std::vector<int> vertex_gridpoint)
+    : m_(blocks), s_(settings), zones_(zones), vertex_gridpoint_(std::move(vertex_gridpoint))
 {
   // No dilation state for joints that do not dilate.
   s_.contact.dilation = s_.joint.dilation_angle != 0.0;
@@ -46,16 +49,32 @@ RigidSolver::RigidSolver(BlockModel& blocks, double density, const SolverSetting
   path.assign(nb, 0.0);
   last_force_.assign(nb, Vec3::Zero());
   last_moment_.assign(nb, Vec3::Zero());
+  is_deformable_.assign(nb, 0);
+  if (zones_ != nullptr)
+  {
+    for (unsigned int b = 0; b < nb; ++b)
+      if (vertex_gridpoint_[m_.vertex_start[b]] >= 0)
+      {
+        is_deformable_[b] = 1;
+        deformable_blocks_.push_back(b);
+      }
+    contacts_.set_deformable(&is_deformable_, &vertex_gridpoint_);
+  }
   if (s_.principal_inertia)
   {
     principal_moments.resize(nb);
     axes.resize(nb);
   }
   double mass_sum = 0.0;
+  unsigned int n_rigid = 0;
   for (unsigned int b = 0; b < nb; ++b)
   {
     mass[b] = density * m_.volume[b];
-    mass_sum += mass[b];
+    if (!is_deformable_[b])
+    {
+      mass_sum += mass[b];
+      ++n_rigid;
+    }
     // The manual's approximate isotropic inertia, from the mean distance r
     // of the vertices to the centroid (below eq. 45): I = (2/9) m r^2, the
     // factor that makes it exact for a cube.
@@ -64,7 +83,7 @@ RigidSolver::RigidSolver(BlockModel& blocks, double density, const SolverSetting
       r += (m_.vertex[v] - m_.centroid[b]).norm();
     r /= (m_.vertex_start[b + 1] - m_.vertex_start[b]);
     inertia[b] = 2.0 / 9.0 * mass[b] * r * r;
-    if (s_.principal_inertia)
+    if (s_.principal_inertia && !is_deformable_[b])
     {
       const MassProperties p = compute_mass_properties(m_.polyhedron(b));
       principal_moments[b] = density * p.principal_moments;
@@ -91,16 +110,39 @@ RigidSolver::RigidSolver(BlockModel& blocks, double density, const SolverSetting
   }
   // Density scaling for statics: no block lighter (in inertia) than the mean.
   inertial_mass = mass;
-  if (!s_.dynamic && s_.density_scaling && nb > 0)
+  if (!s_.dynamic && s_.density_scaling && n_rigid > 0)
     for (unsigned int b = 0; b < nb; ++b)
     {
-      const double scale = std::max(1.0, mass_sum / nb / mass[b]);
+      const double scale = std::max(1.0, mass_sum / n_rigid / mass[b]);
       inertial_mass[b] *= scale;
       inertia[b] *= scale;
       if (s_.principal_inertia)
         principal_moments[b] *= scale;
     }
   dt_ = s_.time_step > 0.0 ? s_.time_step : stable_time_step();
+  if (zones_ != nullptr)
+  {
+    // Eq. 85: the joints add their stiffness to the surface gridpoints;
+    // eq. 88: the smaller of the block and zone steps governs.
+    std::vector<double> joint_stiffness(zones_->mesh().n_gridpoints(), 0.0);
+    const double k = std::max(s_.joint.normal_stiffness, s_.joint.shear_stiffness);
+    for (unsigned int b : deformable_blocks_)
+      for (unsigned int f = m_.face_start[b]; f < m_.face_start[b + 1]; ++f)
+      {
+        const unsigned int q = m_.face_loop_start[f];
+        const Vec3& x0 = m_.vertex[m_.face_vertex[q]];
+        const double area = 0.5 * (m_.vertex[m_.face_vertex[q + 1]] - x0)
+                                      .cross(m_.vertex[m_.face_vertex[q + 2]] - x0)
+                                      .norm();
+        for (int j = 0; j < 3; ++j)
+          joint_stiffness[vertex_gridpoint_[m_.face_vertex[q + j]]] += k * area / 3.0;
+      }
+    if (s_.time_step <= 0.0 && (s_.dynamic || !s_.density_scaling))
+      dt_ = std::min(dt_, zones_->stable_time_step(joint_stiffness));
+    else if (s_.time_step <= 0.0 && dt_ == 1e300)
+      dt_ = 1.0; // statics, deformable blocks only: unit step, scaled masses
+    zones_->use_time_step(dt_, joint_stiffness);
+  }
   damper_ = Damper(s_.dynamic ? Damping::none : s_.damping, s_.local_damping,
                    s_.global_damping_ratio, dt_);
 
@@ -124,6 +166,8 @@ double RigidSolver::stable_time_step() const
   double m_min = 1e300, area_max = 0.0;
   for (unsigned int b = 0; b < m_.n_blocks(); ++b)
   {
+    if (is_deformable_[b])
+      continue; // its gridpoints have their own limit (eq. 84)
     m_min = std::min(m_min, inertial_mass[b]);
     const ConvexPolyhedron p = m_.polyhedron(b);
     for (unsigned int f = 0; f < p.n_faces(); ++f)
@@ -135,6 +179,8 @@ double RigidSolver::stable_time_step() const
       area_max = std::max(area_max, 0.5 * twice.norm());
     }
   }
+  if (m_min == 1e300)
+    return 1e300; // no rigid block
   const double k_max = std::max(s_.joint.normal_stiffness, s_.joint.shear_stiffness) * area_max;
   return s_.time_step_fraction * 2.0 * std::sqrt(m_min / k_max);
 }
@@ -185,9 +231,39 @@ void RigidSolver::contact_forces()
   {
     const unsigned int c = cs.sc_contact[i];
     const unsigned int a = cs.block_a[c], b = cs.block_b[c];
+    const int* node = gp_x_ != nullptr ? &cs.sc_node[6 * i] : nullptr;
+    if (node != nullptr && (node[0] >= 0 || node[3] >= 0))
+    {
+      // A sub-contact on deformable blocks sits where its gridpoints are
+      // (the mean of both sides when both are deformable).
+      Vec3 at = Vec3::Zero();
+      int sides = 0;
+      for (int side = 0; side < 2; ++side)
+        if (node[3 * side] >= 0)
+        {
+          for (int j = 0; j < 3; ++j)
+            if (node[3 * side + j] >= 0)
+              for (int d = 0; d < 3; ++d)
+                at[d] += cs.sc_weight[6 * i + 3 * side + j] * gp_x_[3 * node[3 * side + j] + d];
+          ++sides;
+        }
+      cs.sc_position[i] = at / sides;
+    }
     const Vec3& p = cs.sc_position[i];
-    const Vec3 vel = velocity[b] + spin[b].cross(p - m_.centroid[b]) - velocity[a] -
-                     spin[a].cross(p - m_.centroid[a]);
+    // Velocity of each side at the sub-contact: the block's rigid motion,
+    // or the gridpoint's, or the point of a deformable face (eqs. 15-19).
+    const auto side_velocity = [&](unsigned int blk, int side)
+    {
+      if (node == nullptr || node[3 * side] < 0)
+        return Vec3(velocity[blk] + spin[blk].cross(p - m_.centroid[blk]));
+      Vec3 vel = Vec3::Zero();
+      for (int j = 0; j < 3; ++j)
+        if (node[3 * side + j] >= 0)
+          for (int d = 0; d < 3; ++d)
+            vel[d] += cs.sc_weight[6 * i + 3 * side + j] * gp_v_[3 * node[3 * side + j] + d];
+      return vel;
+    };
+    const Vec3 vel = side_velocity(b, 1) - side_velocity(a, 0);
     const Vec3 du = vel * dt_;
     const Vec3& nrm = cs.plane[c].normal;
     const double dun = du.dot(nrm);
@@ -200,9 +276,10 @@ void RigidSolver::contact_forces()
     du_s_[3 * i + 1] = dus[1];
     du_s_[3 * i + 2] = dus[2];
     // The sub-contact point moves with the mean motion of both blocks (eq. 11).
-    cs.sc_position[i] += 0.5 * dt_ *
-                         (velocity[b] + spin[b].cross(p - m_.centroid[b]) + velocity[a] +
-                          spin[a].cross(p - m_.centroid[a]));
+    if (node == nullptr || (node[0] < 0 && node[3] < 0))
+      cs.sc_position[i] += 0.5 * dt_ *
+                           (velocity[b] + spin[b].cross(p - m_.centroid[b]) + velocity[a] +
+                            spin[a].cross(p - m_.centroid[a]));
   }
   // One joint model for the whole batch (dispatch once, not per sub-contact).
   SubContactBatch batch;
@@ -226,10 +303,24 @@ void RigidSolver::contact_forces()
     const Vec3 f = cs.sc_fn[i] * cs.plane[c].normal +
                    Vec3(cs.sc_fs[3 * i], cs.sc_fs[3 * i + 1], cs.sc_fs[3 * i + 2]);
     const Vec3& p = cs.sc_position[i];
-    force[b] += f;
-    moment[b] += (p - m_.centroid[b]).cross(f);
-    force[a] -= f;
-    moment[a] -= (p - m_.centroid[a]).cross(f);
+    const int* node = gp_x_ != nullptr ? &cs.sc_node[6 * i] : nullptr;
+    // Each side takes its force: a rigid block at the point (eqs. 29-32), a
+    // deformable side on its gridpoints by the weights (eq. 33).
+    for (int side = 0; side < 2; ++side)
+    {
+      const unsigned int blk = side == 0 ? a : b;
+      const Vec3 fs = side == 0 ? Vec3(-f) : f;
+      if (node == nullptr || node[3 * side] < 0)
+      {
+        force[blk] += fs;
+        moment[blk] += (p - m_.centroid[blk]).cross(fs);
+      }
+      else
+        for (int j = 0; j < 3; ++j)
+          if (node[3 * side + j] >= 0)
+            for (int d = 0; d < 3; ++d)
+              gp_f_[3 * node[3 * side + j] + d] += cs.sc_weight[6 * i + 3 * side + j] * fs[d];
+    }
   }
   // Reference points follow the blocks (eq. 11) and relative rotation (eq. 12).
   for (unsigned int c = 0; c < cs.n_slots(); ++c)
@@ -258,7 +349,7 @@ void RigidSolver::move_blocks()
   unsigned int n_free = 0;
   for (unsigned int b = 0; b < m_.n_blocks(); ++b)
   {
-    if (fixed[b])
+    if (fixed[b] || is_deformable_[b])
     {
       force[b].setZero();
       moment[b].setZero();
@@ -337,6 +428,8 @@ void RigidSolver::move_blocks()
 
 void RigidSolver::step()
 {
+  if (zones_ != nullptr)
+    zones_->compute_forces(); // zone forces first; contacts add to them
   auto t0 = std::chrono::steady_clock::now();
   if (step_ > 0 && step_ % s_.contact.update_period == 0)
   {
@@ -347,15 +440,49 @@ void RigidSolver::step()
     timing_.seconds_planes += seconds_since(t0);
     t0 = std::chrono::steady_clock::now();
   }
-  contact_forces();
+  if (zones_ != nullptr)
+  {
+    DeformableSolver::View view(*zones_);
+    gp_x_ = view.x;
+    gp_v_ = view.v;
+    gp_f_ = view.f;
+    contact_forces();
+    gp_x_ = gp_v_ = gp_f_ = nullptr;
+  }
+  else
+    contact_forces();
   timing_.seconds_forces += seconds_since(t0);
   t0 = std::chrono::steady_clock::now();
   move_blocks();
+  if (zones_ != nullptr)
+  {
+    zones_->move();
+    DeformableSolver::View view(*zones_);
+    std::vector<double> moved_by(m_.n_blocks(), 0.0);
+    std::vector<Vec3> centre_before;
+    for (unsigned int b : deformable_blocks_)
+      centre_before.push_back(m_.centroid[b]);
+    follow_gridpoints(m_, vertex_gridpoint_, deformable_blocks_, view.x, moved_by);
+    for (std::size_t k = 0; k < deformable_blocks_.size(); ++k)
+    {
+      // A deformable block's displacement: that of its surface's mean point.
+      const unsigned int b = deformable_blocks_[k];
+      displacement[b] += m_.centroid[b] - centre_before[k];
+      velocity[b] = (m_.centroid[b] - centre_before[k]) / dt_;
+      moved[b] += moved_by[b]; // eq. 1
+      path[b] += moved_by[b];
+    }
+  }
   if ((step_ + 1) % Damper::servo_period == 0)
     damper_.adjust();
   timing_.seconds_motion += seconds_since(t0);
   time_ += dt_;
   ++step_;
+}
+
+double RigidSolver::unbalanced_ratio() const
+{
+  return zones_ != nullptr ? std::max(ratio_, zones_->unbalanced_ratio()) : ratio_;
 }
 
 double RigidSolver::kinetic_energy() const
@@ -399,7 +526,7 @@ SolverReport RigidSolver::report() const
   r.steps = step_;
   r.time = time_;
   r.time_step = dt_;
-  r.ratio = ratio_;
+  r.ratio = unbalanced_ratio();
   r.contacts = contacts_.n_contacts();
   r.subcontacts = contacts_.n_subcontacts();
   return r;

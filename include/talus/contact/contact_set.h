@@ -46,6 +46,17 @@ public:
   void update(const BlockModel& blocks, const ContactSettings& settings,
               const std::vector<double>* path = nullptr);
 
+  /// Deformable blocks take part through their surface gridpoints:
+  /// `is_deformable` per block, `vertex_gridpoint` per vertex of the block
+  /// model (see use_zone_surfaces). Both must outlive the contact set.
+  void set_deformable(const std::vector<char>* is_deformable,
+                      const std::vector<int>* vertex_gridpoint)
+  {
+    is_deformable_ = is_deformable;
+    vertex_gridpoint_ = vertex_gridpoint;
+  }
+  bool has_deformable() const { return is_deformable_ != nullptr; }
+
   unsigned int n_contacts() const { return n_alive_; }
   unsigned int n_slots() const { return static_cast<unsigned int>(block_a.size()); }
   unsigned int n_subcontacts() const { return static_cast<unsigned int>(sc_contact.size()); }
@@ -71,6 +82,13 @@ public:
   /// 1 while un was just measured from the geometry: the next force
   /// calculation must not add the last step's motion to it a second time.
   std::vector<unsigned char> sc_fresh;
+  /// Only with deformable blocks: what carries the sub-contact on each side,
+  /// 3 gridpoints and weights for side A, then 3 for side B (eqs. 16-19,
+  /// 33). A gridpoint sub-contact has its own gridpoint with weight 1 on its
+  /// side; a point on a deformable face has the face's three gridpoints with
+  /// barycentric weights; a rigid side has -1 (its motion is the block's).
+  std::vector<int> sc_node;
+  std::vector<double> sc_weight;
 
 private:
   void remove(unsigned int c);
@@ -85,6 +103,8 @@ private:
   std::vector<double> old_un_, old_fn_, old_fs_, old_us_, old_dilation_;
   std::vector<unsigned char> old_state_;
   std::vector<Vec3> old_normal_;
+  const std::vector<char>* is_deformable_ = nullptr;
+  const std::vector<int>* vertex_gridpoint_ = nullptr;
 };
 
 } // namespace talus

@@ -60,10 +60,40 @@ public:
                    const InitialStress* initial = nullptr);
   ~DeformableSolver();
 
-  /// Time step of eqs. 84-86 with the true masses (s).
-  double stable_time_step() const;
+  /// Time step of eqs. 84-86 with the true masses (s), with the joint
+  /// stiffness of boundary gridpoints (eq. 85, N/m per gridpoint) if given.
+  double stable_time_step(const std::vector<double>& joint_stiffness = {}) const;
 
   void step();
+
+  /// The two halves of step(), for a cycle that adds contact forces to the
+  /// gridpoints in between: zone forces (with gravity and pressures) into
+  /// the force vector, then motion of the gridpoints.
+  void compute_forces();
+  void move();
+
+  /// The gridpoint arrays (3 numbers per gridpoint) for the length of one
+  /// stage: positions (m), velocities (m/s), forces (N).
+  class View
+  {
+  public:
+    explicit View(DeformableSolver& solver);
+    ~View();
+    View(const View&) = delete;
+    View& operator=(const View&) = delete;
+    double* x = nullptr;
+    double* v = nullptr;
+    double* f = nullptr;
+
+  private:
+    DeformableSolver& solver_;
+  };
+
+  /// Sets the time step shared with rigid blocks (s) and adds the joint
+  /// stiffness at boundary gridpoints (eq. 85, N/m per gridpoint). Statics
+  /// with density scaling: inertial masses k dt^2 / 4 (eq. 84 solved for m);
+  /// otherwise throws when dt exceeds the stable step of eq. 84.
+  void use_time_step(double dt, const std::vector<double>& joint_stiffness);
   /// Steps (statics) until the unbalanced-force ratio is below `ratio`;
   /// returns the steps taken.
   unsigned long run_to_ratio(double ratio, unsigned long max_steps);

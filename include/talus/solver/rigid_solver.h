@@ -14,6 +14,8 @@
 namespace talus
 {
 
+class DeformableSolver;
+
 /// Loads on the blocks of one group: a force at each block's centroid that
 /// may grow at a constant rate, or a prescribed velocity.
 struct BlockLoad
@@ -70,7 +72,11 @@ struct SolverReport
 class RigidSolver
 {
 public:
-  RigidSolver(BlockModel& blocks, double density, const SolverSettings& settings);
+  /// With `zones`, the blocks whose vertices map to gridpoints
+  /// (`vertex_gridpoint`, see use_zone_surfaces) are deformable: the zone
+  /// solver moves them, and their contacts act on their gridpoints.
+  RigidSolver(BlockModel& blocks, double density, const SolverSettings& settings,
+              DeformableSolver* zones = nullptr, std::vector<int> vertex_gridpoint = {});
 
   /// Stable time step of eq. 87 for this model (s).
   double stable_time_step() const;
@@ -84,7 +90,8 @@ public:
   void step();
 
   /// Largest unbalanced force over the mean gravity force of free blocks.
-  double unbalanced_ratio() const { return ratio_; }
+  /// (with deformable blocks, the larger of that and the gridpoints' ratio).
+  double unbalanced_ratio() const;
   double kinetic_energy() const;
   /// Energy bookkeeping (J): work done by gravity, elastic energy stored in
   /// the joints, dissipated by friction and by damping.
@@ -130,6 +137,14 @@ private:
   /// Unbalanced force and moment of the last step (combined damping, eq. 83).
   std::vector<Vec3> last_force_, last_moment_;
   Damper damper_{Damping::none, 0.0, 0.5, 1.0};
+  // Deformable blocks (none without a zone solver).
+  DeformableSolver* zones_ = nullptr;
+  std::vector<int> vertex_gridpoint_;
+  std::vector<char> is_deformable_;
+  std::vector<unsigned int> deformable_blocks_;
+  double* gp_x_ = nullptr; ///< gridpoint arrays during the contact stage
+  double* gp_v_ = nullptr;
+  double* gp_f_ = nullptr;
   double dt_ = 0.0, time_ = 0.0, ratio_ = 1.0;
   double gravity_work_ = 0.0, friction_work_ = 0.0, damping_work_ = 0.0;
   unsigned long step_ = 0;

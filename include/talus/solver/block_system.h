@@ -1,0 +1,33 @@
+#pragma once
+
+#include <talus/io/scene.h>
+#include <talus/solver/deformable_solver.h>
+#include <talus/solver/rigid_solver.h>
+#include <talus/zone/block_mesher.h>
+
+#include <memory>
+#include <vector>
+
+namespace talus
+{
+
+/// The calculation of a scene with rigid blocks, deformable blocks or both:
+/// the deformable blocks' zones and their solver (none when every block is
+/// rigid) and the block solver that runs the cycle and the contacts.
+/// PETSc must be initialised when the scene has deformable blocks.
+struct BlockSystem
+{
+  TetMesh mesh;
+  MeshReport mesh_report;
+  std::vector<unsigned int> deformable_blocks;
+  std::vector<int> vertex_gridpoint;
+  std::unique_ptr<DeformableSolver> zones;
+  std::unique_ptr<RigidSolver> solver;
+};
+
+/// Meshes the blocks of the scene's deformable groups, gives them their zone
+/// surfaces as shapes in `model` (which it changes) and builds the solvers.
+/// `model` must outlive the result.
+BlockSystem build_block_system(const Scene& scene, BlockModel& model);
+
+} // namespace talus

@@ -1,0 +1,28 @@
+#include <talus/solver/block_system.h>
+#include <talus/zone/zone_surface.h>
+
+namespace talus
+{
+
+BlockSystem build_block_system(const Scene& scene, BlockModel& model)
+{
+  BlockSystem s;
+  for (unsigned int b = 0; b < model.n_blocks(); ++b)
+    for (const std::string& g : scene.deformable.groups)
+      if (model.group_names[model.group[b]] == g)
+        s.deformable_blocks.push_back(b);
+  if (!s.deformable_blocks.empty())
+  {
+    s.mesh = mesh_blocks(model, s.deformable_blocks, scene.deformable.edge_length, s.mesh_report);
+    s.vertex_gridpoint = use_zone_surfaces(model, s.mesh);
+    s.zones = std::make_unique<DeformableSolver>(
+        s.mesh, std::vector<ZoneMaterial>{scene.deformable.material},
+        std::vector<unsigned int>(s.mesh.n_zones(), 0), scene.solver, scene.gridpoint_conditions,
+        scene.face_pressures, scene.has_initial_stress ? &scene.initial_stress : nullptr);
+  }
+  s.solver = std::make_unique<RigidSolver>(model, scene.density, scene.solver, s.zones.get(),
+                                           s.vertex_gridpoint);
+  return s;
+}
+
+} // namespace talus
