@@ -167,7 +167,7 @@ SolverReport RigidSolver::run(Output&& output, History&& history)
       output(step_, time_);
       last_output = step_;
     }
-    if (!s_.dynamic && s_.target_ratio > 0.0 && ratio_ < s_.target_ratio && step_ > 10)
+    if (!s_.dynamic && s_.target_ratio > 0.0 && unbalanced_ratio() < s_.target_ratio && step_ > 10)
       break;
   }
   if (last_output != step_)
