@@ -56,6 +56,74 @@ void write_zone_frame(const talus::Scene& scene, const talus::TetMesh& mesh,
   series.add(solver.time(), vtu);
 }
 
+/// History columns of deformable blocks at chosen points: the nearest
+/// gridpoint's displacement and velocity, the nearest zone's stress.
+struct PointHistory
+{
+  std::vector<unsigned int> gridpoint, zone;
+
+  PointHistory(const talus::TetMesh& mesh, const std::vector<talus::Vec3>& points)
+  {
+    using talus::Vec3;
+    for (const Vec3& p : points)
+    {
+      unsigned int best_g = 0, best_z = 0;
+      double dg = 1e300, dz = 1e300;
+      for (unsigned int g = 0; g < mesh.n_gridpoints(); ++g)
+      {
+        const double d =
+            (Vec3(mesh.position[3 * g], mesh.position[3 * g + 1], mesh.position[3 * g + 2]) - p)
+                .squaredNorm();
+        if (d < dg)
+        {
+          dg = d;
+          best_g = g;
+        }
+      }
+      for (unsigned int z = 0; z < mesh.n_zones(); ++z)
+      {
+        Vec3 c = Vec3::Zero();
+        for (unsigned int g : mesh.zone_gridpoint[z])
+          c +=
+              0.25 * Vec3(mesh.position[3 * g], mesh.position[3 * g + 1], mesh.position[3 * g + 2]);
+        if ((c - p).squaredNorm() < dz)
+        {
+          dz = (c - p).squaredNorm();
+          best_z = z;
+        }
+      }
+      gridpoint.push_back(best_g);
+      zone.push_back(best_z);
+    }
+  }
+
+  void add_columns(std::vector<std::string>& columns) const
+  {
+    for (std::size_t k = 0; k < gridpoint.size(); ++k)
+    {
+      const std::string at = "point " + std::to_string(k) + " ";
+      for (const char* q : {"ux (m)", "uy (m)", "uz (m)", "vx (m/s)", "vy (m/s)", "vz (m/s)",
+                            "sxx (Pa)", "syy (Pa)", "szz (Pa)", "sxy (Pa)", "syz (Pa)", "szx (Pa)"})
+        columns.push_back(at + q);
+    }
+  }
+
+  void add_values(std::vector<double>& row, const talus::DeformableSolver& zones) const
+  {
+    if (gridpoint.empty())
+      return;
+    const std::vector<double> u = zones.displacements(), v = zones.velocities();
+    for (std::size_t k = 0; k < gridpoint.size(); ++k)
+    {
+      for (const std::vector<double>* q : {&u, &v})
+        for (int d = 0; d < 3; ++d)
+          row.push_back((*q)[3 * gridpoint[k] + d]);
+      for (int c = 0; c < 6; ++c)
+        row.push_back(zones.stress()[6 * zone[k] + c]);
+    }
+  }
+};
+
 /// Solves the static elastic problem of a deformable run implicitly and
 /// prints how far the explicit answer is from it.
 void implicit_check(const talus::Scene& scene, const talus::DeformableSolver& solver)
@@ -127,8 +195,11 @@ void solve_deformable(talus::Scene& scene, talus::BlockModel& model, const std::
                                                                     : "");
 
   PvdSeries series(prefix + "_zones.pvd");
-  HistoryFile history(prefix + "_history.csv",
-                      {"step", "time (s)", "unbalanced ratio", "largest displacement (m)"});
+  const PointHistory points(mesh, scene.solver.history_points);
+  std::vector<std::string> columns{"step", "time (s)", "unbalanced ratio",
+                                   "largest displacement (m)"};
+  points.add_columns(columns);
+  HistoryFile history(prefix + "_history.csv", columns);
   ProgressLine progress(scene.solver.steps);
   unsigned int frame = 0;
   const auto largest_displacement = [&]()
@@ -152,7 +223,12 @@ void solve_deformable(talus::Scene& scene, talus::BlockModel& model, const std::
     solver.step();
     const unsigned long n = solver.steps_done();
     if (n % scene.solver.history_interval == 0)
-      history.record({double(n), solver.time(), solver.unbalanced_ratio(), largest_displacement()});
+    {
+      std::vector<double> row{double(n), solver.time(), solver.unbalanced_ratio(),
+                              largest_displacement()};
+      points.add_values(row, solver);
+      history.record(row);
+    }
     progress.update(n, solver.time());
     if (scene.solver.output_interval > 0 && n - last_output >= scene.solver.output_interval)
     {
@@ -228,6 +304,10 @@ void solve(talus::Scene& scene, talus::BlockModel& model, talus::PvdSeries& seri
   for (unsigned int b : scene.solver.history_blocks)
     for (const char* q : {"ux", "uy", "uz", "vx", "vy", "vz"})
       columns.push_back("block " + std::to_string(b) + " " + q + (q[0] == 'u' ? " (m)" : " (m/s)"));
+  const PointHistory points(mesh, zones ? scene.solver.history_points : std::vector<Vec3>{});
+  if (!zones && !scene.solver.history_points.empty())
+    std::printf("Warning: 'History points' follow deformable blocks; this scene has none\n");
+  points.add_columns(columns);
   HistoryFile history(prefix + "_history.csv", columns);
   ProgressLine progress(scene.solver.steps);
   unsigned int frame = 0;
@@ -273,6 +353,8 @@ void solve(talus::Scene& scene, talus::BlockModel& model, talus::PvdSeries& seri
       for (const Vec3* q : {&solver.displacement[b], &solver.velocity[b]})
         for (int d = 0; d < 3; ++d)
           row.push_back((*q)[d]);
+    if (zones)
+      points.add_values(row, *zones);
     history.record(row);
   };
   const SolverReport r = solver.run(output, record);

@@ -6,6 +6,7 @@
 #include "parameter_file.h"
 
 #include <cmath>
+#include <cstdlib>
 
 #include <algorithm>
 #include <filesystem>
@@ -475,6 +476,10 @@ void declare_solver(ParameterFile& prm)
   prm.declare("Gravity", "0, 0, -9.81", vec3_pattern(), vec3_allowed, "Gravity (m/s^2).");
   prm.declare("Fixed groups", "", P::List(P::Anything()), "group names separated by commas",
               "Blocks of these groups do not move.");
+  prm.declare(
+      "History points", "", P::Anything(), "points 'x, y, z' separated by ';' (m)",
+      "Deformable blocks: the displacement and velocity of the gridpoint nearest each point and "
+      "the stress of the zone nearest it go to the history.");
   prm.declare("History blocks", "", P::List(P::Integer(0)), "block numbers separated by commas",
               "Blocks whose displacement and velocity are written to the history.");
   prm.declare("History interval", "10", P::Integer(1), "an integer >= 1",
@@ -546,6 +551,23 @@ void parse_solver(ParameterFile& prm, Scene& scene)
       throw prm.error("Fixed groups", "names the unknown group '" + g + "'",
                       "the default group '" + scene.default_group + "' or a 'Group N' name");
     scene.fixed_groups.push_back(g);
+  }
+  for (const std::string& point :
+       dealii::Utilities::split_string_list(prm.get("History points"), ';'))
+  {
+    const auto xyz = dealii::Utilities::split_string_list(point, ',');
+    Vec3 p;
+    bool good = xyz.size() == 3;
+    for (unsigned int d = 0; good && d < 3; ++d)
+    {
+      char* end = nullptr;
+      p[d] = std::strtod(xyz[d].c_str(), &end);
+      good = end != xyz[d].c_str() && *end == '\0';
+    }
+    if (!good)
+      throw prm.error("History points", "'" + point + "' is not a point",
+                      "points 'x, y, z' separated by ';' (m)");
+    s.history_points.push_back(p);
   }
   for (const std::string& b : dealii::Utilities::split_string_list(prm.get("History blocks")))
     s.history_blocks.push_back(static_cast<unsigned int>(std::stoul(b)));

@@ -51,8 +51,9 @@ struct SolverSettings
   std::vector<unsigned int> fixed_groups; ///< group indices of fixed blocks
   std::vector<BlockLoad> loads;
   std::vector<unsigned int> history_blocks; ///< blocks whose motion is recorded
-  unsigned int history_interval = 10;       ///< steps between history rows
-  unsigned long output_interval = 0;        ///< steps between VTU files (0: first and last)
+  std::vector<Vec3> history_points; ///< m: nearest gridpoint and zone recorded (deformable blocks)
+  unsigned int history_interval = 10; ///< steps between history rows
+  unsigned long output_interval = 0;  ///< steps between VTU files (0: first and last)
 };
 
 /// What a run did, for the summary.
