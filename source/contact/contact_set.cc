@@ -551,17 +551,36 @@ void ContactSet::build_subcontacts(unsigned int c, const BlockModel& m,
     { return node[0] < 0 ? surface_height(side, n, on_plane) : n.dot(point - ref); };
     const double ha = height(sa, seed.node, seed.point[0]);
     const double hb = height(sb, seed.node + 3, seed.point[1]);
+    const Vec3 at = on_plane + 0.5 * (ha + hb) * n;
+    const double un = hb - ha;
+    double fn = 0.0;
+    Vec3 fs = Vec3::Zero();
+    if (settings.initial_stress != nullptr && seed.area > 0.0)
+    {
+      // The in-situ stress across the plane: A pushes B with -sigma n per
+      // unit area; the closure that carries it under the total normal
+      // displacement formulation.
+      double sg[6];
+      settings.initial_stress->at(at.z(), sg);
+      const Vec3 t(sg[0] * n.x() + sg[3] * n.y() + sg[5] * n.z(),
+                   sg[3] * n.x() + sg[1] * n.y() + sg[4] * n.z(),
+                   sg[5] * n.x() + sg[4] * n.y() + sg[2] * n.z());
+      fn = std::max(-n.dot(t) * seed.area, 0.0);
+      fs = -(t - n.dot(t) * n) * seed.area;
+    }
     sc_contact.push_back(c);
-    sc_position.push_back(on_plane + 0.5 * (ha + hb) * n);
+    sc_position.push_back(at);
     sc_area.push_back(seed.area);
-    sc_un.push_back(hb - ha);
-    sc_fn.push_back(0.0);
+    sc_un.push_back(un);
+    sc_fn.push_back(fn);
     for (int d = 0; d < 3; ++d)
-      sc_fs.push_back(0.0);
+      sc_fs.push_back(fs[d]);
     for (int d = 0; d < 3; ++d)
       sc_us.push_back(0.0);
+    // The normal offset holds the closure that carries the initial stress
+    // (geometric re-initialisation of un keeps it), later also dilation.
     if (settings.dilation)
-      sc_dilation.push_back(0.0);
+      sc_dilation.push_back(fn > 0.0 ? fn / (settings.kn * seed.area) : 0.0);
     sc_state.push_back(0);
     sc_fresh.push_back(1);
     if (has_deformable())

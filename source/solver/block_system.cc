@@ -20,7 +20,10 @@ BlockSystem build_block_system(const Scene& scene, BlockModel& model)
         std::vector<unsigned int>(s.mesh.n_zones(), 0), scene.solver, scene.gridpoint_conditions,
         scene.face_pressures, scene.has_initial_stress ? &scene.initial_stress : nullptr);
   }
-  s.solver = std::make_unique<RigidSolver>(model, scene.density, scene.solver, s.zones.get(),
+  SolverSettings settings = scene.solver;
+  if (scene.has_initial_stress)
+    settings.initial_stress = &scene.initial_stress; // the joints there at the start carry it
+  s.solver = std::make_unique<RigidSolver>(model, scene.density, settings, s.zones.get(),
                                            s.vertex_gridpoint);
   return s;
 }

@@ -86,8 +86,7 @@ DeformableSolver::DeformableSolver(const TetMesh& mesh, std::vector<ZoneMaterial
       double zc = 0.0;
       for (unsigned int a = 0; a < 4; ++a)
         zc += 0.25 * mesh_.position[3 * mesh_.zone_gridpoint[z][a] + 2];
-      for (int c = 0; c < 6; ++c)
-        stress_[6 * z + c] = initial->base[c] + initial->gradient[c] * (zc - initial->z0);
+      initial->at(zc, &stress_[6 * z]);
     }
 
   // Masses: a quarter of each zone's mass to each of its gridpoints; and

@@ -30,8 +30,8 @@ RigidSolver::RigidSolver(BlockModel& blocks, double density, const SolverSetting
                          DeformableSolver* zones, std::vector<int> vertex_gridpoint)
     : m_(blocks), s_(settings), zones_(zones), vertex_gridpoint_(std::move(vertex_gridpoint))
 {
-  // No dilation state for joints that do not dilate.
-  s_.contact.dilation = s_.joint.dilation_angle != 0.0;
+  // No normal offset for joints that neither dilate nor start stressed.
+  s_.contact.dilation = s_.joint.dilation_angle != 0.0 || s_.initial_stress != nullptr;
   const unsigned int nb = m_.n_blocks();
   mass.resize(nb);
   inertia.resize(nb);
@@ -156,7 +156,12 @@ RigidSolver::RigidSolver(BlockModel& blocks, double density, const SolverSetting
   }
   cells_.define(all, nb);
   detect_contacts(true);
-  contacts_.update(m_, s_.contact);
+  // The joints there at the start carry the in-situ stress; later ones
+  // start free of force.
+  ContactSettings first = s_.contact;
+  first.initial_stress = s_.initial_stress;
+  first.kn = s_.joint.normal_stiffness;
+  contacts_.update(m_, first);
 }
 
 double RigidSolver::stable_time_step() const

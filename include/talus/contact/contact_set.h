@@ -2,6 +2,7 @@
 
 #include <talus/contact/common_plane.h>
 #include <talus/model/block_model.h>
+#include <talus/model/initial_stress.h>
 
 #include <cstdint>
 #include <unordered_map>
@@ -22,8 +23,15 @@ struct ContactSettings
   /// the tolerance since its last update keeps its plane and sub-contacts
   /// (their forces still change every step): no work for blocks at rest.
   double update_motion_fraction = 0.01;
-  /// Whether sub-contacts keep a dilation state (only joints that dilate).
+  /// Whether sub-contacts keep a normal offset (sc_dilation): joints that
+  /// dilate, or that start under an initial stress.
   bool dilation = false;
+  /// When set, new sub-contacts start with the forces of this stress field
+  /// on their plane, the normal force held by a normal offset of
+  /// F^n / (kn A) (kn in Pa/m): joints of a model under in-situ stress.
+  /// Used for the contacts that exist at the start.
+  const InitialStress* initial_stress = nullptr;
+  double kn = 0.0;
   CommonPlaneSettings common_plane;
 };
 
@@ -76,8 +84,10 @@ public:
   std::vector<double> sc_un;            ///< normal displacement, m (negative = closure)
   std::vector<double> sc_fn;            ///< normal force, N
   std::vector<double> sc_fs;            ///< shear force, 3 per sub-contact, N
-  std::vector<double> sc_dilation;      ///< opening from dilation (eq. 42), m
-  std::vector<double> sc_us;            ///< total shear displacement U^s, 3 per sub-contact, m
+  /// Normal offset, m: opening from dilation (eq. 42) plus the closure that
+  /// carries an initial stress; empty unless needed.
+  std::vector<double> sc_dilation;
+  std::vector<double> sc_us; ///< total shear displacement U^s, 3 per sub-contact, m
   std::vector<unsigned char> sc_state;
   /// 1 while un was just measured from the geometry: the next force
   /// calculation must not add the last step's motion to it a second time.

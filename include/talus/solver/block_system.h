@@ -27,7 +27,7 @@ struct BlockSystem
 
 /// Meshes the blocks of the scene's deformable groups, gives them their zone
 /// surfaces as shapes in `model` (which it changes) and builds the solvers.
-/// `model` must outlive the result.
+/// `scene` and `model` must outlive the result.
 BlockSystem build_block_system(const Scene& scene, BlockModel& model);
 
 } // namespace talus

@@ -1,6 +1,7 @@
 #pragma once
 
 #include <talus/geometry/plane.h>
+#include <talus/model/initial_stress.h>
 #include <talus/solver/rigid_solver.h>
 #include <talus/zone/implicit_elastic.h>
 #include <talus/zone/stress_batch.h>
@@ -32,15 +33,6 @@ struct FacePressure
 {
   Box region;
   double pressure = 0.0;
-};
-
-/// Initial stress of the zones: sigma = base + gradient * (z - z0) for each
-/// of the six components (Pa, tension positive; gradient in Pa/m).
-struct InitialStress
-{
-  double base[6] = {0, 0, 0, 0, 0, 0};
-  double gradient[6] = {0, 0, 0, 0, 0, 0};
-  double z0 = 0.0;
 };
 
 /// The explicit cycle of deformable blocks: zone forces from the stresses

@@ -4,6 +4,7 @@
 #include <talus/contact/contact_set.h>
 #include <talus/joint/joint_properties.h>
 #include <talus/model/block_model.h>
+#include <talus/model/initial_stress.h>
 #include <talus/solver/damper.h>
 
 #include <Eigen/Core>
@@ -52,6 +53,9 @@ struct SolverSettings
   std::vector<BlockLoad> loads;
   std::vector<unsigned int> history_blocks; ///< blocks whose motion is recorded
   std::vector<Vec3> history_points; ///< m: nearest gridpoint and zone recorded (deformable blocks)
+  /// In-situ stress that the joints existing at the start carry (none when
+  /// null); zones take theirs from the deformable solver.
+  const InitialStress* initial_stress = nullptr;
   unsigned int history_interval = 10; ///< steps between history rows
   unsigned long output_interval = 0;  ///< steps between VTU files (0: first and last)
 };
