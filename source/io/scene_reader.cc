@@ -387,10 +387,15 @@ void declare_boundary(ParameterFile& prm, const std::string& section)
   prm.enter(section);
   declare_box(prm, "Corner min", "Corner max",
               "the region (gridpoints or face centroids of deformable blocks)");
-  prm.declare("Condition", "fixed", P::Selection("fixed|velocity|pressure"),
-              "fixed, velocity or pressure",
-              "fixed: held in place; velocity: held at 'Velocity'; pressure: 'Pressure' on the "
-              "boundary faces.");
+  prm.declare(
+      "Condition", "fixed", P::Selection("fixed|velocity|pressure|traction|load"),
+      "fixed, velocity, pressure, traction or load",
+      "fixed: held in place; velocity: held at 'Velocity'; pressure: 'Pressure' on the boundary "
+      "faces; traction: 'Traction' on the boundary faces; load: 'Force' on every gridpoint.");
+  prm.declare("Traction", "0, 0, 0", vec3_pattern(), vec3_allowed,
+              "Force per unit area on the boundary faces whose centroid lies in the region (Pa).");
+  prm.declare("Force", "0, 0, 0", vec3_pattern(), vec3_allowed,
+              "Force on each gridpoint in the region (N).");
   prm.declare("Held components", "x, y, z", P::MultipleSelection("x|y|z"),
               "some of x, y, z separated by commas", "Components held (fixed or velocity).");
   prm.declare("Velocity", "0, 0, 0", vec3_pattern(), vec3_allowed, "Held velocity (m/s).");
@@ -405,7 +410,17 @@ void parse_boundary(ParameterFile& prm, const std::string& section, Scene& scene
   const Box region = read_box(prm, "Corner min", "Corner max");
   const std::string condition = prm.get("Condition");
   if (condition == "pressure")
-    scene.face_pressures.push_back(FacePressure{region, prm.get_double("Pressure")});
+    scene.face_pressures.push_back(FacePressure{region, prm.get_double("Pressure"), Vec3::Zero()});
+  else if (condition == "traction")
+    scene.face_pressures.push_back(FacePressure{region, 0.0, prm.get_vec3("Traction")});
+  else if (condition == "load")
+  {
+    GridpointCondition c;
+    c.region = region;
+    c.held[0] = c.held[1] = c.held[2] = false;
+    c.force = prm.get_vec3("Force");
+    scene.gridpoint_conditions.push_back(c);
+  }
   else
   {
     GridpointCondition c;

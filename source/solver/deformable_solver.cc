@@ -151,6 +151,8 @@ DeformableSolver::DeformableSolver(const TetMesh& mesh, std::vector<ZoneMaterial
     for (const GridpointCondition& c : conditions_)
       if (inside(c.region, &mesh_.position[3 * g]))
         for (int d = 0; d < 3; ++d)
+        {
+          gravity_force_[3 * g + d] += c.force[d];
           if (c.held[d])
           {
             held_[g] |= 1u << d;
@@ -159,6 +161,7 @@ DeformableSolver::DeformableSolver(const TetMesh& mesh, std::vector<ZoneMaterial
                                                                     mesh_.position[3 * g + 1],
                                                                     mesh_.position[3 * g + 2]));
           }
+        }
   {
     LocalArray v(petsc_->velocity);
     for (unsigned int i = 0; i < 3 * ng; ++i)
@@ -175,6 +178,7 @@ DeformableSolver::DeformableSolver(const TetMesh& mesh, std::vector<ZoneMaterial
       {
         pressed_faces_.push_back(f);
         face_pressure_.push_back(p.pressure);
+        face_traction_.push_back(p.traction);
         break;
       }
   }
@@ -219,13 +223,8 @@ void DeformableSolver::zone_forces()
   // of the face's gridpoints.
   for (std::size_t k = 0; k < pressed_faces_.size(); ++k)
   {
-    const auto& t = mesh_.face_gridpoint[pressed_faces_[k]];
-    const Vec3 a(x[3 * t[0]], x[3 * t[0] + 1], x[3 * t[0] + 2]);
-    const Vec3 b(x[3 * t[1]], x[3 * t[1] + 1], x[3 * t[1] + 2]);
-    const Vec3 c(x[3 * t[2]], x[3 * t[2] + 1], x[3 * t[2] + 2]);
-    const Vec3 area_normal = 0.5 * (b - a).cross(c - a); // outward, |.| = area
-    const Vec3 share = -face_pressure_[k] * area_normal / 3.0;
-    for (unsigned int g : t)
+    const Vec3 share = face_load_share(k, x.data());
+    for (unsigned int g : mesh_.face_gridpoint[pressed_faces_[k]])
       for (int d = 0; d < 3; ++d)
       {
         f[3 * g + d] += share[d];
@@ -409,6 +408,17 @@ Vec3 DeformableSolver::support_force(const Box& region) const
   return sum;
 }
 
+Vec3 DeformableSolver::face_load_share(std::size_t k, const double* x) const
+{
+  const auto& t = mesh_.face_gridpoint[pressed_faces_[k]];
+  const Vec3 a(x[3 * t[0]], x[3 * t[0] + 1], x[3 * t[0] + 2]);
+  const Vec3 b(x[3 * t[1]], x[3 * t[1] + 1], x[3 * t[1] + 2]);
+  const Vec3 c(x[3 * t[2]], x[3 * t[2] + 1], x[3 * t[2] + 2]);
+  const Vec3 area_normal = 0.5 * (b - a).cross(c - a); // outward, |.| = area
+  // -p n A + t A, shared equally by the three gridpoints.
+  return (-face_pressure_[k] * area_normal + face_traction_[k] * area_normal.norm()) / 3.0;
+}
+
 ImplicitElasticProblem DeformableSolver::implicit_problem() const
 {
   ImplicitElasticProblem p;
@@ -419,14 +429,10 @@ ImplicitElasticProblem DeformableSolver::implicit_problem() const
     p.zone_shear.push_back(materials_[material_of_zone_[z]].shear_modulus);
   }
   p.nodal_force = gravity_force_;
-  const auto P = [&](unsigned int g)
-  { return Vec3(mesh_.position[3 * g], mesh_.position[3 * g + 1], mesh_.position[3 * g + 2]); };
   for (std::size_t k = 0; k < pressed_faces_.size(); ++k)
   {
-    const auto& t = mesh_.face_gridpoint[pressed_faces_[k]];
-    const Vec3 share =
-        -face_pressure_[k] * 0.5 * (P(t[1]) - P(t[0])).cross(P(t[2]) - P(t[0])) / 3.0;
-    for (unsigned int g : t)
+    const Vec3 share = face_load_share(k, mesh_.position.data());
+    for (unsigned int g : mesh_.face_gridpoint[pressed_faces_[k]])
       for (int d = 0; d < 3; ++d)
         p.nodal_force[3 * g + d] += share[d];
   }

@@ -37,49 +37,55 @@ int main(int argc, char** argv)
   corner.region = Box{Vec3(-eps, -eps, -eps), Vec3(eps, eps, eps)};
   side.region = Box{Vec3(1 - eps, -eps, -eps), Vec3(1 + eps, eps, eps)};
   side.held[0] = side.held[2] = false;
-  FacePressure top{Box{Vec3(-1, -1, 1 - eps), Vec3(2, 2, 1 + eps)}, p};
-  DeformableSolver solver(mesh, {rock}, std::vector<unsigned int>(mesh.n_zones(), 0), settings,
-                          {bottom, corner, side}, {top});
-  const unsigned long steps = solver.run_to_ratio(1e-10, 100000);
-  std::fprintf(stderr, "%lu steps to ratio 1e-10\n", steps);
-  std::printf("static run: %s\n",
-              solver.unbalanced_ratio() < 1e-10 ? "reached ratio 1e-10" : "NOT converged");
-  const std::vector<double> u = solver.displacements();
-  double top_uz = 0.0, side_ux = 0.0;
-  unsigned int n_top = 0, n_side = 0;
-  for (unsigned int g = 0; g < mesh.n_gridpoints(); ++g)
+  // The same load as a pressure and as a traction (force per unit area).
+  for (const bool as_traction : {false, true})
   {
-    if (std::abs(mesh.position[3 * g + 2] - 1.0) < eps)
+    FacePressure top{Box{Vec3(-1, -1, 1 - eps), Vec3(2, 2, 1 + eps)}, as_traction ? 0.0 : p,
+                     as_traction ? Vec3(0, 0, -p) : Vec3::Zero()};
+    std::printf("%s:\n", as_traction ? "traction (0, 0, -p)" : "pressure p");
+    DeformableSolver solver(mesh, {rock}, std::vector<unsigned int>(mesh.n_zones(), 0), settings,
+                            {bottom, corner, side}, {top});
+    const unsigned long steps = solver.run_to_ratio(1e-10, 100000);
+    std::fprintf(stderr, "%lu steps to ratio 1e-10\n", steps);
+    std::printf("static run: %s\n",
+                solver.unbalanced_ratio() < 1e-10 ? "reached ratio 1e-10" : "NOT converged");
+    const std::vector<double> u = solver.displacements();
+    double top_uz = 0.0, side_ux = 0.0;
+    unsigned int n_top = 0, n_side = 0;
+    for (unsigned int g = 0; g < mesh.n_gridpoints(); ++g)
     {
-      top_uz += u[3 * g + 2];
-      ++n_top;
+      if (std::abs(mesh.position[3 * g + 2] - 1.0) < eps)
+      {
+        top_uz += u[3 * g + 2];
+        ++n_top;
+      }
+      if (std::abs(mesh.position[3 * g] - 1.0) < eps)
+      {
+        side_ux += u[3 * g];
+        ++n_side;
+      }
     }
-    if (std::abs(mesh.position[3 * g] - 1.0) < eps)
+    // Lateral strain: mean u_x at x = 1 less mean u_x at x = 0.
+    double x0_ux = 0.0;
+    unsigned int n_x0 = 0;
+    for (unsigned int g = 0; g < mesh.n_gridpoints(); ++g)
+      if (std::abs(mesh.position[3 * g]) < eps)
+      {
+        x0_ux += u[3 * g];
+        ++n_x0;
+      }
+    talus_test::check("vertical strain", top_uz / n_top, -p / E, 1e-5);
+    talus_test::check("lateral strain", side_ux / n_side - x0_ux / n_x0, nu * p / E, 1e-5);
+    double szz = 0.0, others = 0.0;
+    for (unsigned int z = 0; z < mesh.n_zones(); ++z)
     {
-      side_ux += u[3 * g];
-      ++n_side;
+      szz += solver.stress()[6 * z + 2] / mesh.n_zones();
+      for (int c : {0, 1, 3, 4, 5})
+        others = std::max(others, std::abs(solver.stress()[6 * z + c]));
     }
+    talus_test::check("mean sigma_zz (Pa)", szz, -p, 1e-5);
+    std::fprintf(stderr, "largest other stress component over p: %g\n", others / p);
+    std::printf("largest other stress component over p: %s\n",
+                others / p < 1e-5 ? "below 1e-5" : "TOO LARGE");
   }
-  // Lateral strain: mean u_x at x = 1 less mean u_x at x = 0.
-  double x0_ux = 0.0;
-  unsigned int n_x0 = 0;
-  for (unsigned int g = 0; g < mesh.n_gridpoints(); ++g)
-    if (std::abs(mesh.position[3 * g]) < eps)
-    {
-      x0_ux += u[3 * g];
-      ++n_x0;
-    }
-  talus_test::check("vertical strain", top_uz / n_top, -p / E, 1e-5);
-  talus_test::check("lateral strain", side_ux / n_side - x0_ux / n_x0, nu * p / E, 1e-5);
-  double szz = 0.0, others = 0.0;
-  for (unsigned int z = 0; z < mesh.n_zones(); ++z)
-  {
-    szz += solver.stress()[6 * z + 2] / mesh.n_zones();
-    for (int c : {0, 1, 3, 4, 5})
-      others = std::max(others, std::abs(solver.stress()[6 * z + c]));
-  }
-  talus_test::check("mean sigma_zz (Pa)", szz, -p, 1e-5);
-  std::fprintf(stderr, "largest other stress component over p: %g\n", others / p);
-  std::printf("largest other stress component over p: %s\n",
-              others / p < 1e-5 ? "below 1e-5" : "TOO LARGE");
 }

@@ -23,16 +23,19 @@ struct GridpointCondition
 {
   Box region;
   bool held[3] = {true, true, true};
+  Vec3 force = Vec3::Zero();                                   ///< N on each gridpoint (a load)
   Vec3 velocity = Vec3::Zero();                                ///< m/s
   Eigen::Matrix3d velocity_gradient = Eigen::Matrix3d::Zero(); ///< 1/s
 };
 
-/// A normal pressure (Pa, positive pushing into the block) on the boundary
-/// faces whose centroid lies in a region.
+/// A load on the boundary faces whose centroid lies in a region: a normal
+/// pressure (Pa, positive pushing into the block) and a traction (Pa, a
+/// force per unit area in global axes).
 struct FacePressure
 {
   Box region;
   double pressure = 0.0;
+  Vec3 traction = Vec3::Zero();
 };
 
 /// The explicit cycle of deformable blocks: zone forces from the stresses
@@ -141,14 +144,18 @@ private:
   std::vector<unsigned int> batch_start_;
   std::vector<double> stress_;          ///< 6 per zone, Pa
   std::vector<unsigned char> state_;    ///< per zone
-  std::vector<double> gravity_force_;   ///< 3 per gridpoint, N
+  std::vector<double> gravity_force_;   ///< 3 per gridpoint, N: gravity and gridpoint loads
   std::vector<double> true_mass_;       ///< kg, per gridpoint
   std::vector<double> nodal_stiffness_; ///< N/m, per gridpoint (eqs. 85-86)
   std::vector<unsigned char> held_;     ///< per gridpoint, bit d: component d held
   std::vector<double> held_velocity_;   ///< 3 per gridpoint, m/s
   std::vector<unsigned int> pressed_faces_;
   std::vector<double> face_pressure_; ///< Pa, per pressed face
-  std::vector<double> force_size_;    ///< 3 per gridpoint: sum of |zone force| (N), for the ratio
+  std::vector<Vec3> face_traction_;   ///< Pa, per pressed face
+  /// The load of pressed face k on each of its three gridpoints at
+  /// positions x (N).
+  Vec3 face_load_share(std::size_t k, const double* x) const;
+  std::vector<double> force_size_; ///< 3 per gridpoint: sum of |zone force| (N), for the ratio
   Tet4Scratch scratch_;
   Damper damper_{Damping::none, 0.0, 0.5, 1.0};
   std::vector<double> last_force_; ///< 3 per gridpoint, N (combined damping only)
