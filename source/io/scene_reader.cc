@@ -218,6 +218,19 @@ GroupSpec parse_group(ParameterFile& prm, const std::string& section)
   return g;
 }
 
+/// Throws unless `name` is the default group or a 'Group N' name; `entry`
+/// is the entry of the current subsection that names it.
+void check_group_name(const ParameterFile& prm, const std::string& entry, const Scene& scene,
+                      const std::string& name)
+{
+  bool known = name == scene.default_group;
+  for (const GroupSpec& spec : scene.groups)
+    known |= spec.name == name;
+  if (!known)
+    throw prm.error(entry, "names the unknown group '" + name + "'",
+                    "the default group '" + scene.default_group + "' or a 'Group N' name");
+}
+
 // ---- Loads -------------------------------------------------------------------
 
 void declare_load(ParameterFile& prm, const std::string& section)
@@ -244,12 +257,7 @@ void parse_load(ParameterFile& prm, const std::string& section, Scene& scene)
   prm.enter(section);
   BlockLoad load;
   const std::string group = prm.get("Group");
-  bool known = group == scene.default_group;
-  for (const GroupSpec& spec : scene.groups)
-    known |= spec.name == group;
-  if (!known)
-    throw prm.error("Group", "names the unknown group '" + group + "'",
-                    "the default group '" + scene.default_group + "' or a 'Group N' name");
+  check_group_name(prm, "Group", scene, group);
   load.force = prm.get_vec3("Force");
   load.force_rate = prm.get_vec3("Force rate");
   load.prescribe_velocity = prm.get_bool("Prescribe velocity");
@@ -306,12 +314,7 @@ void parse_deformable(ParameterFile& prm, Scene& scene)
   DeformableSpec& d = scene.deformable;
   for (const std::string& g : dealii::Utilities::split_string_list(prm.get("Groups")))
   {
-    bool known = g == scene.default_group;
-    for (const GroupSpec& spec : scene.groups)
-      known |= spec.name == g;
-    if (!known)
-      throw prm.error("Groups", "names the unknown group '" + g + "'",
-                      "the default group '" + scene.default_group + "' or 'Group N' names");
+    check_group_name(prm, "Groups", scene, g);
     d.groups.push_back(g);
   }
   d.edge_length = prm.get_double("Edge length");
@@ -559,12 +562,7 @@ void parse_solver(ParameterFile& prm, Scene& scene)
   s.gravity = prm.get_vec3("Gravity");
   for (const std::string& g : dealii::Utilities::split_string_list(prm.get("Fixed groups")))
   {
-    bool known = g == scene.default_group;
-    for (const GroupSpec& spec : scene.groups)
-      known |= spec.name == g;
-    if (!known)
-      throw prm.error("Fixed groups", "names the unknown group '" + g + "'",
-                      "the default group '" + scene.default_group + "' or a 'Group N' name");
+    check_group_name(prm, "Fixed groups", scene, g);
     scene.fixed_groups.push_back(g);
   }
   for (const std::string& point :

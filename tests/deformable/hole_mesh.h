@@ -10,6 +10,7 @@
 // layer of hexahedra and splits each into 24 tetrahedra (symmetric in z, no
 // preferred diagonal), which become the zones of block 0.
 
+#include <talus/solver/deformable_solver.h>
 #include <talus/zone/block_mesher.h>
 #include <talus/zone/tet_mesh.h>
 
@@ -71,3 +72,22 @@ struct HoleMesh
     return mesh;
   }
 };
+
+/// Rollers of a quarter-symmetric slab of thickness t (plane strain): the
+/// planes x = 0 and y = 0 held normally, both z faces held in z. `eps` is
+/// the capture width (m), `big` a length beyond the model.
+inline std::vector<talus::GridpointCondition> plane_strain_rollers(double t, double eps, double big)
+{
+  using talus::Box;
+  using talus::Vec3;
+  talus::GridpointCondition x_roller, y_roller, z_low, z_high;
+  x_roller.region = Box{Vec3(-eps, -big, -big), Vec3(eps, big, big)};
+  x_roller.held[1] = x_roller.held[2] = false;
+  y_roller.region = Box{Vec3(-big, -eps, -big), Vec3(big, eps, big)};
+  y_roller.held[0] = y_roller.held[2] = false;
+  z_low.region = Box{Vec3(-big, -big, -eps), Vec3(big, big, eps)};
+  z_low.held[0] = z_low.held[1] = false;
+  z_high.region = Box{Vec3(-big, -big, t - eps), Vec3(big, big, t + eps)};
+  z_high.held[0] = z_high.held[1] = false;
+  return {x_roller, y_roller, z_low, z_high};
+}

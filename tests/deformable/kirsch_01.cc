@@ -220,15 +220,6 @@ Errors run(unsigned int n_theta, double tolerance_u, double tolerance_wall,
   SolverSettings settings;
   settings.gravity = Vec3::Zero();
   settings.damping = Damping::adaptive_global;
-  GridpointCondition x_roller, y_roller, z_low, z_high;
-  x_roller.region = Box{Vec3(-eps, -big, -big), Vec3(eps, big, big)};
-  x_roller.held[1] = x_roller.held[2] = false;
-  y_roller.region = Box{Vec3(-big, -eps, -big), Vec3(big, eps, big)};
-  y_roller.held[0] = y_roller.held[2] = false;
-  z_low.region = Box{Vec3(-big, -big, -eps), Vec3(big, big, eps)};
-  z_low.held[0] = z_low.held[1] = false;
-  z_high.region = Box{Vec3(-big, -big, t - eps), Vec3(big, big, t + eps)};
-  z_high.held[0] = z_high.held[1] = false;
   const FacePressure right{Box{Vec3(L - eps, -big, -big), Vec3(L + eps, big, big)}, K * p};
   const FacePressure top{Box{Vec3(-big, L - eps, -big), Vec3(big, L + eps, big)}, p};
   InitialStress initial;
@@ -236,7 +227,7 @@ Errors run(unsigned int n_theta, double tolerance_u, double tolerance_wall,
   initial.base[1] = Sy;
   initial.base[2] = Sz;
   DeformableSolver solver(mesh, {rock}, std::vector<unsigned int>(mesh.n_zones(), 0), settings,
-                          {x_roller, y_roller, z_low, z_high}, {right, top}, &initial);
+                          plane_strain_rollers(t, eps, big), {right, top}, &initial);
   const unsigned long steps = solver.run_to_ratio(target, 200000);
   std::printf("  static run: %s (%lu steps)\n",
               solver.unbalanced_ratio() < target ? "converged" : "NOT converged", steps);

@@ -162,15 +162,6 @@ int main(int argc, char** argv)
   SolverSettings settings;
   settings.gravity = Vec3::Zero();
   settings.damping = Damping::local;
-  GridpointCondition x_roller, y_roller, z_low, z_high;
-  x_roller.region = Box{Vec3(-eps, -big, -big), Vec3(eps, big, big)};
-  x_roller.held[1] = x_roller.held[2] = false;
-  y_roller.region = Box{Vec3(-big, -eps, -big), Vec3(big, eps, big)};
-  y_roller.held[0] = y_roller.held[2] = false;
-  z_low.region = Box{Vec3(-big, -big, -eps), Vec3(big, big, eps)};
-  z_low.held[0] = z_low.held[1] = false;
-  z_high.region = Box{Vec3(-big, -big, t - eps), Vec3(big, big, t + eps)};
-  z_high.held[0] = z_high.held[1] = false;
   // The outer circle's faces only: beyond 2a, off the symmetry planes and
   // the z faces.
   const FacePressure outer_x{Box{Vec3(2.0 * a, eps, eps), Vec3(big, big, t - eps)}, p0};
@@ -178,7 +169,7 @@ int main(int argc, char** argv)
   InitialStress initial;
   initial.base[0] = initial.base[1] = initial.base[2] = -p0;
   DeformableSolver solver(mesh, {rock}, std::vector<unsigned int>(mesh.n_zones(), 0), settings,
-                          {x_roller, y_roller, z_low, z_high}, {outer_x, outer_y}, &initial);
+                          plane_strain_rollers(t, eps, big), {outer_x, outer_y}, &initial);
   const double target = 1e-5;
   const unsigned long steps = solver.run_to_ratio(target, 200000);
   std::printf("static run: %s (%lu steps)\n",
