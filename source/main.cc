@@ -179,7 +179,7 @@ void solve_deformable(talus::Scene& scene, talus::BlockModel& model, const std::
       mesh_report.zones, mesh_report.gridpoints, mesh_report.boundary_faces,
       from_file ? ("from " + std::filesystem::path(scene.deformable.mesh_file).filename().string())
                       .c_str()
-                : ("edge length " + std::to_string(scene.deformable.edge_length) + " m").c_str(),
+                : ("edge length " + number(scene.deformable.edge_length) + " m").c_str(),
       mesh_report.largest_edge, mesh_report.smallest_height, mesh_report.zone_volume);
   int argc = 1;
   char name[] = "talus";

@@ -1,5 +1,7 @@
 #include <talus/base/exceptions.h>
 
+#include <cstdio>
+
 namespace talus
 {
 
@@ -17,6 +19,13 @@ InputError InputError::at(const std::string& file, unsigned int line, const std:
   if (!allowed.empty())
     what += "; allowed: " + allowed;
   return InputError(what);
+}
+
+std::string number(double x)
+{
+  char text[32];
+  std::snprintf(text, sizeof text, "%g", x);
+  return text;
 }
 
 } // namespace talus

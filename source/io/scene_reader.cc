@@ -559,6 +559,7 @@ void parse_solver(ParameterFile& prm, Scene& scene)
   if (!(s.time_step_fraction > 0.0))
     throw prm.error("Time step fraction", "must be positive", "a number in (0, 1]");
   s.time_step = prm.get_double("Time step");
+  s.source = scene.parameter_file;
   s.gravity = prm.get_vec3("Gravity");
   for (const std::string& g : dealii::Utilities::split_string_list(prm.get("Fixed groups")))
   {

@@ -126,7 +126,14 @@ DeformableSolver::DeformableSolver(const TetMesh& mesh, std::vector<ZoneMaterial
   // each gridpoint's inertial mass set from its stiffness, m = k dt^2 / 4.
   const bool scaled = !s_.dynamic && s_.density_scaling;
   if (s_.time_step > 0.0)
+  {
     dt_ = s_.time_step;
+    if (!scaled && dt_ > stable_time_step_of(mass, stiffness))
+      throw InputError(s_.source + ": entry 'Time step' in subsection 'Solver': " + number(dt_) +
+                       " s is larger than the stable step of the zones, " +
+                       number(stable_time_step_of(mass, stiffness)) +
+                       " s (eq. 84); allowed: at most that, or 0 for the automatic step");
+  }
   else
     dt_ = scaled ? 1.0 : stable_time_step_of(mass, stiffness);
   petsc_ = std::make_unique<PetscState>();
@@ -342,9 +349,9 @@ void DeformableSolver::use_time_step(double dt, const std::vector<double>& joint
     k[g] += joint_stiffness[g];
   const bool scaled = !s_.dynamic && s_.density_scaling;
   if (!scaled && dt > stable_time_step_of(true_mass_, k) * (1.0 + 1e-12))
-    throw InputError("the time step " + std::to_string(dt) +
+    throw InputError("the time step " + number(dt) +
                      " s exceeds the stable step of the zones, " +
-                     std::to_string(stable_time_step_of(true_mass_, k)) + " s (eq. 84)");
+                     number(stable_time_step_of(true_mass_, k)) + " s (eq. 84)");
   dt_ = dt;
   LocalArray m(petsc_->inertial_mass);
   for (unsigned int g = 0; g < ng; ++g)

@@ -1,3 +1,4 @@
+#include <talus/base/exceptions.h>
 #include <talus/geometry/mass_properties.h>
 #include <talus/joint/joint_model.h>
 #include <talus/solver/damper.h>
@@ -120,6 +121,15 @@ RigidSolver::RigidSolver(BlockModel& blocks, double density, const SolverSetting
         principal_moments[b] *= scale;
     }
   dt_ = s_.time_step > 0.0 ? s_.time_step : stable_time_step();
+  if (s_.time_step > 0.0 && s_.time_step_fraction > 0.0)
+  {
+    // A step beyond eq. 87 without its safety fraction cannot be stable.
+    const double limit = stable_time_step() / s_.time_step_fraction;
+    if (s_.time_step > limit)
+      throw InputError(s_.source + ": entry 'Time step' in subsection 'Solver': " + number(s_.time_step) +
+                       " s is larger than the stable step of the blocks, " + number(limit) +
+                       " s (eq. 87 with frac = 1); allowed: at most that, or 0 for the automatic step");
+  }
   if (zones_ != nullptr)
   {
     // Eq. 85: the joints add their stiffness to the surface gridpoints;

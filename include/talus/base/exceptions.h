@@ -21,6 +21,9 @@ public:
                        const std::string& allowed);
 };
 
+/// A number as messages show it: %g, six significant digits, no padding.
+std::string number(double x);
+
 /// A geometric object that cannot be used: an open or non-convex polyhedron,
 /// a degenerate face. Carries a message naming what failed and where.
 class GeometryError : public std::runtime_error

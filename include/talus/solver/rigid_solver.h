@@ -46,6 +46,7 @@ struct SolverSettings
   bool principal_inertia = false;
   double time_step_fraction = 0.1;  ///< frac of eq. 87
   double time_step = 0.0;           ///< s; 0: automatic (eq. 87)
+  std::string source;               ///< parameter file, for messages
   Vec3 gravity = Vec3(0, 0, -9.81); ///< m/s^2
   ContactSettings contact;
   JointProperties joint;
