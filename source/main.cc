@@ -459,14 +459,17 @@ int main(int argc, char** argv)
   }
   catch (const talus::InputError& e)
   {
+    std::fflush(stdout); // the summary so far, then the message
     std::fprintf(stderr, "talus: error: %s\n", e.what());
   }
   catch (const talus::GeometryError& e)
   {
+    std::fflush(stdout); // the summary so far, then the message
     std::fprintf(stderr, "talus: error in %s: %s\n", argv[1], e.what());
   }
   catch (const std::exception& e)
   {
+    std::fflush(stdout); // the summary so far, then the message
     std::fprintf(stderr, "talus: internal error (please report it): %s\n", e.what());
     return 2;
   }
