@@ -356,7 +356,7 @@ void DeformableSolver::use_time_step(double dt, const std::vector<double>& joint
   LocalArray m(petsc_->inertial_mass);
   for (unsigned int g = 0; g < ng; ++g)
     for (int d = 0; d < 3; ++d)
-      m[3 * g + d] = scaled ? k[g] * dt * dt / 4.0 : true_mass_[g];
+      m[3 * g + d] = scaled ? std::max(true_mass_[g], k[g] * dt * dt / 4.0) : true_mass_[g];
   damper_ = Damper(s_.dynamic ? Damping::none : s_.damping, s_.local_damping,
                    s_.global_damping_ratio, dt_);
 }

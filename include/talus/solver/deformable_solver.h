@@ -86,8 +86,10 @@ public:
 
   /// Sets the time step shared with rigid blocks (s) and adds the joint
   /// stiffness at boundary gridpoints (eq. 85, N/m per gridpoint). Statics
-  /// with density scaling: inertial masses k dt^2 / 4 (eq. 84 solved for m);
-  /// otherwise throws when dt exceeds the stable step of eq. 84.
+  /// with density scaling: inertial masses k dt^2 / 4 (eq. 84 solved for m),
+  /// never below the true mass (so no gridpoint falls faster than the
+  /// rigid blocks beside it); otherwise throws when dt exceeds the stable
+  /// step of eq. 84.
   void use_time_step(double dt, const std::vector<double>& joint_stiffness);
   /// Steps (statics) until the unbalanced-force ratio is below `ratio`;
   /// returns the steps taken.
