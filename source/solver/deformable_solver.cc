@@ -16,11 +16,6 @@ namespace talus
 
 namespace
 {
-double sign(double x)
-{
-  return (x > 0.0) - (x < 0.0);
-}
-
 bool inside(const Box& b, const double* p)
 {
   return p[0] >= b.lo.x() && p[0] <= b.hi.x() && p[1] >= b.lo.y() && p[1] <= b.hi.y() &&

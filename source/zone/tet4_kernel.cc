@@ -1,42 +1,198 @@
 #include <talus/zone/tet4_kernel.h>
 
-#include <cmath>
+#include <algorithm>
+#include <cstdint>
+#include <cstring>
+
+#if defined(__AVX2__)
+#include <immintrin.h>
+#endif
 
 namespace talus
 {
 
 namespace
 {
-/// Gradients of the four shape functions of the tetrahedron with corners
-/// p[0..3] (3 numbers each) into gr (12 numbers, 1/m); returns 6 V (m^3).
-/// The gradients of N1..N3 are the rows of the inverse of the matrix whose
-/// columns are the edges from corner 0; N0's is minus their sum.
-inline double shape_gradients(const double* p0, const double* p1, const double* p2,
-                              const double* p3, double* gr)
+// The kernels work on W zones at once, one lane per zone, in GCC/Clang
+// vector types: each operation below is one vector instruction, with the
+// same arithmetic per lane as one zone at a time. W is the hardware's
+// width: with wider generic vectors (split by the compiler) GCC 12 fuses
+// multiplies and adds differently from the scalar code, so the results
+// would no longer be bitwise those of one zone at a time. Loops over lanes
+// written for the auto-vectoriser were not vectorised by GCC 12, hence the
+// explicit types.
+#if defined(__AVX512F__)
+constexpr unsigned int W = 8;
+#else
+constexpr unsigned int W = 4;
+#endif
+static_assert(Tet4Scratch::max_lanes % W == 0, "scratch holds whole groups");
+typedef double Lanes __attribute__((vector_size(W * sizeof(double))));
+typedef std::int64_t LaneBits __attribute__((vector_size(W * sizeof(double))));
+
+inline Lanes load(const double* p)
 {
-  double e[3][3];
+  Lanes v;
+  std::memcpy(&v, p, sizeof v);
+  return v;
+}
+
+inline void store(double* p, const Lanes& v)
+{
+  std::memcpy(p, &v, sizeof v);
+}
+
+/// |v| lane by lane: the sign bit cleared.
+inline Lanes abs(const Lanes& v)
+{
+  const LaneBits magnitude = LaneBits{} + INT64_MAX;
+  return (Lanes)((LaneBits)v & magnitude);
+}
+
+/// base[index[l]] lane by lane: one gather instruction where there is one
+/// (the element-wise fallback goes through memory, which stalls the
+/// vector load that follows).
+inline Lanes gather(const double* base, const LaneBits& index)
+{
+#if defined(__AVX512F__)
+  // The masked forms: the plain ones leave GCC 12 warning of an
+  // uninitialised source.
+  return (Lanes)_mm512_mask_i64gather_pd(_mm512_setzero_pd(), 0xff, (__m512i)index, base,
+                                         sizeof(double));
+#elif defined(__AVX2__)
+  return (Lanes)_mm256_mask_i64gather_pd(_mm256_setzero_pd(), base, (__m256i)index,
+                                         _mm256_castsi256_pd(_mm256_set1_epi64x(-1)),
+                                         sizeof(double));
+#else
+  Lanes v;
+  for (unsigned int l = 0; l < W; ++l)
+    v[l] = base[index[l]];
+  return v;
+#endif
+}
+
+/// The zones [k0, k0 + W) of a batch as one group: their gridpoints, lane
+/// by lane; lanes past the batch's end repeat its last zone, so that every
+/// lane computes something harmless and nothing is written for them.
+struct Group
+{
+  unsigned int gridpoint[4][W];
+  LaneBits corner[4]; ///< 3 gridpoint: the offset of each corner in a gridpoint field
+  LaneBits zone;      ///< 6 (zone - k0): the offset of each zone in a zone field
+  unsigned int count; ///< lanes that are real zones
+
+  Group(const TetMesh& mesh, unsigned int first, unsigned int k0, unsigned int n)
+      : count(std::min(W, n - k0))
+  {
+#if defined(__clang__) || __GNUC__ >= 12
+    if (count == W)
+    {
+      // The zones' gridpoint numbers, corner-major, by shuffles in
+      // registers: element-wise assembly through the stack would stall the
+      // first gather of every group.
+      static_assert(sizeof(mesh.zone_gridpoint[0]) == 4 * sizeof(unsigned int),
+                    "four packed unsigned ints per zone");
+      typedef unsigned int FourZones __attribute__((vector_size(16 * sizeof(unsigned int))));
+      typedef unsigned int Corners __attribute__((vector_size(W * sizeof(unsigned int))));
+      FourZones zones_0_3;
+      std::memcpy(&zones_0_3, mesh.zone_gridpoint.data() + first + k0, sizeof zones_0_3);
+#if defined(__AVX512F__)
+      FourZones zones_4_7;
+      std::memcpy(&zones_4_7, mesh.zone_gridpoint.data() + first + k0 + 4, sizeof zones_4_7);
+      const Corners by_corner[4] = {
+          __builtin_shufflevector(zones_0_3, zones_4_7, 0, 4, 8, 12, 16, 20, 24, 28),
+          __builtin_shufflevector(zones_0_3, zones_4_7, 1, 5, 9, 13, 17, 21, 25, 29),
+          __builtin_shufflevector(zones_0_3, zones_4_7, 2, 6, 10, 14, 18, 22, 26, 30),
+          __builtin_shufflevector(zones_0_3, zones_4_7, 3, 7, 11, 15, 19, 23, 27, 31)};
+      zone = LaneBits{0, 6, 12, 18, 24, 30, 36, 42};
+#else
+      const Corners by_corner[4] = {__builtin_shufflevector(zones_0_3, zones_0_3, 0, 4, 8, 12),
+                                    __builtin_shufflevector(zones_0_3, zones_0_3, 1, 5, 9, 13),
+                                    __builtin_shufflevector(zones_0_3, zones_0_3, 2, 6, 10, 14),
+                                    __builtin_shufflevector(zones_0_3, zones_0_3, 3, 7, 11, 15)};
+      zone = LaneBits{0, 6, 12, 18};
+#endif
+      for (int a = 0; a < 4; ++a)
+      {
+        std::memcpy(gridpoint[a], &by_corner[a], sizeof by_corner[a]);
+        corner[a] = __builtin_convertvector(by_corner[a], LaneBits) * 3;
+      }
+      return;
+    }
+#endif
+    for (unsigned int l = 0; l < W; ++l)
+    {
+      const unsigned int k = std::min(l, count - 1);
+      const auto& g = mesh.zone_gridpoint[first + k0 + k];
+      for (int a = 0; a < 4; ++a)
+      {
+        gridpoint[a][l] = g[a];
+        corner[a][l] = 3 * std::int64_t(g[a]);
+      }
+      zone[l] = 6 * k;
+    }
+  }
+
+  /// The three components of a gridpoint field (3 per gridpoint) at the
+  /// four corners.
+  void gather_corners(const double* field, Lanes (&out)[4][3]) const
+  {
+    for (int a = 0; a < 4; ++a)
+      for (int d = 0; d < 3; ++d)
+        out[a][d] = gather(field + d, corner[a]);
+  }
+
+  /// Six stress (or strain) components of the group's zones, from the zone
+  /// array (6 per zone, starting at zone k0) to lanes and back.
+  void load_six(const double* zone_values, Lanes (&out)[6]) const
+  {
+    for (int c = 0; c < 6; ++c)
+      out[c] = gather(zone_values + c, zone);
+  }
+  void store_six(const Lanes (&in)[6], double* zone_values) const
+  {
+#if defined(__AVX512F__)
+    const __mmask8 real = static_cast<__mmask8>((1u << count) - 1);
+    for (int c = 0; c < 6; ++c)
+      _mm512_mask_i64scatter_pd(zone_values + c, real, (__m512i)zone, (__m512d)in[c],
+                                sizeof(double));
+#else
+    for (unsigned int l = 0; l < count; ++l)
+      for (int c = 0; c < 6; ++c)
+        zone_values[6 * l + c] = in[c][l];
+#endif
+  }
+};
+
+/// Gradients of the four shape functions of the tetrahedra with corners
+/// p[0..3] into gr (1/m); returns 6 V (m^3). The gradients of N1..N3 are the
+/// rows of the inverse of the matrix whose columns are the edges from
+/// corner 0; N0's is minus their sum.
+inline Lanes shape_gradients(const Lanes (&p)[4][3], Lanes (&gr)[4][3])
+{
+  Lanes e[3][3];
   for (int d = 0; d < 3; ++d)
   {
-    e[d][0] = p1[d] - p0[d];
-    e[d][1] = p2[d] - p0[d];
-    e[d][2] = p3[d] - p0[d];
+    e[d][0] = p[1][d] - p[0][d];
+    e[d][1] = p[2][d] - p[0][d];
+    e[d][2] = p[3][d] - p[0][d];
   }
-  const double c00 = e[1][1] * e[2][2] - e[1][2] * e[2][1];
-  const double c01 = e[1][2] * e[2][0] - e[1][0] * e[2][2];
-  const double c02 = e[1][0] * e[2][1] - e[1][1] * e[2][0];
-  const double det = e[0][0] * c00 + e[0][1] * c01 + e[0][2] * c02;
-  const double inv = 1.0 / det;
-  gr[3] = c00 * inv;
-  gr[4] = (e[0][2] * e[2][1] - e[0][1] * e[2][2]) * inv;
-  gr[5] = (e[0][1] * e[1][2] - e[0][2] * e[1][1]) * inv;
-  gr[6] = c01 * inv;
-  gr[7] = (e[0][0] * e[2][2] - e[0][2] * e[2][0]) * inv;
-  gr[8] = (e[0][2] * e[1][0] - e[0][0] * e[1][2]) * inv;
-  gr[9] = c02 * inv;
-  gr[10] = (e[0][1] * e[2][0] - e[0][0] * e[2][1]) * inv;
-  gr[11] = (e[0][0] * e[1][1] - e[0][1] * e[1][0]) * inv;
+  const Lanes c00 = e[1][1] * e[2][2] - e[1][2] * e[2][1];
+  const Lanes c01 = e[1][2] * e[2][0] - e[1][0] * e[2][2];
+  const Lanes c02 = e[1][0] * e[2][1] - e[1][1] * e[2][0];
+  const Lanes det = e[0][0] * c00 + e[0][1] * c01 + e[0][2] * c02;
+  const Lanes inv = 1.0 / det;
+  gr[1][0] = c00 * inv;
+  gr[1][1] = (e[0][2] * e[2][1] - e[0][1] * e[2][2]) * inv;
+  gr[1][2] = (e[0][1] * e[1][2] - e[0][2] * e[1][1]) * inv;
+  gr[2][0] = c01 * inv;
+  gr[2][1] = (e[0][0] * e[2][2] - e[0][2] * e[2][0]) * inv;
+  gr[2][2] = (e[0][2] * e[1][0] - e[0][0] * e[1][2]) * inv;
+  gr[3][0] = c02 * inv;
+  gr[3][1] = (e[0][1] * e[2][0] - e[0][0] * e[2][1]) * inv;
+  gr[3][2] = (e[0][0] * e[1][1] - e[0][1] * e[1][0]) * inv;
   for (int d = 0; d < 3; ++d)
-    gr[d] = -(gr[3 + d] + gr[6 + d] + gr[9 + d]);
+    gr[0][d] = -(gr[1][d] + gr[2][d] + gr[3][d]);
   return det;
 }
 } // namespace
@@ -45,50 +201,58 @@ void tet4_strain_increments(const TetMesh& mesh, unsigned int first, unsigned in
                             const double* x, const double* v, double dt, double* stress,
                             Tet4Scratch& s)
 {
-  for (unsigned int k = 0; k < n; ++k)
+  for (unsigned int k0 = 0; k0 < n; k0 += W)
   {
-    const auto& g = mesh.zone_gridpoint[first + k];
+    const Group group(mesh, first, k0, n);
+    Lanes p[4][3], vel[4][3];
+    group.gather_corners(x, p);
+    group.gather_corners(v, vel);
     // Current geometry: gradients and volume for the nodal forces.
-    double* gr = s.gradient.data() + 12 * k;
-    s.volume[k] = shape_gradients(x + 3 * g[0], x + 3 * g[1], x + 3 * g[2], x + 3 * g[3], gr) / 6.0;
+    Lanes gr[4][3];
+    store(s.volume.data() + k0, shape_gradients(p, gr) / 6.0);
+    double* gr_out = s.gradient.data() + 12 * k0; // 12 rows of W lanes
+    for (int a = 0; a < 4; ++a)
+      for (int d = 0; d < 3; ++d)
+        store(gr_out + (3 * a + d) * W, gr[a][d]);
     // The motion of the last step, x - v dt -> x, measured on the geometry
     // halfway through it: a rigid rotation then gives an exactly
     // antisymmetric velocity gradient, so no strain, for any step size.
-    double mid[4][3], gm[12];
+    Lanes mid[4][3];
     for (int a = 0; a < 4; ++a)
       for (int d = 0; d < 3; ++d)
-        mid[a][d] = x[3 * g[a] + d] - 0.5 * dt * v[3 * g[a] + d];
-    shape_gradients(mid[0], mid[1], mid[2], mid[3], gm);
+        mid[a][d] = p[a][d] - 0.5 * dt * vel[a][d];
+    Lanes gm[4][3];
+    shape_gradients(mid, gm);
     // Velocity gradient L_ij = sum_n v_n,i dN_n/dx_j.
-    double L[3][3] = {{0, 0, 0}, {0, 0, 0}, {0, 0, 0}};
+    Lanes L[3][3] = {};
     for (int a = 0; a < 4; ++a)
-    {
-      const double* va = v + 3 * g[a];
       for (int i = 0; i < 3; ++i)
         for (int j = 0; j < 3; ++j)
-          L[i][j] += va[i] * gm[3 * a + j];
-    }
+          L[i][j] += vel[a][i] * gm[a][j];
     // Eq. 58: strain rate and spin; the increment of this step.
-    double* de = s.strain_increment.data() + 6 * k;
-    de[0] = L[0][0] * dt;
-    de[1] = L[1][1] * dt;
-    de[2] = L[2][2] * dt;
-    de[3] = 0.5 * (L[0][1] + L[1][0]) * dt;
-    de[4] = 0.5 * (L[1][2] + L[2][1]) * dt;
-    de[5] = 0.5 * (L[2][0] + L[0][2]) * dt;
-    const double w01 = 0.5 * (L[0][1] - L[1][0]) * dt; // W_xy dt
-    const double w12 = 0.5 * (L[1][2] - L[2][1]) * dt; // W_yz dt
-    const double w20 = 0.5 * (L[2][0] - L[0][2]) * dt; // W_zx dt
+    const Lanes de[6] = {L[0][0] * dt,
+                         L[1][1] * dt,
+                         L[2][2] * dt,
+                         0.5 * (L[0][1] + L[1][0]) * dt,
+                         0.5 * (L[1][2] + L[2][1]) * dt,
+                         0.5 * (L[2][0] + L[0][2]) * dt};
+    group.store_six(de, s.strain_increment.data() + 6 * k0);
+    const Lanes w01 = 0.5 * (L[0][1] - L[1][0]) * dt; // W_xy dt
+    const Lanes w12 = 0.5 * (L[1][2] - L[2][1]) * dt; // W_yz dt
+    const Lanes w20 = 0.5 * (L[2][0] - L[0][2]) * dt; // W_zx dt
     // Jaumann (co-rotational) turn of the stress by the spin:
     // sigma += (W sigma - sigma W) dt.
-    double* sg = stress + 6 * (first + k);
-    const double sxx = sg[0], syy = sg[1], szz = sg[2], sxy = sg[3], syz = sg[4], szx = sg[5];
+    Lanes sg[6];
+    double* zone_stress = stress + 6 * (first + k0);
+    group.load_six(zone_stress, sg);
+    const Lanes sxx = sg[0], syy = sg[1], szz = sg[2], sxy = sg[3], syz = sg[4], szx = sg[5];
     sg[0] += 2.0 * (w01 * sxy - w20 * szx);
     sg[1] += 2.0 * (w12 * syz - w01 * sxy);
     sg[2] += 2.0 * (w20 * szx - w12 * syz);
     sg[3] += w01 * (syy - sxx) + w12 * szx - w20 * syz;
     sg[4] += w12 * (szz - syy) + w20 * sxy - w01 * szx;
     sg[5] += w20 * (sxx - szz) + w01 * syz - w12 * sxy;
+    group.store_six(sg, zone_stress);
   }
 }
 
@@ -96,29 +260,44 @@ void tet4_nodal_forces(const TetMesh& mesh, unsigned int first, unsigned int n,
                        const double* stress, const Tet4Scratch& s, double* force,
                        double* force_size)
 {
-  for (unsigned int k = 0; k < n; ++k)
+  for (unsigned int k0 = 0; k0 < n; k0 += W)
   {
-    const auto& g = mesh.zone_gridpoint[first + k];
-    const double* sg = stress + 6 * (first + k);
-    const double* gr = s.gradient.data() + 12 * k;
-    const double V = s.volume[k];
+    const Group group(mesh, first, k0, n);
+    Lanes sg[6];
+    group.load_six(stress + 6 * (first + k0), sg);
+    const double* gr = s.gradient.data() + 12 * k0;
+    const Lanes V = load(s.volume.data() + k0);
+    Lanes fz[4][3];
     for (int a = 0; a < 4; ++a)
     {
-      const double gx = gr[3 * a], gy = gr[3 * a + 1], gz = gr[3 * a + 2];
-      const double fx = V * (sg[0] * gx + sg[3] * gy + sg[5] * gz);
-      const double fy = V * (sg[3] * gx + sg[1] * gy + sg[4] * gz);
-      const double fz = V * (sg[5] * gx + sg[4] * gy + sg[2] * gz);
-      double* f = force + 3 * g[a];
-      f[0] -= fx;
-      f[1] -= fy;
-      f[2] -= fz;
-      if (force_size != nullptr)
+      const Lanes gx = load(gr + (3 * a) * W), gy = load(gr + (3 * a + 1) * W),
+                  gz = load(gr + (3 * a + 2) * W);
+      fz[a][0] = V * (sg[0] * gx + sg[3] * gy + sg[5] * gz);
+      fz[a][1] = V * (sg[3] * gx + sg[1] * gy + sg[4] * gz);
+      fz[a][2] = V * (sg[5] * gx + sg[4] * gy + sg[2] * gz);
+    }
+    // Zone by zone, corner by corner: the same order of summation at each
+    // gridpoint as one zone at a time.
+    for (unsigned int l = 0; l < group.count; ++l)
+      for (int a = 0; a < 4; ++a)
       {
-        double* fs = force_size + 3 * g[a];
-        fs[0] += std::abs(fx);
-        fs[1] += std::abs(fy);
-        fs[2] += std::abs(fz);
+        double* f = force + 3 * group.gridpoint[a][l];
+        for (int d = 0; d < 3; ++d)
+          f[d] -= fz[a][d][l];
       }
+    if (force_size != nullptr)
+    {
+      Lanes size[4][3];
+      for (int a = 0; a < 4; ++a)
+        for (int d = 0; d < 3; ++d)
+          size[a][d] = abs(fz[a][d]);
+      for (unsigned int l = 0; l < group.count; ++l)
+        for (int a = 0; a < 4; ++a)
+        {
+          double* fs = force_size + 3 * group.gridpoint[a][l];
+          for (int d = 0; d < 3; ++d)
+            fs[d] += size[a][d][l];
+        }
     }
   }
 }

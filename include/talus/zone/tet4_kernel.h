@@ -6,16 +6,23 @@ namespace talus
 {
 
 /// Scratch of one batch of constant-strain tetrahedra between the two
-/// kernel passes: shape-function gradients (3 per node, 12 per zone, 1/m)
-/// and volume (m^3) in the current configuration.
+/// kernel passes: shape-function gradients (3 per node, 12 per zone, 1/m),
+/// volume (m^3) in the current configuration, and the strain increment (6
+/// per zone). The kernels work on groups of W zones at once (one vector
+/// instruction per operation across the group; W = 8 with AVX-512, else 4),
+/// so the gradients are stored group by group, component-major within a
+/// group: gradient component c (3 node + d) of zone k is at
+/// 12 W (k / W) + c W + k % W. Sizes are rounded up to whole groups.
 struct Tet4Scratch
 {
+  static constexpr unsigned int max_lanes = 8; ///< the widest group W
   std::vector<double> gradient, volume, strain_increment;
   void resize(unsigned int zones)
   {
-    gradient.resize(12 * zones);
-    volume.resize(zones);
-    strain_increment.resize(6 * zones);
+    const unsigned int padded = (zones + max_lanes - 1) / max_lanes * max_lanes;
+    gradient.resize(12 * padded);
+    volume.resize(padded);
+    strain_increment.resize(6 * padded);
   }
 };
 

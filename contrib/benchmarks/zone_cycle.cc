@@ -1,0 +1,188 @@
+// Deformable-block cycle throughput: an elastic 10 m cube meshed by
+// mesh_blocks into 5 n^3 constant-strain tetrahedra, static mode (local
+// damping, density scaling) under gravity with the base held, starting from
+// the gravitational stress sigma_zz = -rho g (H - z). The same cube is run
+// again as Mohr-Coulomb (c = 40 kPa, phi = 30, psi = 0, sigma_t = 10 kPa:
+// the uniaxial strength 2 c sqrt(N_phi) = 139 kPa is reached about halfway
+// down, so roughly the lower half of the zones yields).
+//
+// Per size and model it prints: zones, gridpoints, runs; zone-updates per
+// second of the whole cycle; gridpoint-updates per second of the gridpoint
+// stage alone; the share of time per stage (zones / gridpoints); the bytes
+// per zone of hot data the cycle touches and how much of that is gridpoint
+// data; the whole-process memory per zone (VmRSS after setup minus VmRSS
+// before meshing, freed heap returned by malloc_trim first); the time per
+// zone-update relative to the first size (a linear cost keeps it near 1);
+// for Mohr-Coulomb the share of zones at a yield surface in the last step
+// and the share that has ever yielded.
+//
+// Hot data counted (what zone_forces and move_gridpoints read or write):
+//   per zone: the zone table (4 unsigned), stress (6 doubles), plastic
+//     state (1 byte, Mohr-Coulomb only);
+//   per gridpoint: the PETSc position, velocity, force and inertial mass
+//     (4 x 3 doubles), gravity force, force_size, held velocity (3 doubles
+//     each) and the held flags (1 byte).
+// Not counted: the kernel scratch (one batch of 1024 zones, 152 KB, stays in
+// cache), the initial positions of the mesh and the material index per zone
+// (not read by the cycle).
+//
+// Every run takes the same number of steps from the same start (so each size
+// sees the same physics); small sizes repeat the run, from a new solver,
+// until about 4e7 zone-updates have been timed. Only the steps are timed;
+// the rates and the linearity are those of the fastest run (the other core
+// may be busy), the stage shares and "seconds" are over all runs.
+//
+// One core; run from a Release build:
+//   cmake --build build --target benchmark_zone_cycle
+//   build/contrib/benchmarks/benchmark_zone_cycle [steps] [n ...] [elastic|mc]
+// Defaults: 30 steps, n = 20 40 60 80 100, both models (name one to profile
+// it alone). peakB/z (VmHWM over the run so
+// far) is the meshing peak only while the sizes increase.
+
+#include <talus/base/parallel_environment.h>
+#include <talus/solver/deformable_solver.h>
+#include <talus/zone/block_mesher.h>
+
+#include <malloc.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+#include <fstream>
+#include <string>
+
+using namespace talus;
+
+namespace
+{
+/// Resident set size of this process (bytes), after handing freed heap
+/// back to the system so that the meshing's temporaries do not count.
+double resident_bytes(const char* field = "VmRSS:")
+{
+  malloc_trim(0);
+  std::ifstream status("/proc/self/status");
+  std::string line;
+  while (std::getline(status, line))
+    if (line.rfind(field, 0) == 0)
+      return 1024.0 * std::strtod(line.c_str() + std::strlen(field), nullptr);
+  return 0.0;
+}
+
+} // namespace
+
+int main(int argc, char** argv)
+{
+  ParallelEnvironment env(argc, argv);
+  const unsigned long steps = argc > 1 ? std::strtoul(argv[1], nullptr, 10) : 30;
+  const double budget = 4e7; // zone-updates timed per size and model
+  std::vector<unsigned int> sizes;
+  bool run_model[2] = {true, true};
+  for (int i = 2; i < argc; ++i)
+    if (std::strcmp(argv[i], "elastic") == 0 || std::strcmp(argv[i], "mc") == 0)
+    {
+      run_model[0] = argv[i][0] == 'e';
+      run_model[1] = !run_model[0];
+    }
+    else
+      sizes.push_back(static_cast<unsigned int>(std::strtoul(argv[i], nullptr, 10)));
+  if (sizes.empty())
+    sizes = {20, 40, 60, 80, 100};
+
+  const double side = 10.0, density = 2650.0, g = 9.81;
+  ZoneMaterial elastic;
+  elastic.density = density;
+  elastic.set_young_poisson(1e10, 0.25);
+  ZoneMaterial plastic = elastic;
+  plastic.model = ZoneModel::mohr_coulomb;
+  plastic.cohesion = 4e4;
+  plastic.friction_angle = 30.0;
+  plastic.dilation_angle = 0.0;
+  plastic.tensile_strength = 1e4;
+
+  SolverSettings settings;
+  settings.dynamic = false;
+  settings.gravity = Vec3(0, 0, -g);
+  GridpointCondition base;
+  base.region = Box{Vec3(-1, -1, -1e-9), Vec3(side + 1, side + 1, 1e-9)};
+  InitialStress initial;
+  initial.base[2] = -density * g * side;
+  initial.gradient[2] = density * g;
+
+  std::printf("%-6s %4s %8s %8s %5s %8s %10s %10s %9s %8s %7s %8s %8s %8s %7s %7s\n", "model", "n",
+              "zones", "gridpts", "runs", "seconds", "Mzone-u/s", "Mgp-u/s", "zone/gp%", "hotB/z",
+              "gp%", "rssB/z", "peakB/z", "t/zu rel", "yield%", "ever%");
+  double first_cost[2] = {0.0, 0.0};
+  for (unsigned int n : sizes)
+  {
+    const double baseline = resident_bytes();
+    BlockModel blocks;
+    blocks.add_block(ConvexPolyhedron::box(Vec3::Zero(), Vec3::Constant(side)), 0);
+    MeshReport report;
+    const TetMesh mesh = mesh_blocks(blocks, {0}, side / n, report);
+    const unsigned int nz = mesh.n_zones(), ng = mesh.n_gridpoints();
+    const unsigned int repeats = std::max(1u, static_cast<unsigned int>(budget / (nz * steps)));
+    const std::vector<unsigned int> material_of_zone(nz, 0);
+
+    for (int mode = 0; mode < 2; ++mode)
+    {
+      if (!run_model[mode])
+        continue;
+      const bool mc = mode == 1;
+      double best = 1e300, best_gridpoints = 1e300, seconds = 0.0, seconds_zones = 0.0,
+             seconds_gridpoints = 0.0, rss = 0.0, peak = 0.0, ratio = 0.0;
+      std::vector<unsigned char> state;
+      for (unsigned int r = 0; r < repeats; ++r)
+      {
+        DeformableSolver solver(mesh, {mc ? plastic : elastic}, material_of_zone, settings, {base},
+                                {}, &initial);
+        if (r == 0)
+        {
+          rss = resident_bytes() - baseline;
+          peak = resident_bytes("VmHWM:") - baseline;
+        }
+        const auto start = std::chrono::steady_clock::now();
+        for (unsigned long k = 0; k < steps; ++k)
+          solver.step();
+        const double run_seconds =
+            std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+        best = std::min(best, run_seconds);
+        seconds += run_seconds;
+        seconds_zones += solver.seconds_zones();
+        seconds_gridpoints += solver.seconds_gridpoints();
+        best_gridpoints = std::min(best_gridpoints, solver.seconds_gridpoints());
+        ratio = solver.unbalanced_ratio();
+        state = solver.plastic_state();
+      }
+      const double updates = double(nz) * steps; // per run
+      const double zone_bytes = sizeof(mesh.zone_gridpoint[0]) + 6 * sizeof(double) + (mc ? 1 : 0);
+      const double gridpoint_bytes = (4 * 3 + 3 * 3) * sizeof(double) + 1;
+      const double hot = zone_bytes + gridpoint_bytes * ng / nz;
+      unsigned int yielding = 0, yielded = 0;
+      for (unsigned char s : state)
+      {
+        yielding += (s & (shear_now | tension_now)) != 0;
+        yielded += (s & (shear_past | tension_past)) != 0;
+      }
+      const double cost = best / updates;
+      if (first_cost[mode] == 0.0)
+        first_cost[mode] = cost;
+      const double stages = seconds_zones + seconds_gridpoints;
+      std::printf("%-6s %4u %8u %8u %5u %8.2f %10.2f %10.2f %4.0f/%-4.0f %8.1f %7.1f %8.0f %8.0f "
+                  "%8.2f",
+                  mc ? "MC" : "elast", n, nz, ng, repeats, seconds, 1e-6 * updates / best,
+                  1e-6 * ng * steps / best_gridpoints, 100 * seconds_zones / stages,
+                  100 * seconds_gridpoints / stages, hot, 100 * gridpoint_bytes * ng / nz / hot,
+                  rss / nz, peak / nz, cost / first_cost[mode]);
+      if (mc)
+        std::printf(" %7.1f %7.1f", 100.0 * yielding / nz, 100.0 * yielded / nz);
+      std::printf("\n");
+      std::fflush(stdout);
+      if (!std::isfinite(ratio))
+        std::printf("  (unbalanced ratio not finite: the run went wrong)\n");
+    }
+  }
+  std::printf("steps per run: %lu\n", steps);
+}
