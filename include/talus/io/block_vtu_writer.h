@@ -9,7 +9,8 @@
 namespace talus
 {
 
-/// A per-block quantity to show in ParaView: `components` values per block.
+/// A quantity to show in ParaView: `components` values per item (block,
+/// gridpoint or zone).
 struct BlockField
 {
   std::string name;

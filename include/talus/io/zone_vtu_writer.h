@@ -1,5 +1,6 @@
 #pragma once
 
+#include <talus/io/block_vtu_writer.h>
 #include <talus/zone/tet_mesh.h>
 
 #include <string>
@@ -8,13 +9,9 @@
 namespace talus
 {
 
-/// A quantity to show in ParaView, per gridpoint or per zone.
-struct ZoneField
-{
-  std::string name;
-  unsigned int components = 1;
-  std::vector<double> values;
-};
+/// A quantity to show in ParaView, per gridpoint or per zone: the same
+/// shape as a block field (name, components per item, values).
+using ZoneField = BlockField;
 
 /// Writes the zones of deformable blocks as VTK tetrahedra (type 10) at the
 /// gridpoints' current positions (3 per gridpoint, m), with block id as
