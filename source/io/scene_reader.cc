@@ -282,6 +282,10 @@ void declare_deformable(ParameterFile& prm)
   prm.declare("Mesh file", "", P::Anything(), "a gmsh .msh file of linear tetrahedra (or empty)",
               "The deformable body's zones from a gmsh file instead of meshing the block (relative "
               "paths start at this parameter file's folder).");
+  prm.declare(
+      "Nodal mixed discretization", "false", P::Bool(), "true or false",
+      "Average the zones' volumetric strain and plastic pressure at the gridpoints (eqs. "
+      "68-76): constant-strain tetrahedra then do not lock in incompressible or plastic flow.");
   prm.declare("Implicit check", "false", P::Bool(), "true or false",
               "After a static run of elastic zones, solve the same problem implicitly (CG with "
               "algebraic multigrid) and print the difference.");
@@ -319,6 +323,7 @@ void parse_deformable(ParameterFile& prm, Scene& scene)
   }
   d.edge_length = prm.get_double("Edge length");
   d.implicit_check = prm.get_bool("Implicit check");
+  d.material.nodal_mixed = prm.get_bool("Nodal mixed discretization");
   d.mesh_file = prm.get("Mesh file");
   if (!d.mesh_file.empty())
   {

@@ -66,6 +66,8 @@ DeformableSolver::DeformableSolver(const TetMesh& mesh, std::vector<ZoneMaterial
   if (material_of_zone_.size() != nz)
     throw InputError("internal: one material index per zone is needed");
 
+  for (const ZoneMaterial& m : materials_)
+    nodal_mixed_ |= m.nodal_mixed;
   // Batches: runs of one material.
   for (unsigned int z = 0; z < nz; ++z)
     if (z == 0 || material_of_zone_[z] != material_of_zone_[z - 1])
@@ -233,12 +235,17 @@ void DeformableSolver::zone_forces()
         force_size_[3 * g + d] += std::abs(share[d]);
       }
   }
-  // Zones, one batch of one material at a time: strain increments, the
-  // material model once for the batch, nodal forces.
-  scratch_.resize(zone_batch);
   // The velocities are those of the last motion (x - v dt -> x); before the
   // first motion there is none, so no strain.
   const double strain_dt = step_ == 0 ? 0.0 : dt_;
+  if (nodal_mixed_)
+  {
+    nodal_mixed_zone_forces(x.data(), v.data(), f.data(), strain_dt);
+    return;
+  }
+  // Zones, one batch of one material at a time: strain increments, the
+  // material model once for the batch, nodal forces.
+  scratch_.resize(zone_batch);
   for (std::size_t r = 0; r + 1 < batch_start_.size(); ++r)
   {
     const ZoneMaterial& mat = materials_[material_of_zone_[batch_start_[r]]];
@@ -256,6 +263,85 @@ void DeformableSolver::zone_forces()
       tet4_nodal_forces(mesh_, first, n, stress_.data(), scratch_, f.data(), force_size_.data());
     }
   }
+}
+
+void DeformableSolver::nodal_mixed_zone_forces(const double* x, const double* v, double* f,
+                                               double strain_dt)
+{
+  // Nodal mixed discretization (eqs. 68-76) for the zones whose material
+  // asks for it: every zone's strain first, then the volumetric part
+  // averaged at the gridpoints and back over each zone's four, the model,
+  // and the same averaging for the plastic volumetric stress.
+  const unsigned int nz = mesh_.n_zones(), ng = mesh_.n_gridpoints();
+  full_scratch_.resize(nz);
+  tet4_strain_increments(mesh_, 0, nz, x, v, strain_dt, stress_.data(), full_scratch_);
+  double* de = full_scratch_.strain_increment.data();
+  const double* volume = full_scratch_.volume.data();
+  const auto mixed = [&](unsigned int z) { return materials_[material_of_zone_[z]].nodal_mixed; };
+  // Eq. 69: volume-weighted nodal averages of the zones' volumetric strain
+  // increment (e = trace / 3, eq. 68).
+  nodal_sum_.assign(2 * ng, 0.0);
+  for (unsigned int z = 0; z < nz; ++z)
+    if (mixed(z))
+    {
+      const double e = (de[6 * z] + de[6 * z + 1] + de[6 * z + 2]) / 3.0;
+      for (unsigned int g : mesh_.zone_gridpoint[z])
+      {
+        nodal_sum_[2 * g] += e * volume[z];
+        nodal_sum_[2 * g + 1] += volume[z];
+      }
+    }
+  // Eqs. 70-71: the zone keeps its deviatoric part and takes the mean of
+  // its gridpoints' averages as its volumetric part.
+  for (unsigned int z = 0; z < nz; ++z)
+    if (mixed(z))
+    {
+      double mean = 0.0;
+      for (unsigned int g : mesh_.zone_gridpoint[z])
+        mean += 0.25 * nodal_sum_[2 * g] / nodal_sum_[2 * g + 1];
+      const double shift = mean - (de[6 * z] + de[6 * z + 1] + de[6 * z + 2]) / 3.0;
+      for (int c = 0; c < 3; ++c)
+        de[6 * z + c] += shift;
+    }
+  // The zone models, one material run at a time, with their plastic
+  // volumetric strain increments.
+  plastic_volumetric_.assign(nz, 0.0);
+  for (std::size_t r = 0; r + 1 < batch_start_.size(); ++r)
+  {
+    const unsigned int first = batch_start_[r];
+    StressBatch batch;
+    batch.size = batch_start_[r + 1] - first;
+    batch.strain_increment = de + 6 * first;
+    batch.stress = stress_.data() + 6 * first;
+    batch.state = state_.data() + first;
+    batch.plastic_volumetric = plastic_volumetric_.data() + first;
+    apply_zone_model(materials_[material_of_zone_[first]], batch);
+  }
+  // Eqs. 73-76: the plastic pressure K e^p (e^p the trace of the plastic
+  // strain increment, which lowers the mean stress by K e^p) averaged the
+  // same way; each zone trades its own for the mean of its gridpoints'.
+  nodal_sum_.assign(2 * ng, 0.0);
+  for (unsigned int z = 0; z < nz; ++z)
+    if (mixed(z))
+    {
+      const double sp = materials_[material_of_zone_[z]].bulk_modulus * plastic_volumetric_[z];
+      for (unsigned int g : mesh_.zone_gridpoint[z])
+      {
+        nodal_sum_[2 * g] += sp * volume[z];
+        nodal_sum_[2 * g + 1] += volume[z];
+      }
+    }
+  for (unsigned int z = 0; z < nz; ++z)
+    if (mixed(z) && plastic_volumetric_[z] != 0.0)
+    {
+      double mean = 0.0;
+      for (unsigned int g : mesh_.zone_gridpoint[z])
+        mean += 0.25 * nodal_sum_[2 * g] / nodal_sum_[2 * g + 1];
+      const double sp = materials_[material_of_zone_[z]].bulk_modulus * plastic_volumetric_[z];
+      for (int c = 0; c < 3; ++c)
+        stress_[6 * z + c] += sp - mean;
+    }
+  tet4_nodal_forces(mesh_, 0, nz, stress_.data(), full_scratch_, f, force_size_.data());
 }
 
 void DeformableSolver::move_gridpoints()
@@ -344,8 +430,7 @@ void DeformableSolver::use_time_step(double dt, const std::vector<double>& joint
     k[g] += joint_stiffness[g];
   const bool scaled = !s_.dynamic && s_.density_scaling;
   if (!scaled && dt > stable_time_step_of(true_mass_, k) * (1.0 + 1e-12))
-    throw InputError("the time step " + number(dt) +
-                     " s exceeds the stable step of the zones, " +
+    throw InputError("the time step " + number(dt) + " s exceeds the stable step of the zones, " +
                      number(stable_time_step_of(true_mass_, k)) + " s (eq. 84)");
   dt_ = dt;
   LocalArray m(petsc_->inertial_mass);

@@ -132,6 +132,7 @@ private:
   static double stable_time_step_of(const std::vector<double>& mass,
                                     const std::vector<double>& stiffness);
   void zone_forces();
+  void nodal_mixed_zone_forces(const double* x, const double* v, double* f, double strain_dt);
   void move_gridpoints();
 
   const TetMesh& mesh_;
@@ -159,6 +160,11 @@ private:
   Vec3 face_load_share(std::size_t k, const double* x) const;
   std::vector<double> force_size_; ///< 3 per gridpoint: sum of |zone force| (N), for the ratio
   Tet4Scratch scratch_;
+  // Nodal mixed discretization only (empty otherwise).
+  bool nodal_mixed_ = false;
+  Tet4Scratch full_scratch_;               ///< every zone's gradients and strain
+  std::vector<double> nodal_sum_;          ///< 2 per gridpoint: weighted sum, volume
+  std::vector<double> plastic_volumetric_; ///< per zone, this step
   Damper damper_{Damping::none, 0.0, 0.5, 1.0};
   std::vector<double> last_force_; ///< 3 per gridpoint, N (combined damping only)
   double dt_ = 0.0, time_ = 0.0, ratio_ = 1.0;

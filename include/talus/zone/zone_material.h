@@ -22,6 +22,10 @@ struct ZoneMaterial
   double dilation_angle = 0.0;    ///< psi, degrees (Mohr-Coulomb, non-associated when psi < phi)
   double cohesion = 0.0;          ///< c, Pa (Mohr-Coulomb)
   double tensile_strength = 0.0;  ///< sigma_t, Pa (Mohr-Coulomb; capped at c / tan(phi))
+  /// Nodal mixed discretization (eqs. 68-76) for the zones of this material:
+  /// volumetric strain and plastic pressure averaged at the gridpoints, so
+  /// that constant-strain tetrahedra do not lock in incompressible flow.
+  bool nodal_mixed = false;
 
   /// Young's modulus and Poisson's ratio from K and G.
   double young() const
