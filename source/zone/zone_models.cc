@@ -371,8 +371,11 @@ void mohr_coulomb_update(const ZoneMaterial& material, StressBatch& batch)
         lowest - n_phi * highest + shear_offset > 0.0 && highest <= tension_limit;
     // Next the principal stresses in closed form, without directions: a
     // zone they show clearly inside the surfaces needs no eigenvectors.
+    // A zone at a surface last step most likely still is: straight to the
+    // full solve, without the screening.
+    const bool was_plastic = batch.state != nullptr && (batch.state[i] & (shear_now | tension_now));
     bool maybe_plastic = !surely_elastic;
-    if (maybe_plastic)
+    if (maybe_plastic && !was_plastic)
     {
       double closed[3];
       principal_values(s, closed);
