@@ -35,8 +35,8 @@ constexpr const char* usage =
 /// Writes the zones of deformable blocks at their current state as frame
 /// `frame` of the zone series.
 void write_zone_frame(const talus::Scene& scene, const talus::TetMesh& mesh,
-                      const talus::DeformableSolver& solver, talus::PvdSeries& series,
-                      unsigned int frame)
+                      const talus::DeformableSolver& solver, talus::ZoneWriter& writer,
+                      talus::PvdSeries& series, unsigned int frame)
 {
   using namespace talus;
   char file[64];
@@ -50,9 +50,9 @@ void write_zone_frame(const talus::Scene& scene, const talus::TetMesh& mesh,
     principal_stresses(&solver.stress()[6 * z], &cells[1].values[3 * z]);
     cells[2].values.push_back(solver.plastic_state()[z]);
   }
-  write_zones_vtu(
-      scene.output.directory + "/" + vtu, mesh, solver.positions(),
-      {{"displacement", 3, solver.displacements()}, {"velocity", 3, solver.velocities()}}, cells);
+  writer.write(scene.output.directory + "/" + vtu, solver.positions(),
+               {{"displacement", 3, solver.displacements()}, {"velocity", 3, solver.velocities()}},
+               cells, solver.time());
   series.add(solver.time(), vtu);
 }
 
@@ -195,6 +195,7 @@ void solve_deformable(talus::Scene& scene, talus::BlockModel& model, const std::
                                                                     : "");
 
   PvdSeries series(prefix + "_zones.pvd");
+  ZoneWriter zone_writer(mesh);
   const PointHistory points(mesh, scene.solver.history_points);
   std::vector<std::string> columns{"step", "time (s)", "unbalanced ratio",
                                    "largest displacement (m)"};
@@ -214,7 +215,7 @@ void solve_deformable(talus::Scene& scene, talus::BlockModel& model, const std::
   const auto output = [&]()
   {
     if (scene.output.write_vtu)
-      write_zone_frame(scene, mesh, solver, series, frame++);
+      write_zone_frame(scene, mesh, solver, zone_writer, series, frame++);
   };
   output();
   unsigned long last_output = 0;
@@ -291,6 +292,9 @@ void solve(talus::Scene& scene, talus::BlockModel& model, talus::PvdSeries& seri
   std::printf("Time step:    %.6g s (eq. 87, fraction %g%s)\n", solver.dt(),
               scene.solver.time_step_fraction, zones ? "; eq. 84 for the zones" : "");
   PvdSeries zone_series(prefix + "_zones.pvd");
+  std::unique_ptr<ZoneWriter> zone_writer;
+  if (zones)
+    zone_writer = std::make_unique<ZoneWriter>(mesh);
   unsigned int zone_frame = 0;
 
   std::vector<std::string> columns{"step",
@@ -336,7 +340,7 @@ void solve(talus::Scene& scene, talus::BlockModel& model, talus::PvdSeries& seri
     write_contacts_vtu(scene.output.directory + "/" + contacts_vtu, solver.contacts());
     contact_series.add(time, contacts_vtu);
     if (zones)
-      write_zone_frame(scene, mesh, *zones, zone_series, zone_frame++);
+      write_zone_frame(scene, mesh, *zones, *zone_writer, zone_series, zone_frame++);
   };
   const auto record = [&](unsigned long step, double time)
   {

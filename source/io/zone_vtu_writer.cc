@@ -1,26 +1,21 @@
 #include <talus/io/file_output.h>
 #include <talus/io/zone_vtu_writer.h>
 
+#include <deal.II/dofs/dof_handler.h>
+#include <deal.II/fe/fe_simplex_p.h>
+#include <deal.II/fe/fe_system.h>
+#include <deal.II/fe/mapping_fe.h>
+#include <deal.II/grid/tria.h>
+#include <deal.II/lac/vector.h>
+#include <deal.II/numerics/data_out.h>
+
 #include <Eigen/Eigenvalues>
 
 #include <ostream>
+#include <stdexcept>
 
 namespace talus
 {
-
-namespace
-{
-template <typename T>
-void data_array(std::ostream& out, const char* type, const std::string& name,
-                unsigned int components, const std::vector<T>& values)
-{
-  out << "        <DataArray type=\"" << type << "\" Name=\"" << name << "\" NumberOfComponents=\""
-      << components << "\" format=\"ascii\">\n";
-  for (std::size_t i = 0; i < values.size(); ++i)
-    out << +values[i] << ((i + 1) % 12 == 0 ? '\n' : ' ');
-  out << "\n        </DataArray>\n";
-}
-} // namespace
 
 void principal_stresses(const double* s, double* p)
 {
@@ -31,44 +26,151 @@ void principal_stresses(const double* s, double* p)
     p[d] = eigen.eigenvalues()[d]; // ascending
 }
 
-void write_zones_vtu(const std::string& path, const TetMesh& mesh,
-                     const std::vector<double>& positions,
-                     const std::vector<ZoneField>& point_fields,
-                     const std::vector<ZoneField>& cell_fields)
+namespace
 {
-  write_file_atomically(
-      path,
-      [&](std::ostream& out)
+using Interpretation = dealii::DataComponentInterpretation::DataComponentInterpretation;
+
+/// Components a field takes in the output: a symmetric tensor of 6 is
+/// written as all 9 entries, so that ParaView sees a tensor.
+unsigned int output_components(const ZoneField& f) { return f.components == 6 ? 9 : f.components; }
+
+/// Which stored component (of 6: xx yy zz xy yz zx) is tensor entry (i, j),
+/// row-major.
+constexpr unsigned int voigt_of[9] = {0, 3, 5, 3, 1, 4, 5, 4, 2};
+} // namespace
+
+/// The DoF layout of one field set: a linear field per gridpoint component
+/// and a constant one per zone component, in one FESystem, so that DataOut
+/// writes them all from one vector.
+struct ZoneWriter::Data
+{
+  dealii::MappingFE<3> mapping{dealii::FE_SimplexP<3>(1)};
+  std::unique_ptr<dealii::FESystem<3>> fe;
+  dealii::DoFHandler<3> dofs;
+  std::vector<unsigned int> point_components, zone_components; ///< as given
+  /// dof_of_point[c][g]: the DoF of point component c at gridpoint g;
+  /// dof_of_zone[c][z]: of output zone component c in zone z.
+  std::vector<std::vector<dealii::types::global_dof_index>> dof_of_point, dof_of_zone;
+};
+
+ZoneWriter::ZoneWriter(const TetMesh& mesh) : mesh_(mesh)
+{
+  if (!mesh.triangulation)
+    throw std::logic_error("ZoneWriter: the mesh has no triangulation");
+}
+
+ZoneWriter::~ZoneWriter() = default;
+
+void ZoneWriter::write(const std::string& path, const std::vector<double>& positions,
+                       const std::vector<ZoneField>& point_fields,
+                       const std::vector<ZoneField>& zone_fields, double time)
+{
+  dealii::Triangulation<3>& tria = *mesh_.triangulation;
+  if (!data_)
+  {
+    data_ = std::make_unique<Data>();
+    unsigned int n_point = 0, n_zone = 0;
+    for (const ZoneField& f : point_fields)
+    {
+      data_->point_components.push_back(f.components);
+      n_point += f.components;
+    }
+    for (const ZoneField& f : zone_fields)
+    {
+      data_->zone_components.push_back(f.components);
+      n_zone += output_components(f);
+    }
+    if (n_point > 0 && n_zone > 0)
+      data_->fe = std::make_unique<dealii::FESystem<3>>(dealii::FE_SimplexP<3>(1), n_point,
+                                                        dealii::FE_SimplexDGP<3>(0), n_zone);
+    else if (n_point > 0)
+      data_->fe = std::make_unique<dealii::FESystem<3>>(dealii::FE_SimplexP<3>(1), n_point);
+    else
+      data_->fe = std::make_unique<dealii::FESystem<3>>(dealii::FE_SimplexDGP<3>(0), n_zone);
+    data_->dofs.reinit(tria);
+    data_->dofs.distribute_dofs(*data_->fe);
+    data_->dof_of_point.assign(
+        n_point, std::vector<dealii::types::global_dof_index>(mesh_.n_gridpoints()));
+    data_->dof_of_zone.assign(n_zone,
+                              std::vector<dealii::types::global_dof_index>(mesh_.n_zones()));
+    std::vector<dealii::types::global_dof_index> local(data_->fe->n_dofs_per_cell());
+    for (const auto& cell : data_->dofs.active_cell_iterators())
+    {
+      cell->get_dof_indices(local);
+      for (unsigned int i = 0; i < local.size(); ++i)
       {
-        out.precision(12);
-        out << "<?xml version=\"1.0\"?>\n"
-            << "<VTKFile type=\"UnstructuredGrid\" version=\"1.0\" byte_order=\"LittleEndian\" "
-               "header_type=\"UInt64\">\n"
-            << "  <UnstructuredGrid>\n"
-            << "    <Piece NumberOfPoints=\"" << mesh.n_gridpoints() << "\" NumberOfCells=\""
-            << mesh.n_zones() << "\">\n      <Points>\n";
-        data_array(out, "Float64", "Points", 3, positions);
-        out << "      </Points>\n      <Cells>\n";
-        std::vector<unsigned long> connectivity, offsets;
-        connectivity.reserve(4 * mesh.n_zones());
-        for (const auto& t : mesh.zone_gridpoint)
-        {
-          connectivity.insert(connectivity.end(), t.begin(), t.end());
-          offsets.push_back(connectivity.size());
-        }
-        data_array(out, "Int64", "connectivity", 1, connectivity);
-        data_array(out, "Int64", "offsets", 1, offsets);
-        data_array(out, "UInt8", "types", 1,
-                   std::vector<unsigned char>(mesh.n_zones(), 10)); // VTK_TETRA
-        out << "      </Cells>\n      <PointData>\n";
-        for (const ZoneField& f : point_fields)
-          data_array(out, "Float64", f.name, f.components, f.values);
-        out << "      </PointData>\n      <CellData Scalars=\"block_id\">\n";
-        data_array(out, "Int32", "block_id", 1, mesh.zone_block);
-        for (const ZoneField& f : cell_fields)
-          data_array(out, "Float64", f.name, f.components, f.values);
-        out << "      </CellData>\n    </Piece>\n  </UnstructuredGrid>\n</VTKFile>\n";
-      });
+        // The linear element's DoF k sits at vertex k of the cell.
+        const auto [component, within] = data_->fe->system_to_component_index(i);
+        if (component < n_point)
+          data_->dof_of_point[component][cell->vertex_index(within)] = local[i];
+        else
+          data_->dof_of_zone[component - n_point][cell->active_cell_index()] = local[i];
+      }
+    }
+  }
+  else
+  {
+    bool same = data_->point_components.size() == point_fields.size() &&
+                data_->zone_components.size() == zone_fields.size();
+    for (std::size_t k = 0; same && k < point_fields.size(); ++k)
+      same = data_->point_components[k] == point_fields[k].components;
+    for (std::size_t k = 0; same && k < zone_fields.size(); ++k)
+      same = data_->zone_components[k] == zone_fields[k].components;
+    if (!same)
+      throw std::logic_error("ZoneWriter: the fields changed between frames");
+  }
+
+  // The cells follow the gridpoints: the triangulation's vertices are moved
+  // to the current positions for this frame.
+  for (const auto& cell : tria.active_cell_iterators())
+    for (unsigned int i = 0; i < 4; ++i)
+    {
+      const unsigned int g = cell->vertex_index(i);
+      cell->vertex(i) =
+          dealii::Point<3>(positions[3 * g], positions[3 * g + 1], positions[3 * g + 2]);
+    }
+
+  dealii::Vector<double> values(data_->dofs.n_dofs());
+  std::vector<std::string> names;
+  std::vector<Interpretation> interpretation;
+  unsigned int c = 0;
+  for (const ZoneField& f : point_fields)
+    for (unsigned int k = 0; k < f.components; ++k, ++c)
+    {
+      for (unsigned int g = 0; g < mesh_.n_gridpoints(); ++g)
+        values[data_->dof_of_point[c][g]] = f.values[f.components * g + k];
+      names.push_back(f.name);
+      interpretation.push_back(
+          f.components == 1 ? dealii::DataComponentInterpretation::component_is_scalar
+                            : dealii::DataComponentInterpretation::component_is_part_of_vector);
+    }
+  unsigned int zc = 0;
+  for (const ZoneField& f : zone_fields)
+  {
+    const unsigned int n = output_components(f);
+    for (unsigned int k = 0; k < n; ++k, ++zc)
+    {
+      const unsigned int stored = f.components == 6 ? voigt_of[k] : k;
+      for (unsigned int z = 0; z < mesh_.n_zones(); ++z)
+        values[data_->dof_of_zone[zc][z]] = f.values[f.components * z + stored];
+      names.push_back(f.name);
+      interpretation.push_back(
+          n == 1   ? dealii::DataComponentInterpretation::component_is_scalar
+          : n == 9 ? dealii::DataComponentInterpretation::component_is_part_of_tensor
+                   : dealii::DataComponentInterpretation::component_is_part_of_vector);
+    }
+  }
+  dealii::Vector<double> block_id(mesh_.n_zones());
+  for (unsigned int z = 0; z < mesh_.n_zones(); ++z)
+    block_id[z] = mesh_.zone_block[z];
+
+  dealii::DataOut<3> out;
+  out.attach_dof_handler(data_->dofs);
+  out.add_data_vector(values, names, dealii::DataOut<3>::type_dof_data, interpretation);
+  out.add_data_vector(block_id, "block_id", dealii::DataOut<3>::type_cell_data);
+  out.build_patches(data_->mapping);
+  out.set_flags(dealii::DataOutBase::VtkFlags(time));
+  write_file_atomically(path, [&](std::ostream& stream) { out.write_vtu(stream); });
 }
 
 } // namespace talus

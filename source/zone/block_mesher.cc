@@ -1,5 +1,6 @@
 #include <talus/base/exceptions.h>
 #include <talus/zone/block_mesher.h>
+#include <talus/zone/zone_triangulation.h>
 
 #include <deal.II/grid/grid_generator.h>
 #include <deal.II/grid/grid_in.h>
@@ -192,6 +193,7 @@ TetMesh read_gmsh_block(const std::string& path, unsigned int block)
   }
   TetMesh mesh;
   append_tetrahedra(mesh, tria, block);
+  mesh.triangulation = build_zone_triangulation(mesh);
   return mesh;
 }
 
@@ -245,6 +247,7 @@ TetMesh mesh_blocks(const BlockModel& m, const std::vector<unsigned int>& which,
     append_tetrahedra(mesh, one, b);
   }
   report = measure_mesh(mesh);
+  mesh.triangulation = build_zone_triangulation(mesh);
   return mesh;
 }
 

@@ -1,7 +1,14 @@
 #pragma once
 
 #include <array>
+#include <memory>
 #include <vector>
+
+namespace dealii
+{
+template <int dim, int spacedim>
+class Triangulation;
+}
 
 namespace talus
 {
@@ -23,6 +30,10 @@ struct TetMesh
   /// of the block, and the zone they belong to.
   std::vector<std::array<unsigned int, 3>> face_gridpoint;
   std::vector<unsigned int> face_zone;
+  /// The same zones as one deal.II triangulation (cell z = zone z, vertex
+  /// g = gridpoint g, material_id = block), for deal.II's output tools;
+  /// null until the mesher has finished the mesh.
+  std::shared_ptr<dealii::Triangulation<3, 3>> triangulation;
 
   unsigned int n_gridpoints() const { return static_cast<unsigned int>(position.size() / 3); }
   unsigned int n_zones() const { return static_cast<unsigned int>(zone_gridpoint.size()); }
