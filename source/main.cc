@@ -1,9 +1,10 @@
 // talus: three-dimensional distinct element code for jointed rock.
-// Usage: talus scene.prm
+// Usage: talus scene.prm, or talus --restart checkpoint
 
 #include <talus/base/exceptions.h>
 #include <talus/base/parallel_environment.h>
 #include <talus/io/block_vtu_writer.h>
+#include <talus/io/checkpoint.h>
 #include <talus/io/contact_vtu_writer.h>
 #include <talus/io/file_output.h>
 #include <talus/io/history_file.h>
@@ -28,9 +29,26 @@ namespace
 
 constexpr const char* usage =
     "usage: talus SCENE.prm\n"
+    "       talus --restart CHECKPOINT\n"
     "  Builds the block model the parameter file describes, writes it\n"
     "  for ParaView into the output folder it names, and prints a summary.\n"
-    "  Shipped scenes are in the parameters/ folder.\n";
+    "  Shipped scenes are in the parameters/ folder.\n"
+    "  --restart continues a run from its checkpoint (<Base name>_checkpoint.bin,\n"
+    "  written every 'Checkpoint interval' steps and on SIGINT/SIGTERM) with the\n"
+    "  parameter file it was written for.\n";
+
+/// The checkpoint to continue from (talus --restart), or empty.
+std::string restart_from;
+
+/// Restores a run from `restart_from` (when restarting) and says so.
+void restore_run(talus::Checkpoint& checkpoint)
+{
+  if (restart_from.empty())
+    return;
+  const unsigned long step = checkpoint.restore(restart_from);
+  std::printf("Restarted:    from %s at step %lu\n",
+              std::filesystem::path(restart_from).filename().c_str(), step);
+}
 
 /// Writes the zones of deformable blocks at their current state as frame
 /// `frame` of the zone series.
@@ -202,6 +220,13 @@ void solve_deformable(talus::Scene& scene, talus::BlockModel& model, const std::
   HistoryFile history(prefix + "_history.csv", columns);
   ProgressLine progress(scene.solver.steps);
   unsigned int frame = 0;
+  unsigned long last_output = 0;
+  Checkpoint checkpoint(scene, model, nullptr, &solver);
+  checkpoint.add(history);
+  checkpoint.add(series);
+  checkpoint.add(frame);
+  checkpoint.add(last_output);
+  restore_run(checkpoint);
   const auto largest_displacement = [&]()
   {
     const std::vector<double> u = solver.displacements();
@@ -216,8 +241,8 @@ void solve_deformable(talus::Scene& scene, talus::BlockModel& model, const std::
     if (scene.output.write_vtu)
       write_zone_frame(scene, mesh, solver, series, frame++);
   };
-  output();
-  unsigned long last_output = 0;
+  if (restart_from.empty())
+    output();
   while (solver.steps_done() < scene.solver.steps)
   {
     solver.step();
@@ -238,6 +263,7 @@ void solve_deformable(talus::Scene& scene, talus::BlockModel& model, const std::
     if (!scene.solver.dynamic && scene.solver.target_ratio > 0.0 && n >= 20 &&
         solver.unbalanced_ratio() < scene.solver.target_ratio)
       break;
+    checkpoint.after_step(n);
   }
   progress.finish();
   if (last_output != solver.steps_done())
@@ -312,6 +338,13 @@ void solve(talus::Scene& scene, talus::BlockModel& model, talus::PvdSeries& seri
   ProgressLine progress(scene.solver.steps);
   unsigned int frame = 0;
   PvdSeries contact_series(prefix + "_contacts.pvd");
+  Checkpoint checkpoint(scene, model, &solver, zones);
+  checkpoint.add(history);
+  for (PvdSeries* s : {&series, &contact_series, &zone_series})
+    checkpoint.add(*s);
+  checkpoint.add(frame);
+  checkpoint.add(zone_frame);
+  restore_run(checkpoint);
   const auto output = [&](unsigned long step, double time)
   {
     progress.update(step, time);
@@ -357,7 +390,8 @@ void solve(talus::Scene& scene, talus::BlockModel& model, talus::PvdSeries& seri
       points.add_values(row, *zones);
     history.record(row);
   };
-  const SolverReport r = solver.run(output, record);
+  const SolverReport r =
+      solver.run(output, record, [&](unsigned long step) { checkpoint.after_step(step); });
   progress.finish();
   std::printf("Steps:        %lu (time %.6g s)\n", r.steps, r.time);
   std::printf("Contacts:     %u with %u sub-contacts\n", r.contacts, r.subcontacts);
@@ -448,14 +482,24 @@ int run(const std::string& filename)
 
 int main(int argc, char** argv)
 {
-  if (argc != 2 || std::strcmp(argv[1], "--help") == 0 || std::strcmp(argv[1], "-h") == 0)
+  const bool restart = argc == 3 && std::strcmp(argv[1], "--restart") == 0;
+  if ((argc != 2 && !restart) || std::strcmp(argv[1], "--help") == 0 ||
+      std::strcmp(argv[1], "-h") == 0)
   {
     std::fputs(usage, argc == 2 ? stdout : stderr);
     return argc == 2 ? 0 : 1;
   }
   try
   {
-    return run(argv[1]);
+    if (restart)
+      restart_from = argv[2];
+    return run(restart ? talus::checkpoint_parameter_file(argv[2]) : argv[1]);
+  }
+  catch (const talus::RunInterrupted& e)
+  {
+    std::fflush(stdout); // the summary so far, then the message
+    std::fprintf(stderr, "talus: %s\n", e.what());
+    return e.exit_code();
   }
   catch (const talus::InputError& e)
   {
