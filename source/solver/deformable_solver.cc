@@ -531,8 +531,8 @@ ImplicitElasticProblem DeformableSolver::implicit_problem() const
 void DeformableSolver::save_state(CheckpointWriter& out) const
 {
   out.tag("zones");
-  for (const auto* vec : {&petsc_->position, &petsc_->velocity, &petsc_->force,
-                          &petsc_->inertial_mass})
+  for (const auto* vec :
+       {&petsc_->position, &petsc_->velocity, &petsc_->force, &petsc_->inertial_mass})
   {
     LocalArray a(*vec);
     out.put(std::vector<double>(a.data(), a.data() + 3 * mesh_.n_gridpoints()));
