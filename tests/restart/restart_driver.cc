@@ -263,7 +263,12 @@ int main(int argc, char** argv)
   {
     const fs::path truncated = fs::absolute("truncated_checkpoint.bin");
     write_file(truncated, saved.substr(0, saved.size() / 2));
-    const Result r1 = run_talus({"--restart", truncated.string()});
+    Result r1 = run_talus({"--restart", truncated.string()});
+    // Its size depends on the length of the folder's name, kept in it.
+    for (std::size_t at = r1.messages.find("truncated (");
+         at < r1.messages.size() && r1.messages[at] != ')'; ++at)
+      if (r1.messages[at] >= '0' && r1.messages[at] <= '9')
+        r1.messages[at] = '#';
     show("restart from a truncated checkpoint", r1);
     check(r1.exit_code == 1, "refused with exit code 1");
 
