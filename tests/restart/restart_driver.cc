@@ -7,7 +7,11 @@
 //      talus must write a checkpoint and exit with 143 (128 + SIGTERM);
 //   3. continues it with `talus --restart CHECKPOINT` and compares every
 //      file of the first run (histories, PVD and VTU files) byte for byte;
-//   4. (with "# restart test: bad checkpoints") feeds talus a truncated
+//   4. (with "# restart test: extend to N steps") continues the first run
+//      from the checkpoint its 'Checkpoint interval' left at its last step,
+//      with 'Steps' raised to N: the history must go on from the first
+//      run's rows;
+//   5. (with "# restart test: bad checkpoints") feeds talus a truncated
 //      checkpoint, a file that is not one, and the checkpoint of a changed
 //      parameter file: each must be refused with exit code 1.
 // Prints what it compared; the folder it ran in is removed from messages.
@@ -173,6 +177,12 @@ int main(int argc, char** argv)
   show("uninterrupted run", whole);
   const std::map<std::string, std::string> reference = folder_files(output);
   check(whole.exit_code == 0, "uninterrupted run finished");
+  const fs::path last_checkpoint = fs::absolute("last_checkpoint.bin");
+  if (std::stoul("0" + entry(source, "Checkpoint interval")) > 0)
+  {
+    check(fs::exists(checkpoint), "checkpoint left by 'Checkpoint interval'");
+    fs::copy_file(checkpoint, last_checkpoint, fs::copy_options::overwrite_existing);
+  }
 
   // 2. The same run, stopped.
   fs::remove_all(output);
@@ -258,7 +268,35 @@ int main(int argc, char** argv)
   good &= vtu_same == vtu;
   check(after.size() == reference.size(), "no file more or less than the uninterrupted run");
 
-  // 4. Checkpoints that must be refused.
+  // 4. A finished run extended.
+  const std::size_t extend = source.find("# restart test: extend to ");
+  if (extend != std::string::npos)
+  {
+    const std::string steps =
+        source.substr(extend + 26, source.find(' ', extend + 26) - extend - 26);
+    std::string longer = source;
+    const std::size_t at = longer.find("set Steps");
+    const std::size_t value = longer.find('=', at) + 1;
+    longer.replace(value, longer.find_first_of("#\n", value) - value, " " + steps);
+    write_file(scene, longer);
+    const Result r = run_talus({"--restart", last_checkpoint.string()});
+    show(("the finished run continued to " + steps + " steps").c_str(), r);
+    check(r.exit_code == 0, "continued run finished");
+    // The first run's history, less its last row (written again at the end
+    // of every run), then the rows of the steps beyond.
+    const std::string name = base + "_history.csv";
+    std::string first = reference.at(name);
+    first.erase(first.rfind('\n', first.size() - 2) + 1);
+    const std::string extended = read_file(output / name);
+    const auto rows = [](const std::string& t) { return std::count(t.begin(), t.end(), '\n'); };
+    std::printf("history rows: %ld before, %ld after\n", static_cast<long>(rows(first)),
+                static_cast<long>(rows(extended)));
+    check(extended.compare(0, first.size(), first) == 0 && rows(extended) > rows(first),
+          "the history goes on from the first run's rows");
+    write_file(scene, source);
+  }
+
+  // 5. Checkpoints that must be refused.
   if (source.find("# restart test: bad checkpoints") != std::string::npos)
   {
     const fs::path truncated = fs::absolute("truncated_checkpoint.bin");
