@@ -489,11 +489,15 @@ int main(int argc, char** argv)
     std::fputs(usage, argc == 2 ? stdout : stderr);
     return argc == 2 ? 0 : 1;
   }
+  std::string scene_file = argv[1];
   try
   {
     if (restart)
+    {
       restart_from = argv[2];
-    return run(restart ? talus::checkpoint_parameter_file(argv[2]) : argv[1]);
+      scene_file = talus::checkpoint_parameter_file(restart_from);
+    }
+    return run(scene_file);
   }
   catch (const talus::RunInterrupted& e)
   {
@@ -509,7 +513,7 @@ int main(int argc, char** argv)
   catch (const talus::GeometryError& e)
   {
     std::fflush(stdout); // the summary so far, then the message
-    std::fprintf(stderr, "talus: error in %s: %s\n", argv[1], e.what());
+    std::fprintf(stderr, "talus: error in %s: %s\n", scene_file.c_str(), e.what());
   }
   catch (const std::exception& e)
   {
