@@ -217,11 +217,11 @@ void solve_deformable(talus::Scene& scene, talus::BlockModel& model, const std::
   std::vector<std::string> columns{"step", "time (s)", "unbalanced ratio",
                                    "largest displacement (m)"};
   points.add_columns(columns);
+  Checkpoint checkpoint(scene, model, nullptr, &solver, restart_from);
   HistoryFile history(prefix + "_history.csv", columns);
   ProgressLine progress(scene.solver.steps);
   unsigned int frame = 0;
   unsigned long last_output = 0;
-  Checkpoint checkpoint(scene, model, nullptr, &solver);
   checkpoint.add(history);
   checkpoint.add(series);
   checkpoint.add(frame);
@@ -334,11 +334,11 @@ void solve(talus::Scene& scene, talus::BlockModel& model, talus::PvdSeries& seri
   if (!zones && !scene.solver.history_points.empty())
     std::printf("Warning: 'History points' follow deformable blocks; this scene has none\n");
   points.add_columns(columns);
+  Checkpoint checkpoint(scene, model, &solver, zones, restart_from);
   HistoryFile history(prefix + "_history.csv", columns);
   ProgressLine progress(scene.solver.steps);
   unsigned int frame = 0;
   PvdSeries contact_series(prefix + "_contacts.pvd");
-  Checkpoint checkpoint(scene, model, &solver, zones);
   checkpoint.add(history);
   for (PvdSeries* s : {&series, &contact_series, &zone_series})
     checkpoint.add(*s);
@@ -420,6 +420,8 @@ int run(const std::string& filename)
 {
   const auto start = std::chrono::steady_clock::now();
   talus::Scene scene = talus::read_scene(filename);
+  if (!restart_from.empty())
+    talus::check_checkpoint_scene(restart_from, scene);
 
   // read_scene has checked every value and prepared the output folder.
   const std::string prefix = scene.output.directory + "/" + scene.output.base_name;

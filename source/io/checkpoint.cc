@@ -191,10 +191,24 @@ std::uint64_t scene_fingerprint(const Scene& scene)
   return h;
 }
 
+void check_checkpoint_scene(const std::string& checkpoint, const Scene& scene)
+{
+  CheckpointReader in = read_checkpoint(checkpoint);
+  std::string parameter_file;
+  in.get(parameter_file);
+  std::uint64_t scene_hash = 0;
+  in.get(scene_hash);
+  if (scene_hash != scene_fingerprint(scene))
+    throw InputError(checkpoint + ": the parameter file " + scene.parameter_file +
+                     " has changed since the checkpoint was written (only 'Steps' and "
+                     "'Checkpoint interval' may change); allowed: the parameter file the "
+                     "checkpoint was written with");
+}
+
 // ---- Checkpoint ----------------------------------------------------------------
 
 Checkpoint::Checkpoint(const Scene& scene, BlockModel& model, RigidSolver* rigid,
-                       DeformableSolver* zones)
+                       DeformableSolver* zones, const std::string& restart_from)
     : scene_(scene), model_(model), rigid_(rigid), zones_(zones),
       scene_hash_(scene_fingerprint(scene)), geometry_hash_(geometry_fingerprint(model, zones)),
       interval_(scene.output.checkpoint_interval),
@@ -202,7 +216,29 @@ Checkpoint::Checkpoint(const Scene& scene, BlockModel& model, RigidSolver* rigid
 {
   if (const char* at = std::getenv("TALUS_TEST_SIGNAL_AT_STEP"))
     signal_test_step_ = std::atol(at);
+  if (!restart_from.empty())
+  {
+    CheckpointReader in = read_checkpoint(restart_from);
+    check_fingerprints(in, restart_from);
+  }
   install_stop_signal_handlers();
+}
+
+unsigned long Checkpoint::check_fingerprints(CheckpointReader& in, const std::string& file) const
+{
+  std::string parameter_file;
+  in.get(parameter_file);
+  std::uint64_t scene_hash = 0, geometry_hash = 0, step = 0;
+  in.get(scene_hash);
+  in.get(geometry_hash);
+  in.get(step);
+  if (scene_hash != scene_hash_)
+    check_checkpoint_scene(file, scene_); // throws its message
+  if (geometry_hash != geometry_hash_)
+    throw InputError(file + ": the model built from " + scene_.parameter_file +
+                     " differs from the one the checkpoint was written for (a changed mesh "
+                     "file, or another version of talus); allowed: the same model");
+  return step;
 }
 
 void Checkpoint::after_step(unsigned long step)
@@ -262,21 +298,7 @@ void Checkpoint::write(unsigned long step) const
 unsigned long Checkpoint::restore(const std::string& file)
 {
   CheckpointReader in = read_checkpoint(file);
-  std::string parameter_file;
-  in.get(parameter_file);
-  std::uint64_t scene_hash = 0, geometry_hash = 0, step = 0;
-  in.get(scene_hash);
-  in.get(geometry_hash);
-  in.get(step);
-  if (scene_hash != scene_hash_)
-    throw InputError(file + ": the parameter file " + scene_.parameter_file +
-                     " has changed since the checkpoint was written (only 'Steps' and "
-                     "'Checkpoint interval' may change); allowed: the parameter file the "
-                     "checkpoint was written with");
-  if (geometry_hash != geometry_hash_)
-    throw InputError(file + ": the model built from " + scene_.parameter_file +
-                     " differs from the one the checkpoint was written for (a changed mesh "
-                     "file, or another version of talus); allowed: the same model");
+  const unsigned long step = check_fingerprints(in, file);
   std::uint64_t n = 0;
   in.tag("counters");
   in.get(n);

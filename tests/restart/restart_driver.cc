@@ -299,6 +299,7 @@ int main(int argc, char** argv)
   // 5. Checkpoints that must be refused.
   if (source.find("# restart test: bad checkpoints") != std::string::npos)
   {
+    const std::map<std::string, std::string> before = folder_files(output);
     const fs::path truncated = fs::absolute("truncated_checkpoint.bin");
     write_file(truncated, saved.substr(0, saved.size() / 2));
     Result r1 = run_talus({"--restart", truncated.string()});
@@ -331,6 +332,7 @@ int main(int argc, char** argv)
     show("restart after the friction angle changed", r4);
     check(r4.exit_code == 1, "refused with exit code 1");
     write_file(scene, source);
+    check(folder_files(output) == before, "refused restarts left every output file as it was");
   }
   std::printf("%s\n", good ? "OK" : "FAILED");
   return good ? 0 : 1;

@@ -161,6 +161,11 @@ std::string checkpoint_parameter_file(const std::string& checkpoint);
 /// and the checkpoint interval.
 std::uint64_t scene_fingerprint(const Scene& scene);
 
+/// Refuses (InputError) to continue from `checkpoint` with a scene whose
+/// parameters differ from the ones it was written with. Called before
+/// anything is written, so that a refused restart changes no file.
+void check_checkpoint_scene(const std::string& checkpoint, const Scene& scene);
+
 /// The checkpoints of one run: what to save (the solvers, the model, the
 /// histories, the VTU series and the counters of the output loop), when
 /// (every `interval` steps, and on SIGINT/SIGTERM), and restoring it all.
@@ -171,7 +176,11 @@ class Checkpoint
 public:
   /// `model` must still be in its initial state: its geometry (and that of
   /// the zones) is fingerprinted so that a restart rebuilds the same model.
-  Checkpoint(const Scene& scene, BlockModel& model, RigidSolver* rigid, DeformableSolver* zones);
+  /// With `restart_from`, checks at once that that checkpoint belongs to
+  /// this scene and model (before any output file is opened, so that a
+  /// refused restart leaves the old run's files as they were).
+  Checkpoint(const Scene& scene, BlockModel& model, RigidSolver* rigid, DeformableSolver* zones,
+             const std::string& restart_from = "");
 
   void add(HistoryFile& history) { histories_.push_back(&history); }
   void add(PvdSeries& series) { series_.push_back(&series); }
@@ -194,6 +203,10 @@ public:
   unsigned long restore(const std::string& file);
 
 private:
+  /// Reads the scene and geometry fingerprints that follow the parameter
+  /// file's name and refuses a checkpoint of another scene; returns its step.
+  unsigned long check_fingerprints(CheckpointReader& in, const std::string& file) const;
+
   const Scene& scene_;
   BlockModel& model_;
   RigidSolver* rigid_;
