@@ -207,10 +207,10 @@ void check_checkpoint_scene(const std::string& checkpoint, const Scene& scene)
 
 // ---- Checkpoint ----------------------------------------------------------------
 
-Checkpoint::Checkpoint(const Scene& scene, BlockModel& model, RigidSolver* rigid,
+Checkpoint::Checkpoint(const Scene& scene, const BlockModel& model, RigidSolver* rigid,
                        DeformableSolver* zones, const std::string& restart_from)
-    : scene_(scene), model_(model), rigid_(rigid), zones_(zones),
-      scene_hash_(scene_fingerprint(scene)), geometry_hash_(geometry_fingerprint(model, zones)),
+    : scene_(scene), rigid_(rigid), zones_(zones), scene_hash_(scene_fingerprint(scene)),
+      geometry_hash_(geometry_fingerprint(model, zones)),
       interval_(scene.output.checkpoint_interval),
       path_(scene.output.directory + "/" + scene.output.base_name + "_checkpoint.bin")
 {

@@ -179,8 +179,8 @@ public:
   /// With `restart_from`, checks at once that that checkpoint belongs to
   /// this scene and model (before any output file is opened, so that a
   /// refused restart leaves the old run's files as they were).
-  Checkpoint(const Scene& scene, BlockModel& model, RigidSolver* rigid, DeformableSolver* zones,
-             const std::string& restart_from = "");
+  Checkpoint(const Scene& scene, const BlockModel& model, RigidSolver* rigid,
+             DeformableSolver* zones, const std::string& restart_from = "");
 
   void add(HistoryFile& history) { histories_.push_back(&history); }
   void add(PvdSeries& series) { series_.push_back(&series); }
@@ -208,7 +208,6 @@ private:
   unsigned long check_fingerprints(CheckpointReader& in, const std::string& file) const;
 
   const Scene& scene_;
-  BlockModel& model_;
   RigidSolver* rigid_;
   DeformableSolver* zones_;
   std::uint64_t scene_hash_, geometry_hash_;
