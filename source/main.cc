@@ -1,9 +1,10 @@
 // talus: three-dimensional distinct element code for jointed rock.
-// Usage: talus scene.prm
+// Usage: talus scene.prm, or talus --restart checkpoint
 
 #include <talus/base/exceptions.h>
 #include <talus/base/parallel_environment.h>
 #include <talus/io/block_vtu_writer.h>
+#include <talus/io/checkpoint.h>
 #include <talus/io/contact_vtu_writer.h>
 #include <talus/io/file_output.h>
 #include <talus/io/history_file.h>
@@ -28,9 +29,26 @@ namespace
 
 constexpr const char* usage =
     "usage: talus SCENE.prm\n"
+    "       talus --restart CHECKPOINT\n"
     "  Builds the block model the parameter file describes, writes it\n"
     "  for ParaView into the output folder it names, and prints a summary.\n"
-    "  Shipped scenes are in the parameters/ folder.\n";
+    "  Shipped scenes are in the parameters/ folder.\n"
+    "  --restart continues a run from its checkpoint (<Base name>_checkpoint.bin,\n"
+    "  written every 'Checkpoint interval' steps and on SIGINT/SIGTERM) with the\n"
+    "  parameter file it was written for.\n";
+
+/// The checkpoint to continue from (talus --restart), or empty.
+std::string restart_from;
+
+/// Restores a run from `restart_from` (when restarting) and says so.
+void restore_run(talus::Checkpoint& checkpoint)
+{
+  if (restart_from.empty())
+    return;
+  const unsigned long step = checkpoint.restore(restart_from);
+  std::printf("Restarted:    from %s at step %lu\n",
+              std::filesystem::path(restart_from).filename().c_str(), step);
+}
 
 /// Writes the zones of deformable blocks at their current state as frame
 /// `frame` of the zone series.
@@ -200,9 +218,16 @@ void solve_deformable(talus::Scene& scene, talus::BlockModel& model, const std::
   std::vector<std::string> columns{"step", "time (s)", "unbalanced ratio",
                                    "largest displacement (m)"};
   points.add_columns(columns);
+  Checkpoint checkpoint(scene, model, nullptr, &solver, restart_from);
   HistoryFile history(prefix + "_history.csv", columns);
   ProgressLine progress(scene.solver.steps);
   unsigned int frame = 0;
+  unsigned long last_output = 0;
+  checkpoint.add(history);
+  checkpoint.add(series);
+  checkpoint.add(frame);
+  checkpoint.add(last_output);
+  restore_run(checkpoint);
   const auto largest_displacement = [&]()
   {
     const std::vector<double> u = solver.displacements();
@@ -217,8 +242,8 @@ void solve_deformable(talus::Scene& scene, talus::BlockModel& model, const std::
     if (scene.output.write_vtu)
       write_zone_frame(scene, mesh, solver, zone_writer, series, frame++);
   };
-  output();
-  unsigned long last_output = 0;
+  if (restart_from.empty())
+    output();
   while (solver.steps_done() < scene.solver.steps)
   {
     solver.step();
@@ -239,6 +264,7 @@ void solve_deformable(talus::Scene& scene, talus::BlockModel& model, const std::
     if (!scene.solver.dynamic && scene.solver.target_ratio > 0.0 && n >= 20 &&
         solver.unbalanced_ratio() < scene.solver.target_ratio)
       break;
+    checkpoint.after_step(n);
   }
   progress.finish();
   if (last_output != solver.steps_done())
@@ -312,10 +338,17 @@ void solve(talus::Scene& scene, talus::BlockModel& model, talus::PvdSeries& seri
   if (!zones && !scene.solver.history_points.empty())
     std::printf("Warning: 'History points' follow deformable blocks; this scene has none\n");
   points.add_columns(columns);
+  Checkpoint checkpoint(scene, model, &solver, zones, restart_from);
   HistoryFile history(prefix + "_history.csv", columns);
   ProgressLine progress(scene.solver.steps);
   unsigned int frame = 0;
   PvdSeries contact_series(prefix + "_contacts.pvd");
+  checkpoint.add(history);
+  for (PvdSeries* s : {&series, &contact_series, &zone_series})
+    checkpoint.add(*s);
+  checkpoint.add(frame);
+  checkpoint.add(zone_frame);
+  restore_run(checkpoint);
   const auto output = [&](unsigned long step, double time)
   {
     progress.update(step, time);
@@ -361,7 +394,8 @@ void solve(talus::Scene& scene, talus::BlockModel& model, talus::PvdSeries& seri
       points.add_values(row, *zones);
     history.record(row);
   };
-  const SolverReport r = solver.run(output, record);
+  const SolverReport r =
+      solver.run(output, record, [&](unsigned long step) { checkpoint.after_step(step); });
   progress.finish();
   std::printf("Steps:        %lu (time %.6g s)\n", r.steps, r.time);
   std::printf("Contacts:     %u with %u sub-contacts\n", r.contacts, r.subcontacts);
@@ -390,6 +424,8 @@ int run(const std::string& filename)
 {
   const auto start = std::chrono::steady_clock::now();
   talus::Scene scene = talus::read_scene(filename);
+  if (!restart_from.empty())
+    talus::check_checkpoint_scene(restart_from, scene);
 
   // read_scene has checked every value and prepared the output folder.
   const std::string prefix = scene.output.directory + "/" + scene.output.base_name;
@@ -452,14 +488,28 @@ int run(const std::string& filename)
 
 int main(int argc, char** argv)
 {
-  if (argc != 2 || std::strcmp(argv[1], "--help") == 0 || std::strcmp(argv[1], "-h") == 0)
+  const bool restart = argc == 3 && std::strcmp(argv[1], "--restart") == 0;
+  if ((argc != 2 && !restart) || std::strcmp(argv[1], "--help") == 0 ||
+      std::strcmp(argv[1], "-h") == 0)
   {
     std::fputs(usage, argc == 2 ? stdout : stderr);
     return argc == 2 ? 0 : 1;
   }
+  std::string scene_file = argv[1];
   try
   {
-    return run(argv[1]);
+    if (restart)
+    {
+      restart_from = argv[2];
+      scene_file = talus::checkpoint_parameter_file(restart_from);
+    }
+    return run(scene_file);
+  }
+  catch (const talus::RunInterrupted& e)
+  {
+    std::fflush(stdout); // the summary so far, then the message
+    std::fprintf(stderr, "talus: %s\n", e.what());
+    return e.exit_code();
   }
   catch (const talus::InputError& e)
   {
@@ -469,7 +519,7 @@ int main(int argc, char** argv)
   catch (const talus::GeometryError& e)
   {
     std::fflush(stdout); // the summary so far, then the message
-    std::fprintf(stderr, "talus: error in %s: %s\n", argv[1], e.what());
+    std::fprintf(stderr, "talus: error in %s: %s\n", scene_file.c_str(), e.what());
   }
   catch (const std::exception& e)
   {

@@ -453,6 +453,9 @@ void declare_output(ParameterFile& prm)
   prm.declare("Base name", "talus", P::Anything(), "a file name prefix",
               "Prefix of the files written.");
   prm.declare("Write VTU", "true", P::Bool(), "true or false", "Write ParaView files.");
+  prm.declare("Checkpoint interval", "0", P::Integer(0), "an integer >= 0 (0: only on a signal)",
+              "Steps between checkpoints (<Base name>_checkpoint.bin, for talus --restart); "
+              "SIGINT and SIGTERM always write one.");
   prm.leave();
 }
 
@@ -464,6 +467,8 @@ void parse_output(ParameterFile& prm, Scene& scene)
   if (scene.output.base_name.empty() || scene.output.base_name.find('/') != std::string::npos)
     throw prm.error("Base name", "must be a plain file name", "a non-empty name without '/'");
   scene.output.write_vtu = prm.get_bool("Write VTU");
+  scene.output.checkpoint_interval =
+      static_cast<unsigned long>(prm.get_integer("Checkpoint interval"));
   prm.leave();
 }
 

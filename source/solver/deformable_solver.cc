@@ -1,4 +1,5 @@
 #include <talus/base/exceptions.h>
+#include <talus/io/checkpoint.h>
 #include <talus/solver/deformable_solver.h>
 #include <talus/zone/zone_models.h>
 
@@ -525,6 +526,50 @@ ImplicitElasticProblem DeformableSolver::implicit_problem() const
   }
   p.fixed = held_;
   return p;
+}
+
+void DeformableSolver::save_state(CheckpointWriter& out) const
+{
+  out.tag("zones");
+  for (const auto* vec :
+       {&petsc_->position, &petsc_->velocity, &petsc_->force, &petsc_->inertial_mass})
+  {
+    LocalArray a(*vec);
+    out.put(std::vector<double>(a.data(), a.data() + 3 * mesh_.n_gridpoints()));
+  }
+  out.put(stress_);
+  out.put(state_);
+  out.put(held_);
+  out.put(held_velocity_);
+  out.put(last_force_);
+  damper_.save_state(out);
+  out.put(dt_);
+  out.put(time_);
+  out.put(ratio_);
+  out.put(step_);
+}
+
+void DeformableSolver::load_state(CheckpointReader& in)
+{
+  in.tag("zones");
+  const std::size_t ng = mesh_.n_gridpoints(), nz = mesh_.n_zones();
+  std::vector<double> values;
+  for (auto* vec : {&petsc_->position, &petsc_->velocity, &petsc_->force, &petsc_->inertial_mass})
+  {
+    in.get(values, 3 * ng, "gridpoint values");
+    LocalArray a(*vec);
+    std::copy(values.begin(), values.end(), a.data());
+  }
+  in.get(stress_, 6 * nz, "zone stresses");
+  in.get(state_, nz, "zone plastic states");
+  in.get(held_, ng, "gridpoint conditions");
+  in.get(held_velocity_, 3 * ng, "gridpoint velocities held");
+  in.get(last_force_, last_force_.size(), "gridpoint forces of the last step");
+  damper_.load_state(in);
+  in.get(dt_);
+  in.get(time_);
+  in.get(ratio_);
+  in.get(step_);
 }
 
 } // namespace talus

@@ -8,6 +8,9 @@
 namespace talus
 {
 
+class CheckpointReader;
+class CheckpointWriter;
+
 /// Neighbour search by cell space: the model's bounding box divided into
 /// rectangular cells of about one block each; each block is entered in the
 /// cells its envelope (axis-aligned box, enlarged by a margin) covers, and
@@ -31,6 +34,10 @@ public:
   const Box& bounds() const { return bounds_; }
   unsigned int n_cells() const { return n_[0] * n_[1] * n_[2]; }
   unsigned int regrowths() const { return regrowths_; }
+
+  /// Checkpoints: the bounds (grown during a run) and the grid on them.
+  void save_state(CheckpointWriter& out) const;
+  void load_state(CheckpointReader& in);
 
 private:
   void cell_range(const Box& b, int lo[3], int hi[3]) const;

@@ -11,6 +11,9 @@
 namespace talus
 {
 
+class CheckpointReader;
+class CheckpointWriter;
+
 struct ContactSettings
 {
   double tolerance = 0.01;         ///< CTOL, m: contacts exist while the gap is at most this
@@ -99,6 +102,12 @@ public:
   /// barycentric weights; a rigid side has -1 (its motion is the block's).
   std::vector<int> sc_node;
   std::vector<double> sc_weight;
+
+  /// Checkpoints (source/io/checkpoint.cc): every contact and sub-contact
+  /// with its state, and the slot bookkeeping, so that slots are reused in
+  /// the same order after a restart.
+  void save_state(CheckpointWriter& out) const;
+  void load_state(CheckpointReader& in, unsigned int n_blocks);
 
 private:
   void remove(unsigned int c);

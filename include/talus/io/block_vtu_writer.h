@@ -9,6 +9,9 @@
 namespace talus
 {
 
+class CheckpointReader;
+class CheckpointWriter;
+
 /// A quantity to show in ParaView: `components` values per item (block,
 /// gridpoint or zone).
 struct BlockField
@@ -33,6 +36,10 @@ public:
   /// Records `vtu_file` (relative to the PVD's folder) at `time` (s) and
   /// rewrites the PVD file.
   void add(double time, const std::string& vtu_file);
+
+  /// Checkpoints: the entries so far (loading rewrites the PVD file).
+  void save_state(CheckpointWriter& out) const;
+  void load_state(CheckpointReader& in);
 
 private:
   std::string path_;

@@ -7,6 +7,9 @@
 namespace talus
 {
 
+class CheckpointReader;
+class CheckpointWriter;
+
 /// A history: one CSV row per recorded step, one column per quantity, the
 /// names (with units) in the header row. Rows are flushed every
 /// `flush_every` records so that a long run can be watched while it goes.
@@ -20,6 +23,11 @@ public:
   void record(const std::vector<double>& values);
 
   unsigned int n_rows() const { return rows_; }
+
+  /// Checkpoints: the file's text so far; loading rewrites the file with it
+  /// (no row after the checkpoint's step, none twice) and appends from there.
+  void save_state(CheckpointWriter& out);
+  void load_state(CheckpointReader& in);
 
 private:
   std::string path_;

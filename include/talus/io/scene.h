@@ -52,6 +52,7 @@ struct OutputSettings
   std::string directory = "output"; ///< created if missing
   std::string base_name = "talus";  ///< prefix of every file written
   bool write_vtu = true;
+  unsigned long checkpoint_interval = 0; ///< steps between checkpoints (0: only on a signal)
 };
 
 /// Everything a parameter file describes, as plain values; built by

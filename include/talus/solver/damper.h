@@ -6,6 +6,9 @@
 namespace talus
 {
 
+class CheckpointReader;
+class CheckpointWriter;
+
 /// Damping of static runs (dynamic runs are undamped).
 enum class Damping
 {
@@ -79,6 +82,11 @@ public:
   }
 
   static constexpr unsigned int servo_period = 10; ///< steps between adjust() calls
+
+  /// Checkpoints: the servo's coefficient and the powers summed since its
+  /// last adjustment.
+  void save_state(CheckpointWriter& out) const;
+  void load_state(CheckpointReader& in);
 
 private:
   static double sign(double x) { return (x > 0.0) - (x < 0.0); }

@@ -15,6 +15,9 @@
 namespace talus
 {
 
+class CheckpointReader;
+class CheckpointWriter;
+
 /// Velocity held on some components of the gridpoints in a region (fixed
 /// when it is zero): velocity + velocity_gradient x, with x the
 /// gridpoint's initial position (a linear field, for patch tests and
@@ -126,6 +129,12 @@ public:
   /// Reaction: the sum of the internal forces on the gridpoints of a region
   /// whose motion is held (N); equal and opposite to what the support takes.
   Vec3 support_force(const Box& region) const;
+
+  /// Checkpoints: gridpoint positions, velocities, forces and inertial
+  /// masses (density-scaled), zone stresses and plastic states, damping,
+  /// time and step.
+  void save_state(CheckpointWriter& out) const;
+  void load_state(CheckpointReader& in);
 
 private:
   struct PetscState;

@@ -15,6 +15,8 @@
 namespace talus
 {
 
+class CheckpointReader;
+class CheckpointWriter;
 class DeformableSolver;
 
 /// Loads on the blocks of one group: a force at each block's centroid that
@@ -90,7 +92,13 @@ public:
   /// Runs to the step limit or (statics) the target ratio. `output` is
   /// called with (step, time) whenever output is due.
   template <typename Output, typename History>
-  SolverReport run(Output&& output, History&& history);
+  SolverReport run(Output&& output, History&& history)
+  {
+    return run(output, history, [](unsigned long) {});
+  }
+  /// The same, calling `after_step(step)` after every step (checkpoints).
+  template <typename Output, typename History, typename AfterStep>
+  SolverReport run(Output&& output, History&& history, AfterStep&& after_step);
 
   /// One cycle.
   void step();
@@ -128,6 +136,12 @@ public:
   double dt() const { return dt_; }
   SolverReport report() const;
 
+  /// Checkpoints (source/io/checkpoint.cc): the state of the cycle, its
+  /// contacts and the model's geometry. A solver that has loaded one
+  /// continues the run it came from.
+  void save_state(CheckpointWriter& out) const;
+  void load_state(CheckpointReader& in);
+
 private:
   void detect_contacts(bool everything);
   void contact_forces();
@@ -154,15 +168,21 @@ private:
   double dt_ = 0.0, time_ = 0.0, ratio_ = 1.0;
   double gravity_work_ = 0.0, friction_work_ = 0.0, damping_work_ = 0.0;
   unsigned long step_ = 0;
+  unsigned long last_output_ = 0; ///< step of the last output in run()
+  bool resumed_ = false;          ///< state loaded from a checkpoint
   mutable SolverReport timing_;
 };
 
-template <typename Output, typename History>
-SolverReport RigidSolver::run(Output&& output, History&& history)
+template <typename Output, typename History, typename AfterStep>
+SolverReport RigidSolver::run(Output&& output, History&& history, AfterStep&& after_step)
 {
-  output(step_, time_);
-  history(step_, time_);
-  unsigned long last_output = step_;
+  // A continued run has its first output and history row already.
+  if (!resumed_)
+  {
+    output(step_, time_);
+    history(step_, time_);
+    last_output_ = step_;
+  }
   while (step_ < s_.steps)
   {
     step();
@@ -171,12 +191,13 @@ SolverReport RigidSolver::run(Output&& output, History&& history)
     if (s_.output_interval > 0 && step_ % s_.output_interval == 0)
     {
       output(step_, time_);
-      last_output = step_;
+      last_output_ = step_;
     }
     if (!s_.dynamic && s_.target_ratio > 0.0 && unbalanced_ratio() < s_.target_ratio && step_ > 10)
       break;
+    after_step(step_);
   }
-  if (last_output != step_)
+  if (last_output_ != step_)
   {
     history(step_, time_);
     output(step_, time_);

@@ -1,0 +1,223 @@
+#pragma once
+
+// Checkpoints: the whole state of a run in one binary file, so that a run
+// stopped by a signal (or by the machine) can be continued with
+// `talus --restart FILE` and give the same histories, bit for bit, as a run
+// that was never stopped.
+//
+// File layout (little-endian, as written by the machine that ran):
+//   8 bytes  magic "TALUSCKP"
+//   u32      format version (checkpoint_format_version)
+//   u64      payload size in bytes
+//   u64      FNV-1a hash of the payload (truncation and corruption)
+//   payload  tagged sections, see Checkpoint::write
+// Classes whose private state is saved have save_state/load_state hooks,
+// defined in source/io/checkpoint.cc (DeformableSolver's in its own file,
+// which alone knows its PETSc vectors).
+
+#include <algorithm>
+#include <cstdint>
+#include <cstring>
+#include <stdexcept>
+#include <string>
+#include <type_traits>
+#include <vector>
+
+namespace talus
+{
+
+class BlockModel;
+class DeformableSolver;
+class HistoryFile;
+class PvdSeries;
+class RigidSolver;
+struct Scene;
+
+constexpr std::uint32_t checkpoint_format_version = 1;
+
+/// FNV-1a, 64 bits: a fingerprint, not a cryptographic hash.
+std::uint64_t fnv1a(const void* data, std::size_t size,
+                    std::uint64_t seed = 14695981039346656037ull);
+
+/// Serialises values into a byte buffer: plain values as their bytes,
+/// vectors and strings with their length first.
+class CheckpointWriter
+{
+public:
+  /// Starts a section: its tag is checked on reading, so that a file whose
+  /// layout differs is refused instead of misread.
+  void tag(const char* name) { put(std::string(name)); }
+
+  template <typename T>
+  void put(const T& value)
+  {
+    static_assert(std::is_trivially_copyable<T>::value, "plain values only");
+    append(&value, sizeof(T));
+  }
+  void put(const std::string& s)
+  {
+    put(static_cast<std::uint64_t>(s.size()));
+    append(s.data(), s.size());
+  }
+  /// Vectors of plain values, or of fixed-size Eigen objects (their
+  /// coefficients, contiguous).
+  template <typename T>
+  void put(const std::vector<T>& v)
+  {
+    put(static_cast<std::uint64_t>(v.size()));
+    append(v.data(), v.size() * sizeof(T));
+  }
+
+  const std::string& bytes() const { return bytes_; }
+
+private:
+  void append(const void* data, std::size_t size)
+  {
+    bytes_.append(static_cast<const char*>(data), size);
+  }
+  std::string bytes_;
+};
+
+/// Reads what CheckpointWriter wrote, throwing InputError naming the file
+/// when the data ends early or does not fit the model.
+class CheckpointReader
+{
+public:
+  CheckpointReader(std::string bytes, std::string file)
+      : bytes_(std::move(bytes)), file_(std::move(file))
+  {
+  }
+
+  void tag(const char* name);
+
+  template <typename T>
+  void get(T& value)
+  {
+    static_assert(std::is_trivially_copyable<T>::value, "plain values only");
+    take(&value, sizeof(T));
+  }
+  void get(std::string& s);
+  /// A vector; with `expected` (not npos), its length must be that (the
+  /// number of blocks, gridpoints, ... of the model rebuilt from the scene).
+  template <typename T>
+  void get(std::vector<T>& v, std::size_t expected = npos, const char* what = "")
+  {
+    std::uint64_t n = 0;
+    get(n);
+    if (expected != npos && n != expected)
+      mismatch(what, n, expected);
+    if (n > (bytes_.size() - at_) / std::max<std::size_t>(1, sizeof(T)))
+      truncated();
+    v.resize(n);
+    take(v.data(), n * sizeof(T));
+  }
+
+  /// Throws the "does not match the scene" error.
+  [[noreturn]] void mismatch(const char* what, std::uint64_t found, std::uint64_t expected) const;
+  [[noreturn]] void truncated() const;
+  const std::string& file() const { return file_; }
+  bool at_end() const { return at_ == bytes_.size(); }
+
+  static constexpr std::size_t npos = static_cast<std::size_t>(-1);
+
+private:
+  void take(void* data, std::size_t size)
+  {
+    if (size > bytes_.size() - at_)
+      truncated();
+    if (size > 0)
+      std::memcpy(data, bytes_.data() + at_, size);
+    at_ += size;
+  }
+  std::string bytes_;
+  std::string file_;
+  std::size_t at_ = 0;
+};
+
+/// Thrown after a checkpoint was written because a signal asked the run to
+/// stop; main() turns it into a message and exit code 128 + signal (130 for
+/// SIGINT, 143 for SIGTERM), the shells' convention.
+struct RunInterrupted : std::runtime_error
+{
+  RunInterrupted(int signal, unsigned long step, const std::string& checkpoint);
+  int signal;
+  unsigned long step;
+  std::string checkpoint;
+  int exit_code() const { return 128 + signal; }
+};
+
+/// SIGINT and SIGTERM only set a flag; the cycle looks at it once a step.
+void install_stop_signal_handlers();
+/// The signal received since install_stop_signal_handlers() (0: none).
+int stop_signal_received();
+
+/// The parameter file a checkpoint was written for (absolute path), read
+/// from its header; throws InputError for a file that is not a talus
+/// checkpoint of this format, or is truncated or corrupt.
+std::string checkpoint_parameter_file(const std::string& checkpoint);
+
+/// Fingerprint of the scene's parameters, leaving out the entries that do
+/// not change the state at a step: the step limit (a run may be extended)
+/// and the checkpoint interval.
+std::uint64_t scene_fingerprint(const Scene& scene);
+
+/// Refuses (InputError) to continue from `checkpoint` with a scene whose
+/// parameters differ from the ones it was written with. Called before
+/// anything is written, so that a refused restart changes no file.
+void check_checkpoint_scene(const std::string& checkpoint, const Scene& scene);
+
+/// The checkpoints of one run: what to save (the solvers, the model, the
+/// histories, the VTU series and the counters of the output loop), when
+/// (every `interval` steps, and on SIGINT/SIGTERM), and restoring it all.
+/// Register everything, then call restore() (restarts) before the first
+/// step and after_step() after every step.
+class Checkpoint
+{
+public:
+  /// `model` must still be in its initial state: its geometry (and that of
+  /// the zones) is fingerprinted so that a restart rebuilds the same model.
+  /// With `restart_from`, checks at once that that checkpoint belongs to
+  /// this scene and model (before any output file is opened, so that a
+  /// refused restart leaves the old run's files as they were).
+  Checkpoint(const Scene& scene, const BlockModel& model, RigidSolver* rigid,
+             DeformableSolver* zones, const std::string& restart_from = "");
+
+  void add(HistoryFile& history) { histories_.push_back(&history); }
+  void add(PvdSeries& series) { series_.push_back(&series); }
+  /// A counter of the output loop (frame numbers, step of the last output).
+  void add(unsigned int& counter) { counters_.push_back(&counter); }
+  void add(unsigned long& counter) { long_counters_.push_back(&counter); }
+
+  /// Where checkpoints go: `<Output directory>/<Base name>_checkpoint.bin`.
+  const std::string& path() const { return path_; }
+
+  /// Writes a checkpoint when one is due at `step` (the interval, or a stop
+  /// signal); after a signal, throws RunInterrupted once it is written.
+  /// Also the test hook: TALUS_TEST_SIGNAL_AT_STEP=k raises SIGTERM at step k.
+  void after_step(unsigned long step);
+
+  /// Writes a checkpoint of the state at `step` now (atomically).
+  void write(unsigned long step) const;
+
+  /// Restores everything registered from `file`; returns its step.
+  unsigned long restore(const std::string& file);
+
+private:
+  /// Reads the scene and geometry fingerprints that follow the parameter
+  /// file's name and refuses a checkpoint of another scene; returns its step.
+  unsigned long check_fingerprints(CheckpointReader& in, const std::string& file) const;
+
+  const Scene& scene_;
+  RigidSolver* rigid_;
+  DeformableSolver* zones_;
+  std::uint64_t scene_hash_, geometry_hash_;
+  unsigned long interval_;
+  long signal_test_step_ = -1;
+  std::string path_;
+  std::vector<HistoryFile*> histories_;
+  std::vector<PvdSeries*> series_;
+  std::vector<unsigned int*> counters_;
+  std::vector<unsigned long*> long_counters_;
+};
+
+} // namespace talus

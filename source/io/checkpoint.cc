@@ -1,0 +1,593 @@
+#include <talus/base/exceptions.h>
+#include <talus/contact/cell_space.h>
+#include <talus/contact/contact_set.h>
+#include <talus/io/block_vtu_writer.h>
+#include <talus/io/checkpoint.h>
+#include <talus/io/file_output.h>
+#include <talus/io/history_file.h>
+#include <talus/io/scene.h>
+#include <talus/model/block_model.h>
+#include <talus/solver/damper.h>
+#include <talus/solver/deformable_solver.h>
+#include <talus/solver/rigid_solver.h>
+
+#include <csignal>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <iterator>
+#include <sstream>
+
+namespace talus
+{
+
+namespace
+{
+
+constexpr char magic[8] = {'T', 'A', 'L', 'U', 'S', 'C', 'K', 'P'};
+constexpr std::size_t header_size = 8 + 4 + 8 + 8;
+
+volatile std::sig_atomic_t stop_signal = 0;
+
+extern "C" void on_stop_signal(int signal)
+{
+  stop_signal = signal; // nothing else is safe in a handler
+}
+
+const char* signal_name(int signal)
+{
+  return signal == SIGINT ? "SIGINT" : signal == SIGTERM ? "SIGTERM" : "a signal";
+}
+
+template <typename T>
+void put_header_value(std::string& s, const T& v)
+{
+  s.append(reinterpret_cast<const char*>(&v), sizeof(T));
+}
+
+/// The payload of a checkpoint file, its header checked.
+CheckpointReader read_checkpoint(const std::string& file)
+{
+  std::ifstream in(file, std::ios::binary);
+  if (!in)
+    throw InputError(file + ": cannot read the checkpoint (no such file, or not readable)");
+  const std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  const auto refuse = [&](const std::string& why)
+  { return InputError(file + ": " + why + "; allowed: a checkpoint written by talus"); };
+  if (bytes.size() < sizeof magic || std::memcmp(bytes.data(), magic, sizeof magic) != 0)
+    throw refuse("not a talus checkpoint (it does not start with TALUSCKP)");
+  if (bytes.size() < header_size)
+    throw refuse("the checkpoint is truncated (" + std::to_string(bytes.size()) +
+                 " bytes, shorter than its header)");
+  std::uint32_t version = 0;
+  std::uint64_t size = 0, hash = 0;
+  std::memcpy(&version, bytes.data() + 8, 4);
+  std::memcpy(&size, bytes.data() + 12, 8);
+  std::memcpy(&hash, bytes.data() + 20, 8);
+  if (version != checkpoint_format_version)
+    throw refuse("checkpoint format version " + std::to_string(version) +
+                 "; this talus reads version " + std::to_string(checkpoint_format_version));
+  if (bytes.size() - header_size != size)
+    throw refuse(bytes.size() - header_size < size
+                     ? "the checkpoint is truncated (" + std::to_string(bytes.size()) + " of " +
+                           std::to_string(header_size + size) + " bytes)"
+                     : "the checkpoint has " + std::to_string(bytes.size() - header_size - size) +
+                           " bytes after its end");
+  if (fnv1a(bytes.data() + header_size, size) != hash)
+    throw refuse("the checkpoint is corrupt (its checksum does not match its content)");
+  CheckpointReader reader(bytes.substr(header_size), file);
+  reader.tag("talus checkpoint");
+  return reader;
+}
+
+/// Fingerprint of the model's initial geometry and of the zones' gridpoints.
+std::uint64_t geometry_fingerprint(const BlockModel& model, const DeformableSolver* zones)
+{
+  std::uint64_t h = fnv1a(model.vertex.data(), model.vertex.size() * sizeof(Vec3));
+  h = fnv1a(model.face_vertex.data(), model.face_vertex.size() * sizeof(unsigned int), h);
+  if (zones != nullptr)
+  {
+    const std::vector<double>& x = zones->mesh().position;
+    h = fnv1a(x.data(), x.size() * sizeof(double), h);
+  }
+  return h;
+}
+
+} // namespace
+
+std::uint64_t fnv1a(const void* data, std::size_t size, std::uint64_t seed)
+{
+  std::uint64_t h = seed;
+  const unsigned char* p = static_cast<const unsigned char*>(data);
+  for (std::size_t i = 0; i < size; ++i)
+    h = (h ^ p[i]) * 1099511628211ull;
+  return h;
+}
+
+// ---- Reader ----------------------------------------------------------------
+
+void CheckpointReader::tag(const char* name)
+{
+  std::string found;
+  get(found);
+  if (found != name)
+    throw InputError(file_ + ": the checkpoint's section '" + found.substr(0, 40) +
+                     "' is not the expected '" + name +
+                     "' (written by another talus?); allowed: a checkpoint of this talus");
+}
+
+void CheckpointReader::get(std::string& s)
+{
+  std::uint64_t n = 0;
+  get(n);
+  if (n > bytes_.size() - at_)
+    truncated();
+  s.assign(bytes_.data() + at_, n);
+  at_ += n;
+}
+
+void CheckpointReader::mismatch(const char* what, std::uint64_t found, std::uint64_t expected) const
+{
+  throw InputError(file_ + ": the checkpoint does not fit the model built from the parameter " +
+                   "file (" + std::to_string(found) + " " + what + " in the checkpoint, " +
+                   std::to_string(expected) +
+                   " in the model); allowed: a checkpoint of this scene");
+}
+
+void CheckpointReader::truncated() const
+{
+  throw InputError(file_ + ": the checkpoint ends in the middle of its data; allowed: a "
+                           "complete checkpoint written by talus");
+}
+
+// ---- Signals -----------------------------------------------------------------
+
+RunInterrupted::RunInterrupted(int signal, unsigned long step, const std::string& checkpoint)
+    : std::runtime_error(std::string("stopped by ") + signal_name(signal) + " at step " +
+                         std::to_string(step) + "; checkpoint written to " + checkpoint +
+                         "; continue with: talus --restart " + checkpoint),
+      signal(signal), step(step), checkpoint(checkpoint)
+{
+}
+
+void install_stop_signal_handlers()
+{
+  struct sigaction action = {};
+  action.sa_handler = on_stop_signal;
+  sigemptyset(&action.sa_mask);
+  sigaction(SIGINT, &action, nullptr);
+  sigaction(SIGTERM, &action, nullptr);
+}
+
+int stop_signal_received()
+{
+  return stop_signal;
+}
+
+// ---- Scene -------------------------------------------------------------------
+
+std::string checkpoint_parameter_file(const std::string& checkpoint)
+{
+  CheckpointReader in = read_checkpoint(checkpoint);
+  std::string file;
+  in.get(file);
+  return file;
+}
+
+std::uint64_t scene_fingerprint(const Scene& scene)
+{
+  std::istringstream lines(scene.used_parameters);
+  std::uint64_t h = fnv1a(nullptr, 0);
+  for (std::string line; std::getline(lines, line);)
+  {
+    const std::size_t first = line.find_first_not_of(" \t");
+    if (first == std::string::npos || line[first] == '#')
+      continue;
+    line.erase(0, first);
+    if (line.rfind("set Steps ", 0) == 0 || line.rfind("set Checkpoint interval ", 0) == 0)
+      continue;
+    h = fnv1a(line.data(), line.size(), h);
+  }
+  return h;
+}
+
+void check_checkpoint_scene(const std::string& checkpoint, const Scene& scene)
+{
+  CheckpointReader in = read_checkpoint(checkpoint);
+  std::string parameter_file;
+  in.get(parameter_file);
+  std::uint64_t scene_hash = 0;
+  in.get(scene_hash);
+  if (scene_hash != scene_fingerprint(scene))
+    throw InputError(checkpoint + ": the parameter file " + scene.parameter_file +
+                     " has changed since the checkpoint was written (only 'Steps' and "
+                     "'Checkpoint interval' may change); allowed: the parameter file the "
+                     "checkpoint was written with");
+}
+
+// ---- Checkpoint ----------------------------------------------------------------
+
+Checkpoint::Checkpoint(const Scene& scene, const BlockModel& model, RigidSolver* rigid,
+                       DeformableSolver* zones, const std::string& restart_from)
+    : scene_(scene), rigid_(rigid), zones_(zones), scene_hash_(scene_fingerprint(scene)),
+      geometry_hash_(geometry_fingerprint(model, zones)),
+      interval_(scene.output.checkpoint_interval),
+      path_(scene.output.directory + "/" + scene.output.base_name + "_checkpoint.bin")
+{
+  if (const char* at = std::getenv("TALUS_TEST_SIGNAL_AT_STEP"))
+    signal_test_step_ = std::atol(at);
+  if (!restart_from.empty())
+  {
+    CheckpointReader in = read_checkpoint(restart_from);
+    check_fingerprints(in, restart_from);
+  }
+  install_stop_signal_handlers();
+}
+
+unsigned long Checkpoint::check_fingerprints(CheckpointReader& in, const std::string& file) const
+{
+  std::string parameter_file;
+  in.get(parameter_file);
+  std::uint64_t scene_hash = 0, geometry_hash = 0, step = 0;
+  in.get(scene_hash);
+  in.get(geometry_hash);
+  in.get(step);
+  if (scene_hash != scene_hash_)
+    check_checkpoint_scene(file, scene_); // throws its message
+  if (geometry_hash != geometry_hash_)
+    throw InputError(file + ": the model built from " + scene_.parameter_file +
+                     " differs from the one the checkpoint was written for (a changed mesh "
+                     "file, or another version of talus); allowed: the same model");
+  return step;
+}
+
+void Checkpoint::after_step(unsigned long step)
+{
+  if (signal_test_step_ >= 0 && step == static_cast<unsigned long>(signal_test_step_))
+    std::raise(SIGTERM);
+  const int signal = stop_signal_received();
+  if (signal != 0 || (interval_ > 0 && step % interval_ == 0))
+    write(step);
+  if (signal != 0)
+    throw RunInterrupted(signal, step, path_);
+}
+
+void Checkpoint::write(unsigned long step) const
+{
+  CheckpointWriter out;
+  out.tag("talus checkpoint");
+  out.put(std::filesystem::absolute(scene_.parameter_file).lexically_normal().string());
+  out.put(scene_hash_);
+  out.put(geometry_hash_);
+  out.put(static_cast<std::uint64_t>(step));
+  out.tag("counters");
+  out.put(static_cast<std::uint64_t>(counters_.size()));
+  for (const unsigned int* c : counters_)
+    out.put(*c);
+  out.put(static_cast<std::uint64_t>(long_counters_.size()));
+  for (const unsigned long* c : long_counters_)
+    out.put(*c);
+  out.put(static_cast<unsigned char>(rigid_ != nullptr));
+  if (rigid_ != nullptr)
+    rigid_->save_state(out);
+  out.put(static_cast<unsigned char>(zones_ != nullptr));
+  if (zones_ != nullptr)
+    zones_->save_state(out);
+  out.tag("output");
+  out.put(static_cast<std::uint64_t>(histories_.size()));
+  for (HistoryFile* h : histories_)
+    h->save_state(out);
+  out.put(static_cast<std::uint64_t>(series_.size()));
+  for (const PvdSeries* s : series_)
+    s->save_state(out);
+  out.tag("end");
+
+  const std::string& payload = out.bytes();
+  std::string header(magic, sizeof magic);
+  put_header_value(header, checkpoint_format_version);
+  put_header_value(header, static_cast<std::uint64_t>(payload.size()));
+  put_header_value(header, fnv1a(payload.data(), payload.size()));
+  write_file_atomically(path_,
+                        [&](std::ostream& file)
+                        {
+                          file.write(header.data(), header.size());
+                          file.write(payload.data(), payload.size());
+                        });
+}
+
+unsigned long Checkpoint::restore(const std::string& file)
+{
+  CheckpointReader in = read_checkpoint(file);
+  const unsigned long step = check_fingerprints(in, file);
+  std::uint64_t n = 0;
+  in.tag("counters");
+  in.get(n);
+  if (n != counters_.size())
+    in.mismatch("output counters", n, counters_.size());
+  for (unsigned int* c : counters_)
+    in.get(*c);
+  in.get(n);
+  if (n != long_counters_.size())
+    in.mismatch("output step counters", n, long_counters_.size());
+  for (unsigned long* c : long_counters_)
+    in.get(*c);
+  unsigned char present = 0;
+  in.get(present);
+  if (present != (rigid_ != nullptr))
+    in.mismatch("block solvers", present, rigid_ != nullptr);
+  if (rigid_ != nullptr)
+    rigid_->load_state(in);
+  in.get(present);
+  if (present != (zones_ != nullptr))
+    in.mismatch("zone solvers", present, zones_ != nullptr);
+  if (zones_ != nullptr)
+    zones_->load_state(in);
+  in.tag("output");
+  in.get(n);
+  if (n != histories_.size())
+    in.mismatch("history files", n, histories_.size());
+  for (HistoryFile* h : histories_)
+    h->load_state(in);
+  in.get(n);
+  if (n != series_.size())
+    in.mismatch("VTU series", n, series_.size());
+  for (PvdSeries* s : series_)
+    s->load_state(in);
+  in.tag("end");
+  return step;
+}
+
+// ---- Hooks of the classes whose state is saved ---------------------------------
+
+void Damper::save_state(CheckpointWriter& out) const
+{
+  out.put(c_);
+  out.put(damping_power_);
+  out.put(force_power_);
+}
+
+void Damper::load_state(CheckpointReader& in)
+{
+  in.get(c_);
+  in.get(damping_power_);
+  in.get(force_power_);
+}
+
+void CellSpace::save_state(CheckpointWriter& out) const
+{
+  out.put(std::vector<Vec3>{bounds_.lo, bounds_.hi});
+  out.put(regrowths_);
+}
+
+void CellSpace::load_state(CheckpointReader& in)
+{
+  std::vector<Vec3> corners;
+  in.get(corners, 2, "cell space corners");
+  in.get(regrowths_);
+  bounds_ = Box{corners[0],
+                corners[1]}; // the caller defines the grid on them, as map() does after growing
+}
+
+void ContactSet::save_state(CheckpointWriter& out) const
+{
+  out.tag("contacts");
+  out.put(block_a);
+  out.put(block_b);
+  out.put(plane);
+  out.put(gap);
+  out.put(type);
+  out.put(alive);
+  out.put(path_at_update);
+  out.put(sc_contact);
+  out.put(sc_position);
+  out.put(sc_area);
+  out.put(sc_un);
+  out.put(sc_fn);
+  out.put(sc_fs);
+  out.put(sc_dilation);
+  out.put(sc_us);
+  out.put(sc_state);
+  out.put(sc_fresh);
+  out.put(sc_node);
+  out.put(sc_weight);
+  out.put(free_);
+  out.put(n_alive_);
+  std::vector<std::uint64_t> pairs;
+  std::vector<unsigned int> slots;
+  for (const auto& [key, c] : slot_of_pair_)
+  {
+    pairs.push_back(key);
+    slots.push_back(c);
+  }
+  out.put(pairs);
+  out.put(slots);
+}
+
+void ContactSet::load_state(CheckpointReader& in, unsigned int n_blocks)
+{
+  in.tag("contacts");
+  in.get(block_a);
+  const std::size_t ns = block_a.size();
+  in.get(block_b, ns, "contact slots");
+  in.get(plane, ns, "contact slots");
+  in.get(gap, ns, "contact slots");
+  in.get(type, ns, "contact slots");
+  in.get(alive, ns, "contact slots");
+  in.get(path_at_update, ns, "contact slots");
+  in.get(sc_contact);
+  const std::size_t n = sc_contact.size();
+  in.get(sc_position, n, "sub-contacts");
+  in.get(sc_area, n, "sub-contacts");
+  in.get(sc_un, n, "sub-contacts");
+  in.get(sc_fn, n, "sub-contacts");
+  in.get(sc_fs, 3 * n, "sub-contact shear force components");
+  in.get(sc_dilation);
+  if (!sc_dilation.empty() && sc_dilation.size() != n)
+    in.mismatch("sub-contact offsets", sc_dilation.size(), n);
+  in.get(sc_us, 3 * n, "sub-contact shear displacement components");
+  in.get(sc_state, n, "sub-contacts");
+  in.get(sc_fresh, n, "sub-contacts");
+  in.get(sc_node);
+  in.get(sc_weight, sc_node.size(), "sub-contact gridpoint weights");
+  if (!sc_node.empty() && sc_node.size() != 6 * n)
+    in.mismatch("sub-contact gridpoints", sc_node.size(), 6 * n);
+  in.get(free_);
+  in.get(n_alive_);
+  std::vector<std::uint64_t> pairs;
+  std::vector<unsigned int> slots;
+  in.get(pairs, n_alive_, "live contacts");
+  in.get(slots, n_alive_, "live contacts");
+  for (std::size_t c = 0; c < ns; ++c)
+    if (block_a[c] >= n_blocks || block_b[c] >= n_blocks)
+      in.mismatch("blocks (a contact's block number)", std::max(block_a[c], block_b[c]) + 1ull,
+                  n_blocks);
+  for (unsigned int i : sc_contact)
+    if (i >= ns)
+      in.mismatch("contact slots (a sub-contact's)", i + 1ull, ns);
+  for (unsigned int c : free_)
+    if (c >= ns)
+      in.mismatch("contact slots (a free one)", c + 1ull, ns);
+  slot_of_pair_.clear();
+  for (std::size_t k = 0; k < slots.size(); ++k)
+  {
+    if (slots[k] >= ns)
+      in.mismatch("contact slots (a live one)", slots[k] + 1ull, ns);
+    slot_of_pair_[pairs[k]] = slots[k];
+  }
+}
+
+void RigidSolver::save_state(CheckpointWriter& out) const
+{
+  out.tag("model");
+  out.put(m_.vertex);
+  out.put(m_.face_normal);
+  out.put(m_.centroid);
+  out.tag("blocks");
+  out.put(velocity);
+  out.put(spin);
+  out.put(force);
+  out.put(moment);
+  out.put(displacement);
+  out.put(rotation);
+  out.put(inertial_mass);
+  out.put(applied_force);
+  out.put(applied_force_rate);
+  out.put(prescribed);
+  out.put(moved);
+  out.put(path);
+  out.put(axes);
+  out.put(last_force_);
+  out.put(last_moment_);
+  damper_.save_state(out);
+  cells_.save_state(out);
+  contacts_.save_state(out);
+  out.put(dt_);
+  out.put(time_);
+  out.put(ratio_);
+  out.put(gravity_work_);
+  out.put(friction_work_);
+  out.put(damping_work_);
+  out.put(step_);
+  out.put(last_output_);
+}
+
+void RigidSolver::load_state(CheckpointReader& in)
+{
+  const std::size_t nb = m_.n_blocks();
+  in.tag("model");
+  in.get(m_.vertex, m_.vertex.size(), "block vertices");
+  in.get(m_.face_normal, m_.face_normal.size(), "block faces");
+  in.get(m_.centroid, nb, "blocks");
+  in.tag("blocks");
+  in.get(velocity, nb, "blocks");
+  in.get(spin, nb, "blocks");
+  in.get(force, nb, "blocks");
+  in.get(moment, nb, "blocks");
+  in.get(displacement, nb, "blocks");
+  in.get(rotation, nb, "blocks");
+  in.get(inertial_mass, nb, "blocks");
+  in.get(applied_force, nb, "blocks");
+  in.get(applied_force_rate, nb, "blocks");
+  in.get(prescribed, nb, "blocks");
+  in.get(moved, nb, "blocks");
+  in.get(path, nb, "blocks");
+  in.get(axes, axes.size(), "blocks with principal axes");
+  in.get(last_force_, nb, "blocks");
+  in.get(last_moment_, nb, "blocks");
+  damper_.load_state(in);
+  cells_.load_state(in);
+  cells_.define(cells_.bounds(), static_cast<unsigned int>(nb));
+  contacts_.load_state(in, static_cast<unsigned int>(nb));
+  in.get(dt_);
+  in.get(time_);
+  in.get(ratio_);
+  in.get(gravity_work_);
+  in.get(friction_work_);
+  in.get(damping_work_);
+  in.get(step_);
+  in.get(last_output_);
+  resumed_ = true;
+}
+
+void HistoryFile::save_state(CheckpointWriter& out)
+{
+  out_.flush();
+  std::ifstream in(path_, std::ios::binary);
+  const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  if (!in.good() && !in.eof())
+    throw InputError(path_ + ": cannot read the history back for the checkpoint");
+  out.tag("history");
+  out.put(text);
+  out.put(rows_);
+}
+
+void HistoryFile::load_state(CheckpointReader& in)
+{
+  std::string text;
+  in.tag("history");
+  in.get(text);
+  in.get(rows_);
+  // The rows up to the checkpoint's step, exactly as they were; the rows of
+  // the run beyond it (if it went on) are dropped and written again.
+  out_.close();
+  write_file_atomically(path_, [&](std::ostream& file) { file << text; });
+  out_.open(path_, std::ios::app);
+  if (!out_)
+    throw InputError(path_ + ": cannot reopen the history file to continue it");
+}
+
+void PvdSeries::save_state(CheckpointWriter& out) const
+{
+  out.tag("series");
+  out.put(static_cast<std::uint64_t>(entries_.size()));
+  for (const auto& [time, file] : entries_)
+  {
+    out.put(time);
+    out.put(file);
+  }
+}
+
+void PvdSeries::load_state(CheckpointReader& in)
+{
+  in.tag("series");
+  std::uint64_t n = 0;
+  in.get(n);
+  entries_.clear();
+  for (std::uint64_t k = 0; k < n; ++k)
+  {
+    double time = 0.0;
+    std::string file;
+    in.get(time);
+    in.get(file);
+    entries_.emplace_back(time, file);
+  }
+  if (!entries_.empty())
+  {
+    // Rewrites the PVD file with the entries so far.
+    const auto last = entries_.back();
+    entries_.pop_back();
+    add(last.first, last.second);
+  }
+}
+
+} // namespace talus

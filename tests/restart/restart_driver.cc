@@ -1,0 +1,339 @@
+// Checks that a stopped and restarted talus run ends exactly where an
+// uninterrupted one does. For a scene FILE.prm it
+//   1. runs talus on a copy of it to the end and keeps every file written;
+//   2. runs it again and stops it with SIGTERM: at a given step (directive
+//      "# restart test: signal at step K", through TALUS_TEST_SIGNAL_AT_STEP)
+//      or from here while it runs ("# restart test: kill while running");
+//      talus must write a checkpoint and exit with 143 (128 + SIGTERM);
+//   3. continues it with `talus --restart CHECKPOINT` and compares every
+//      file of the first run (histories, PVD and VTU files) byte for byte;
+//   4. (with "# restart test: extend to N steps") continues the first run
+//      from the checkpoint its 'Checkpoint interval' left at its last step,
+//      with 'Steps' raised to N: the history must go on from the first
+//      run's rows;
+//   5. (with "# restart test: bad checkpoints") feeds talus a truncated
+//      checkpoint, a file that is not one, and the checkpoint of a changed
+//      parameter file: each must be refused with exit code 1.
+// Prints what it compared; the folder it ran in is removed from messages.
+
+#include <algorithm>
+#include <chrono>
+#include <csignal>
+#include <cstdio>
+#include <cstdlib>
+#include <fcntl.h>
+#include <filesystem>
+#include <fstream>
+#include <iterator>
+#include <map>
+#include <sstream>
+#include <string>
+#include <sys/wait.h>
+#include <thread>
+#include <unistd.h>
+#include <vector>
+
+namespace fs = std::filesystem;
+
+namespace
+{
+
+std::string read_file(const fs::path& file)
+{
+  std::ifstream in(file, std::ios::binary);
+  return std::string((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+}
+
+void write_file(const fs::path& file, const std::string& text)
+{
+  std::ofstream(file, std::ios::binary) << text;
+}
+
+struct Result
+{
+  int exit_code = -1; ///< -1: killed by a signal
+  int signal = 0;
+  std::string messages; ///< standard error
+};
+
+/// Runs talus with `args`; `env` (NAME=value) is added to its environment;
+/// `while_running` is called with the child's pid after it started.
+template <typename WhileRunning>
+Result run_talus(const std::vector<std::string>& args, const std::string& env,
+                 WhileRunning&& while_running)
+{
+  int pipe_fd[2];
+  if (pipe(pipe_fd) != 0)
+    std::exit(2);
+  const pid_t child = fork();
+  if (child == 0)
+  {
+    const int null = ::open("/dev/null", O_WRONLY);
+    dup2(null, 1);
+    dup2(pipe_fd[1], 2);
+    close(pipe_fd[0]);
+    if (!env.empty())
+      putenv(const_cast<char*>(env.c_str()));
+    std::vector<char*> argv{const_cast<char*>("talus")};
+    for (const std::string& a : args)
+      argv.push_back(const_cast<char*>(a.c_str()));
+    argv.push_back(nullptr);
+    execv(TALUS_EXECUTABLE, argv.data());
+    _exit(127);
+  }
+  close(pipe_fd[1]);
+  while_running(child);
+  Result r;
+  char buffer[4096];
+  for (ssize_t n; (n = read(pipe_fd[0], buffer, sizeof buffer)) > 0;)
+    r.messages.append(buffer, static_cast<std::size_t>(n));
+  close(pipe_fd[0]);
+  int status = 0;
+  waitpid(child, &status, 0);
+  if (WIFSIGNALED(status))
+    r.signal = WTERMSIG(status);
+  else
+    r.exit_code = WEXITSTATUS(status);
+  return r;
+}
+
+Result run_talus(const std::vector<std::string>& args, const std::string& env = "")
+{
+  return run_talus(args, env, [](pid_t) {});
+}
+
+std::string here; ///< the folder the test runs in, with a trailing '/'
+
+void show(const char* what, const Result& r)
+{
+  std::string text = r.messages;
+  for (std::size_t at; (at = text.find(here)) != std::string::npos;)
+    text.erase(at, here.size());
+  std::printf("%s: ", what);
+  if (r.exit_code < 0)
+    std::printf("killed by signal %d\n", r.signal);
+  else
+    std::printf("exit code %d\n", r.exit_code);
+  std::istringstream lines(text);
+  for (std::string line; std::getline(lines, line);)
+    std::printf("  | %s\n", line.c_str());
+}
+
+/// The value of "set NAME = value" in the parameter text (first match).
+std::string entry(const std::string& prm, const std::string& name)
+{
+  std::istringstream lines(prm);
+  for (std::string line; std::getline(lines, line);)
+  {
+    const std::size_t at = line.find("set " + name);
+    const std::size_t eq = line.find('=');
+    if (at != std::string::npos && eq != std::string::npos)
+    {
+      std::string value = line.substr(eq + 1, line.find('#', eq) - eq - 1);
+      value.erase(0, value.find_first_not_of(' '));
+      value.erase(value.find_last_not_of(' ') + 1);
+      return value;
+    }
+  }
+  return "";
+}
+
+/// Every file of a folder, by name (checkpoints and temporary files left out).
+std::map<std::string, std::string> folder_files(const fs::path& folder)
+{
+  std::map<std::string, std::string> files;
+  for (const fs::directory_entry& e : fs::directory_iterator(folder))
+  {
+    const std::string name = e.path().filename().string();
+    if (name.find("_checkpoint.bin") == std::string::npos && name.find(".tmp") == std::string::npos)
+      files[name] = read_file(e.path());
+  }
+  return files;
+}
+
+} // namespace
+
+int main(int argc, char** argv)
+{
+  if (argc != 2)
+    return 2;
+  here = fs::current_path().string() + "/";
+  const std::string source = read_file(argv[1]);
+  const fs::path scene = fs::absolute("scene.prm");
+  write_file(scene, source);
+  const fs::path output = fs::absolute(entry(source, "Directory"));
+  const std::string base = entry(source, "Base name");
+  const fs::path checkpoint = output / (base + "_checkpoint.bin");
+  bool good = true;
+  const auto check = [&](bool ok, const std::string& what)
+  {
+    std::printf("%s: %s\n", what.c_str(), ok ? "yes" : "NO");
+    good &= ok;
+  };
+
+  // 1. The uninterrupted run.
+  fs::remove_all(output);
+  const Result whole = run_talus({scene.string()});
+  show("uninterrupted run", whole);
+  const std::map<std::string, std::string> reference = folder_files(output);
+  check(whole.exit_code == 0, "uninterrupted run finished");
+  const fs::path last_checkpoint = fs::absolute("last_checkpoint.bin");
+  if (std::stoul("0" + entry(source, "Checkpoint interval")) > 0)
+  {
+    check(fs::exists(checkpoint), "checkpoint left by 'Checkpoint interval'");
+    fs::copy_file(checkpoint, last_checkpoint, fs::copy_options::overwrite_existing);
+  }
+
+  // 2. The same run, stopped.
+  fs::remove_all(output);
+  Result stopped;
+  const std::string signal_step = [&]
+  {
+    const std::size_t at = source.find("# restart test: signal at step ");
+    return at == std::string::npos ? std::string()
+                                   : source.substr(at + 31, source.find('\n', at) - at - 31);
+  }();
+  if (!signal_step.empty())
+    stopped = run_talus({scene.string()}, "TALUS_TEST_SIGNAL_AT_STEP=" + signal_step);
+  else
+  {
+    // Stopped from outside once its cycle has written its first history rows.
+    const fs::path history = output / (base + "_history.csv");
+    stopped = run_talus({scene.string()}, "",
+                        [&](pid_t child)
+                        {
+                          for (int k = 0; k < 6000; ++k)
+                          {
+                            std::error_code ec;
+                            if (fs::exists(history, ec) && fs::file_size(history, ec) > 1000)
+                              break;
+                            if (waitpid(child, nullptr, WNOHANG) != 0)
+                              return;
+                            std::this_thread::sleep_for(std::chrono::milliseconds(10));
+                          }
+                          kill(child, SIGTERM);
+                        });
+    // The step it stopped at depends on timing: keep the message's shape only.
+    const std::size_t at = stopped.messages.find(" at step ");
+    if (at != std::string::npos)
+      stopped.messages.replace(at + 9, stopped.messages.find(';', at) - at - 9, "N");
+  }
+  show("run stopped by SIGTERM", stopped);
+  check(stopped.exit_code == 143, "stopped with exit code 143 (128 + SIGTERM)");
+  check(fs::exists(checkpoint), "checkpoint written");
+  bool no_temporary = true;
+  for (const fs::directory_entry& e : fs::directory_iterator(output))
+    no_temporary &= e.path().filename().string().find(".tmp") == std::string::npos;
+  check(no_temporary, "no temporary file left behind");
+  const std::string saved = read_file(checkpoint);
+  std::printf("checkpoint starts with TALUSCKP: %s\n",
+              saved.compare(0, 8, "TALUSCKP") == 0 ? "yes" : "NO");
+
+  // 3. Continued.
+  const Result continued = run_talus({"--restart", checkpoint.string()});
+  show("restarted run", continued);
+  check(continued.exit_code == 0, "restarted run finished");
+  const std::map<std::string, std::string> after = folder_files(output);
+  for (const auto& [name, text] : reference)
+  {
+    const auto found = after.find(name);
+    if (found == after.end())
+    {
+      std::printf("%s: MISSING after the restart\n", name.c_str());
+      good = false;
+      continue;
+    }
+    std::size_t differ = 0;
+    while (differ < text.size() && differ < found->second.size() &&
+           text[differ] == found->second[differ])
+      ++differ;
+    const bool same = text == found->second;
+    // Lines, not bytes, so that the output does not depend on number widths.
+    const auto lines = std::count(text.begin(), text.end(), '\n');
+    if (name.find(".vtu") == std::string::npos)
+      std::printf("%s (%ld lines): %s\n", name.c_str(), static_cast<long>(lines),
+                  same ? "identical to the uninterrupted run"
+                       : ("DIFFERS from byte " + std::to_string(differ)).c_str());
+    good &= same;
+  }
+  unsigned int vtu = 0, vtu_same = 0;
+  for (const auto& [name, text] : reference)
+    if (name.find(".vtu") != std::string::npos)
+    {
+      ++vtu;
+      const auto found = after.find(name);
+      vtu_same += found != after.end() && found->second == text;
+    }
+  std::printf("VTU files identical to the uninterrupted run: %u of %u\n", vtu_same, vtu);
+  good &= vtu_same == vtu;
+  check(after.size() == reference.size(), "no file more or less than the uninterrupted run");
+
+  // 4. A finished run extended.
+  const std::size_t extend = source.find("# restart test: extend to ");
+  if (extend != std::string::npos)
+  {
+    const std::string steps =
+        source.substr(extend + 26, source.find(' ', extend + 26) - extend - 26);
+    std::string longer = source;
+    const std::size_t at = longer.find("set Steps");
+    const std::size_t value = longer.find('=', at) + 1;
+    longer.replace(value, longer.find_first_of("#\n", value) - value, " " + steps);
+    write_file(scene, longer);
+    const Result r = run_talus({"--restart", last_checkpoint.string()});
+    show(("the finished run continued to " + steps + " steps").c_str(), r);
+    check(r.exit_code == 0, "continued run finished");
+    // The first run's history, less its last row (written again at the end
+    // of every run), then the rows of the steps beyond.
+    const std::string name = base + "_history.csv";
+    std::string first = reference.at(name);
+    first.erase(first.rfind('\n', first.size() - 2) + 1);
+    const std::string extended = read_file(output / name);
+    const auto rows = [](const std::string& t) { return std::count(t.begin(), t.end(), '\n'); };
+    std::printf("history rows: %ld before, %ld after\n", static_cast<long>(rows(first)),
+                static_cast<long>(rows(extended)));
+    check(extended.compare(0, first.size(), first) == 0 && rows(extended) > rows(first),
+          "the history goes on from the first run's rows");
+    write_file(scene, source);
+  }
+
+  // 5. Checkpoints that must be refused.
+  if (source.find("# restart test: bad checkpoints") != std::string::npos)
+  {
+    const std::map<std::string, std::string> before = folder_files(output);
+    const fs::path truncated = fs::absolute("truncated_checkpoint.bin");
+    write_file(truncated, saved.substr(0, saved.size() / 2));
+    Result r1 = run_talus({"--restart", truncated.string()});
+    // Its size depends on the length of the folder's name, kept in it.
+    for (std::size_t at = r1.messages.find("truncated (");
+         at < r1.messages.size() && r1.messages[at] != ')'; ++at)
+      if (r1.messages[at] >= '0' && r1.messages[at] <= '9')
+        r1.messages[at] = '#';
+    show("restart from a truncated checkpoint", r1);
+    check(r1.exit_code == 1, "refused with exit code 1");
+
+    const Result r2 = run_talus({"--restart", scene.string()});
+    show("restart from a file that is not a checkpoint", r2);
+    check(r2.exit_code == 1, "refused with exit code 1");
+
+    std::string flipped = saved;
+    flipped[flipped.size() / 2] ^= 0x10;
+    const fs::path corrupt = fs::absolute("corrupt_checkpoint.bin");
+    write_file(corrupt, flipped);
+    const Result r3 = run_talus({"--restart", corrupt.string()});
+    show("restart from a checkpoint with one bit changed", r3);
+    check(r3.exit_code == 1, "refused with exit code 1");
+
+    std::string changed = source;
+    const std::size_t at = changed.find("set Friction angle");
+    const std::size_t value = changed.find('=', at) + 1;
+    changed.replace(value, changed.find_first_of("#\n", value) - value, " 31 ");
+    write_file(scene, changed);
+    const Result r4 = run_talus({"--restart", checkpoint.string()});
+    show("restart after the friction angle changed", r4);
+    check(r4.exit_code == 1, "refused with exit code 1");
+    write_file(scene, source);
+    check(folder_files(output) == before, "refused restarts left every output file as it was");
+  }
+  std::printf("%s\n", good ? "OK" : "FAILED");
+  return good ? 0 : 1;
+}
