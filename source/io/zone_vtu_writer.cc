@@ -169,7 +169,9 @@ void ZoneWriter::write(const std::string& path, const std::vector<double>& posit
   out.add_data_vector(values, names, dealii::DataOut<3>::type_dof_data, interpretation);
   out.add_data_vector(block_id, "block_id", dealii::DataOut<3>::type_cell_data);
   out.build_patches(data_->mapping);
-  out.set_flags(dealii::DataOutBase::VtkFlags(time));
+  dealii::DataOutBase::VtkFlags flags(time);
+  flags.print_date_and_time = false; // same state, same file (restart tests compare bytes)
+  out.set_flags(flags);
   write_file_atomically(path, [&](std::ostream& stream) { out.write_vtu(stream); });
 }
 
