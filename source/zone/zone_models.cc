@@ -1,6 +1,5 @@
+#include <talus/zone/symmetric_eigen3.h>
 #include <talus/zone/zone_models.h>
-
-#include <Eigen/Eigenvalues>
 
 #include <algorithm>
 #include <cmath>
@@ -290,31 +289,6 @@ void elastic_update(const ZoneMaterial& material, StressBatch& batch)
     add_elastic_increment(lame_lambda, two_g, de + 6 * i, s + 6 * i);
 }
 
-/// Principal values of a symmetric stress (xx, yy, zz, xy, yz, zx) in
-/// ascending order, in closed form (the trigonometric solution of the
-/// characteristic cubic): about a third of the cost of an iterative solve.
-static void principal_values(const double* s, double* out)
-{
-  const double q = (s[0] + s[1] + s[2]) / 3.0;
-  const double off = s[3] * s[3] + s[4] * s[4] + s[5] * s[5];
-  const double a = s[0] - q, b = s[1] - q, c = s[2] - q;
-  const double p2 = a * a + b * b + c * c + 2.0 * off;
-  if (p2 <= 0.0)
-  {
-    out[0] = out[1] = out[2] = q;
-    return;
-  }
-  const double p = std::sqrt(p2 / 6.0);
-  // det((S - q I) / p) / 2, the cosine of three times the angle.
-  const double det =
-      a * (b * c - s[4] * s[4]) - s[3] * (s[3] * c - s[4] * s[5]) + s[5] * (s[3] * s[4] - b * s[5]);
-  const double r = std::clamp(det / (2.0 * p * p * p), -1.0, 1.0);
-  const double angle = std::acos(r) / 3.0;
-  out[2] = q + 2.0 * p * std::cos(angle);
-  out[0] = q + 2.0 * p * std::cos(angle + 2.0 * M_PI / 3.0);
-  out[1] = 3.0 * q - out[0] - out[2];
-}
-
 void mohr_coulomb_update(const ZoneMaterial& material, StressBatch& batch)
 {
   const double deg = M_PI / 180.0;
@@ -348,88 +322,111 @@ void mohr_coulomb_update(const ZoneMaterial& material, StressBatch& batch)
   const double sigma_p = tension_limit * n_phi - shear_offset;
   const double alpha_p = std::sqrt(1.0 + n_phi * n_phi) + n_phi;
 
-  Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eigen;
+  // W zones at once, one per lane: elastic trial, the cheap bound and, for
+  // groups that may yield, the principal stresses and directions of every
+  // lane without branches. Only the zones beyond a surface then take the
+  // (scalar) return.
+  constexpr unsigned int W = lane_count;
+  const Lanes lanes_lambda = broadcast(lame_lambda), lanes_two_g = broadcast(two_g);
   const double* de = batch.strain_increment;
-  for (unsigned int i = 0; i < batch.size; ++i)
+  for (unsigned int k0 = 0; k0 < batch.size; k0 += W)
   {
-    double* s = batch.stress + 6 * i;
-    add_elastic_increment(lame_lambda, two_g, de + 6 * i, s);
-    double plastic_volumetric = 0.0;
-    unsigned char flags_now = zone_elastic;
+    const unsigned int count = std::min(W, batch.size - k0);
+    // The group's zones lane by lane (lanes past the end repeat the last
+    // zone and are not written back).
+    alignas(64) double stress[6][W], increment[6][W];
+    for (unsigned int l = 0; l < W; ++l)
+    {
+      const unsigned int i = k0 + std::min(l, count - 1);
+      for (int c = 0; c < 6; ++c)
+      {
+        stress[c][l] = batch.stress[6 * i + c];
+        increment[c][l] = de[6 * i + c];
+      }
+    }
+    Lanes s[6], e[6];
+    for (int c = 0; c < 6; ++c)
+    {
+      s[c] = load_lanes(stress[c]);
+      e[c] = load_lanes(increment[c]);
+    }
+    // Eq. 59, as add_elastic_increment.
+    const Lanes volumetric = lanes_lambda * (e[0] + e[1] + e[2]);
+    for (int c = 0; c < 3; ++c)
+      s[c] += volumetric + lanes_two_g * e[c];
+    for (int c = 3; c < 6; ++c)
+      s[c] += lanes_two_g * e[c];
 
     // Cheap bounds first: every principal stress lies within r of the mean
     // stress, with r = sqrt(2/3) |deviator| (the largest share one of three
-    // numbers summing to zero can take of their squares is 2/3). Zones
+    // numbers summing to zero can take of their squares is 2/3). Groups
     // clearly inside the yield surface skip the eigen solve.
-    const double mean = (s[0] + s[1] + s[2]) / 3.0;
-    const double d0 = s[0] - mean, d1 = s[1] - mean, d2 = s[2] - mean;
-    const double radius =
-        std::sqrt(2.0 / 3.0 *
+    const Lanes mean = (s[0] + s[1] + s[2]) / 3.0;
+    const Lanes d0 = s[0] - mean, d1 = s[1] - mean, d2 = s[2] - mean;
+    const Lanes radius =
+        lane_sqrt(2.0 / 3.0 *
                   (d0 * d0 + d1 * d1 + d2 * d2 + 2.0 * (s[3] * s[3] + s[4] * s[4] + s[5] * s[5])));
-    const double lowest = mean - radius, highest = mean + radius;
-    const bool surely_elastic =
-        lowest - n_phi * highest + shear_offset > 0.0 && highest <= tension_limit;
-    // Next the principal stresses in closed form, without directions: a
-    // zone they show clearly inside the surfaces needs no eigenvectors.
-    // A zone at a surface last step most likely still is: straight to the
-    // full solve, without the screening.
-    const bool was_plastic = batch.state != nullptr && (batch.state[i] & (shear_now | tension_now));
-    bool maybe_plastic = !surely_elastic;
-    if (maybe_plastic && !was_plastic)
+    const Lanes lowest = mean - radius, highest = mean + radius;
+    const LaneMask maybe_plastic =
+        (lowest - n_phi * highest + shear_offset <= 0.0) | (highest > tension_limit);
+
+    LaneMask beyond = LaneMask{};
+    Lanes trial[3], axes[3][3], tolerance, shear_excess, tension_excess;
+    if (any(maybe_plastic))
     {
-      double closed[3];
-      principal_values(s, closed);
-      const double scale =
-          std::abs(closed[0]) + std::abs(closed[2]) + shear_offset + std::abs(tension_limit);
-      maybe_plastic = surfaces.value(shear_13, closed) > -1e-9 * scale ||
-                      surfaces.value(tension_3, closed) > -1e-9 * scale;
-    }
-    if (maybe_plastic)
-    {
-      Eigen::Matrix3d tensor;
-      tensor << s[0], s[3], s[5], s[3], s[1], s[4], s[5], s[4], s[2];
-      eigen.compute(tensor);
-      const Eigen::Vector3d& values = eigen.eigenvalues(); // ascending: s1 <= s2 <= s3
-      const double trial[3] = {values[0], values[1], values[2]};
-      const double tolerance = 1e-12 * (std::abs(trial[0]) + std::abs(trial[2]) + shear_offset +
-                                        std::abs(tension_limit));
+      // Principal stresses and directions in closed form, all lanes.
+      symmetric_eigen3(s, trial, axes); // ascending: s1 <= s2 <= s3
+      tolerance = 1e-12 * (lane_abs(trial[0]) + lane_abs(trial[2]) + shear_offset +
+                           std::abs(tension_limit));
       // With ordered values no other plane is violated unless one of these is.
-      const double shear_excess = surfaces.value(shear_13, trial);
-      const double tension_excess = surfaces.value(tension_3, trial);
-      if (shear_excess > tolerance || tension_excess > tolerance)
+      shear_excess = n_phi * trial[2] - trial[0] - shear_offset; // surfaces.value(shear_13)
+      tension_excess = trial[2] - tension_limit;                 // surfaces.value(tension_3)
+      beyond = maybe_plastic & ((shear_excess > tolerance) | (tension_excess > tolerance));
+    }
+    for (int c = 0; c < 6; ++c)
+      store_lanes(stress[c], s[c]);
+
+    for (unsigned int l = 0; l < count; ++l)
+    {
+      const unsigned int i = k0 + l;
+      double plastic_volumetric = 0.0;
+      unsigned char flags_now = zone_elastic;
+      if (beyond[l])
       {
-        const double h = trial[2] - tension_limit + alpha_p * (trial[0] - sigma_p);
-        const int first = tension_excess > tolerance && (h > 0.0 || shear_excess <= tolerance)
-                              ? tension_3
-                              : shear_13;
+        const double principal[3] = {trial[0][l], trial[1][l], trial[2][l]};
+        const double h = principal[2] - tension_limit + alpha_p * (principal[0] - sigma_p);
+        const bool tension_side = tension_excess[l] > tolerance[l];
+        const int first =
+            tension_side && (h > 0.0 || shear_excess[l] <= tolerance[l]) ? tension_3 : shear_13;
         double corrected[3];
-        return_to_surfaces(surfaces, trial, tolerance, first, corrected, plastic_volumetric,
+        return_to_surfaces(surfaces, principal, tolerance[l], first, corrected, plastic_volumetric,
                            flags_now);
         // Back to the zone axes: the principal directions do not change, so
         // only the change of each principal stress is rotated (this keeps
         // the full accuracy of the trial stress in the parts not corrected).
-        const Eigen::Matrix3d& axes = eigen.eigenvectors();
         for (int p = 0; p < 3; ++p)
         {
-          const double change = corrected[p] - trial[p];
-          const double x = axes(0, p), y = axes(1, p), z = axes(2, p);
-          s[0] += change * x * x;
-          s[1] += change * y * y;
-          s[2] += change * z * z;
-          s[3] += change * x * y;
-          s[4] += change * y * z;
-          s[5] += change * z * x;
+          const double change = corrected[p] - principal[p];
+          const double x = axes[p][0][l], y = axes[p][1][l], z = axes[p][2][l];
+          stress[0][l] += change * x * x;
+          stress[1][l] += change * y * y;
+          stress[2][l] += change * z * z;
+          stress[3][l] += change * x * y;
+          stress[4][l] += change * y * z;
+          stress[5][l] += change * z * x;
         }
       }
-    }
-    if (batch.plastic_volumetric)
-      batch.plastic_volumetric[i] = plastic_volumetric;
-    if (batch.state)
-    {
-      const unsigned char past = (batch.state[i] & (shear_past | tension_past)) |
-                                 (flags_now & shear_now ? shear_past : 0) |
-                                 (flags_now & tension_now ? tension_past : 0);
-      batch.state[i] = past | flags_now;
+      for (int c = 0; c < 6; ++c)
+        batch.stress[6 * i + c] = stress[c][l];
+      if (batch.plastic_volumetric)
+        batch.plastic_volumetric[i] = plastic_volumetric;
+      if (batch.state)
+      {
+        const unsigned char past = (batch.state[i] & (shear_past | tension_past)) |
+                                   (flags_now & shear_now ? shear_past : 0) |
+                                   (flags_now & tension_now ? tension_past : 0);
+        batch.state[i] = past | flags_now;
+      }
     }
   }
 }
