@@ -130,9 +130,12 @@ def run_talus(talus, prm_text, work, name, timeout):
     if p.returncode != 0:
         message = (p.stderr.strip().splitlines() or ["exit code %d" % p.returncode])[-1]
         message = message.replace(prm, name + ".prm")
-        if "'Element'" in message and ("no such entry" in message or "unknown" in message):
+        # 'Element' unknown (neither formulation merged) or refused with
+        # "... is not built yet" (the other one merged).
+        if "'Element'" in message and ("no such entry" in message or "not built" in message):
             run.status = "not built"
-            message = "this talus has no entry 'Element' (the formulation is not merged yet)"
+            why = re.search(r"'Deformable': ([^;]*)", message)
+            message = "not in this talus: " + (why.group(1) if why else message)
         else:
             run.status = "n/a"
         run.message = message
