@@ -13,6 +13,13 @@ packages=(
   ccache           # makes rebuilds in CI and at home cheap
 )
 
+# Optional: the accuracy study's plots (contrib/verification/run_study.py
+# draws error against run time with matplotlib; the study itself needs only
+# python3). Not installed by default nor in CI.
+if [ "${1:-}" = "--study" ]; then
+  packages+=(python3 python3-matplotlib)
+fi
+
 missing=()
 for p in "${packages[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")

@@ -218,9 +218,18 @@ void solve_deformable(talus::Scene& scene, talus::BlockModel& model, const std::
   std::vector<std::string> columns{"step", "time (s)", "unbalanced ratio",
                                    "largest displacement (m)"};
   points.add_columns(columns);
+  for (const ReactionReport& r : scene.reactions)
+    for (const char* q : {" reaction x (N)", " reaction y (N)", " reaction z (N)"})
+      columns.push_back(r.name + q);
   Checkpoint checkpoint(scene, model, nullptr, &solver, restart_from);
   HistoryFile history(prefix + "_history.csv", columns);
   ProgressLine progress(scene.solver.steps);
+  // A static run may stop at the target ratio only once every boundary
+  // velocity with an end time has ended (s).
+  double moving_until = 0.0;
+  for (const GridpointCondition& c : scene.gridpoint_conditions)
+    if (std::isfinite(c.velocity_until))
+      moving_until = std::max(moving_until, c.velocity_until);
   unsigned int frame = 0;
   unsigned long last_output = 0;
   checkpoint.add(history);
@@ -253,6 +262,11 @@ void solve_deformable(talus::Scene& scene, talus::BlockModel& model, const std::
       std::vector<double> row{double(n), solver.time(), solver.unbalanced_ratio(),
                               largest_displacement()};
       points.add_values(row, solver);
+      for (const ReactionReport& r : scene.reactions)
+      {
+        const Vec3 f = -solver.support_force(r.region);
+        row.insert(row.end(), {f[0], f[1], f[2]});
+      }
       history.record(row);
     }
     progress.update(n, solver.time());
@@ -262,7 +276,7 @@ void solve_deformable(talus::Scene& scene, talus::BlockModel& model, const std::
       last_output = n;
     }
     if (!scene.solver.dynamic && scene.solver.target_ratio > 0.0 && n >= 20 &&
-        solver.unbalanced_ratio() < scene.solver.target_ratio)
+        solver.time() >= moving_until && solver.unbalanced_ratio() < scene.solver.target_ratio)
       break;
     checkpoint.after_step(n);
   }
@@ -277,6 +291,12 @@ void solve_deformable(talus::Scene& scene, talus::BlockModel& model, const std::
     yielding += st != 0;
   if (scene.deformable.material.model == ZoneModel::mohr_coulomb)
     std::printf("Plastic zones: %u of %u\n", yielding, mesh.n_zones());
+  for (const ReactionReport& r : scene.reactions)
+  {
+    const Vec3 f = -solver.support_force(r.region);
+    std::printf("Reaction of %s on the body: %.9g, %.9g, %.9g N\n", r.name.c_str(), f[0], f[1],
+                f[2]);
+  }
   if (scene.deformable.implicit_check)
     implicit_check(scene, solver);
   std::printf("Output:       %s_zones.pvd, %s_history.csv\n", prefix.c_str(), prefix.c_str());

@@ -407,6 +407,12 @@ void declare_boundary(ParameterFile& prm, const std::string& section)
   prm.declare("Held components", "x, y, z", P::MultipleSelection("x|y|z"),
               "some of x, y, z separated by commas", "Components held (fixed or velocity).");
   prm.declare("Velocity", "0, 0, 0", vec3_pattern(), vec3_allowed, "Held velocity (m/s).");
+  prm.declare("Velocity until", "0", P::Double(0.0), "a number >= 0 (s; 0: for the whole run)",
+              "velocity: the gridpoints move at 'Velocity' until this model time, then stay "
+              "held where they are (s).");
+  prm.declare("Report reaction", "false", P::Bool(), "true or false",
+              "fixed or velocity: the force the held gridpoints take goes to the history and the "
+              "summary (N).");
   prm.declare("Pressure", "0", P::Double(), "a number (Pa; positive pushes into the block)",
               "Normal pressure on the boundary faces whose centroid lies in the region (Pa).");
   prm.leave();
@@ -437,9 +443,18 @@ void parse_boundary(ParameterFile& prm, const std::string& section, Scene& scene
     for (int d = 0; d < 3; ++d)
       c.held[d] = held.find("xyz"[d]) != std::string::npos;
     if (condition == "velocity")
+    {
       c.velocity = prm.get_vec3("Velocity");
+      if (prm.get_double("Velocity until") > 0.0)
+        c.velocity_until = prm.get_double("Velocity until");
+    }
     scene.gridpoint_conditions.push_back(c);
+    if (prm.get_bool("Report reaction"))
+      scene.reactions.push_back(ReactionReport{section, region});
   }
+  if (prm.get_bool("Report reaction") && condition != "fixed" && condition != "velocity")
+    throw prm.error("Report reaction", "needs held gridpoints",
+                    "true only with 'Condition' fixed or velocity");
   prm.leave();
 }
 

@@ -11,6 +11,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <limits>
 
 namespace talus
 {
@@ -152,6 +153,7 @@ DeformableSolver::DeformableSolver(const TetMesh& mesh, std::vector<ZoneMaterial
   // Boundary conditions, by the gridpoints' initial positions.
   held_.assign(ng, 0);
   held_velocity_.assign(3 * ng, 0.0);
+  held_until_.assign(3 * ng, std::numeric_limits<double>::infinity());
   for (unsigned int g = 0; g < ng; ++g)
     for (const GridpointCondition& c : conditions_)
       if (inside(c.region, &mesh_.position[3 * g]))
@@ -165,6 +167,7 @@ DeformableSolver::DeformableSolver(const TetMesh& mesh, std::vector<ZoneMaterial
                 c.velocity[d] + c.velocity_gradient.row(d).dot(Vec3(mesh_.position[3 * g],
                                                                     mesh_.position[3 * g + 1],
                                                                     mesh_.position[3 * g + 2]));
+            held_until_[3 * g + d] = c.velocity_until;
           }
         }
   {
@@ -362,7 +365,9 @@ void DeformableSolver::move_gridpoints()
       const unsigned int i = 3 * g + d;
       if (held_[g] & (1u << d))
       {
-        v[i] = held_velocity_[i];
+        // This motion spans [time_, time_ + dt_]: moved while it ends by
+        // the condition's end time (half a step of slack for round-off).
+        v[i] = time_ + 0.5 * dt_ < held_until_[i] ? held_velocity_[i] : 0.0;
         continue;
       }
       f2 += f[i] * f[i];
@@ -479,7 +484,10 @@ void DeformableSolver::hold_gridpoint(unsigned int g, const Vec3& v)
   // gridpoint here is still needed for the strain of the coming step.
   held_[g] = 7u;
   for (int d = 0; d < 3; ++d)
+  {
     held_velocity_[3 * g + d] = v[d];
+    held_until_[3 * g + d] = std::numeric_limits<double>::infinity();
+  }
 }
 
 Vec3 DeformableSolver::support_force(const Box& region) const

@@ -47,6 +47,14 @@ struct DeformableSpec
   bool implicit_check = false;         ///< compare a static run with the implicit elastic solve
 };
 
+/// A 'Boundary N' of held gridpoints whose reaction (the force the
+/// support takes, N) goes to the history and the summary.
+struct ReactionReport
+{
+  std::string name; ///< "Boundary N"
+  Box region;
+};
+
 struct OutputSettings
 {
   std::string directory = "output"; ///< created if missing
@@ -76,6 +84,7 @@ struct Scene
   DeformableSpec deformable;
   std::vector<GridpointCondition> gridpoint_conditions; ///< from 'Boundary N' (velocity)
   std::vector<FacePressure> face_pressures;             ///< from 'Boundary N' (pressure)
+  std::vector<ReactionReport> reactions;                ///< 'Boundary N' with 'Report reaction'
   bool has_initial_stress = false;
   InitialStress initial_stress;
   /// The parameters as used, every entry with its value (defaults included).

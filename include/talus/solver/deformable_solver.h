@@ -9,6 +9,7 @@
 #include <talus/zone/tet_mesh.h>
 #include <talus/zone/zone_material.h>
 
+#include <limits>
 #include <memory>
 #include <vector>
 
@@ -29,6 +30,10 @@ struct GridpointCondition
   Vec3 force = Vec3::Zero();                                   ///< N on each gridpoint (a load)
   Vec3 velocity = Vec3::Zero();                                ///< m/s
   Eigen::Matrix3d velocity_gradient = Eigen::Matrix3d::Zero(); ///< 1/s
+  /// The velocity acts for model times below this (s), then the held
+  /// components stay where they are (a displacement applied, then held
+  /// while the run settles to a static answer).
+  double velocity_until = std::numeric_limits<double>::infinity();
 };
 
 /// A load on the boundary faces whose centroid lies in a region: a normal
@@ -161,6 +166,7 @@ private:
   std::vector<double> nodal_stiffness_; ///< N/m, per gridpoint (eqs. 85-86)
   std::vector<unsigned char> held_;     ///< per gridpoint, bit d: component d held
   std::vector<double> held_velocity_;   ///< 3 per gridpoint, m/s
+  std::vector<double> held_until_;      ///< 3 per gridpoint: model time the velocity stops, s
   std::vector<unsigned int> pressed_faces_;
   std::vector<double> face_pressure_; ///< Pa, per pressed face
   std::vector<Vec3> face_traction_;   ///< Pa, per pressed face
