@@ -4,6 +4,7 @@
 #include <talus/zone/tet_mesh.h>
 
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace talus
@@ -13,9 +14,23 @@ namespace talus
 /// shape as a block field (name, components per item, values).
 using ZoneField = BlockField;
 
-/// Writes the zones of deformable blocks as VTK tetrahedra (type 10) at the
-/// gridpoints' current positions (3 per gridpoint, m), with block id as
-/// cell data plus `point_fields` and `cell_fields`.
+/// The cells shown in ParaView, in zone order: a zone as its tetrahedron,
+/// a hexahedral zone of mixed discretization (ten tetrahedra) as one
+/// hexahedron. For each cell: its first zone and its number of zones (1 or
+/// 10).
+std::vector<std::pair<unsigned int, unsigned int>> shown_zone_cells(const TetMesh& mesh);
+
+/// Per shown cell: its stress (6, Pa; a hexahedral zone's is the
+/// volume-weighted mean of its tetrahedra's at the positions `x`) and
+/// plastic state (the union of its tetrahedra's flags).
+void shown_zone_values(const TetMesh& mesh, const std::vector<double>& x,
+                       const std::vector<double>& stress, const std::vector<unsigned char>& state,
+                       std::vector<double>& cell_stress, std::vector<unsigned char>& cell_state);
+
+/// Writes the zones of deformable blocks as VTK tetrahedra (type 10) and
+/// hexahedra (type 12, the hexahedral zones) at the gridpoints' current
+/// positions (3 per gridpoint, m), with block id as cell data plus
+/// `point_fields` and `cell_fields` (per shown cell, shown_zone_cells).
 void write_zones_vtu(const std::string& path, const TetMesh& mesh,
                      const std::vector<double>& positions,
                      const std::vector<ZoneField>& point_fields,
