@@ -1,6 +1,7 @@
 #include <talus/base/exceptions.h>
 #include <talus/zone/block_mesher.h>
 #include <talus/zone/hex_mesher.h>
+#include <talus/zone/hex_mixed.h>
 
 #include <deal.II/grid/grid_generator.h>
 #include <deal.II/grid/grid_in.h>
@@ -212,6 +213,7 @@ MeshReport measure_mesh(const TetMesh& mesh)
   report.gridpoints = mesh.n_gridpoints();
   report.boundary_faces = mesh.n_faces();
   report.hexes = mesh.n_hexes();
+  const std::vector<char> in_hex = zones_in_hexes(mesh);
   report.smallest_height = 1e300;
   std::vector<char> seen_block;
   for (unsigned int b : mesh.zone_block)
@@ -226,7 +228,8 @@ MeshReport measure_mesh(const TetMesh& mesh)
     const double v = signed_volume(P(t[0]), P(t[1]), P(t[2]), P(t[3]));
     if (!(v > 0.0))
       throw InputError("a zone has zero volume (a degenerate block or mesh)");
-    report.zone_volume += v;
+    // The two overlays of a hexahedral zone fill it twice.
+    report.zone_volume += in_hex[&t - mesh.zone_gridpoint.data()] ? 0.5 * v : v;
     double largest_face = 0.0;
     for (int i = 0; i < 4; ++i)
       for (int j = i + 1; j < 4; ++j)

@@ -70,7 +70,7 @@ int main(int argc, char** argv)
   MeshReport report;
   TetMesh mesh = mesh_blocks(blocks, {0}, 0.25, report, ZoneElement::hex_mixed);
   std::printf("mesh: %u hexahedra, %u tetrahedra, %u gridpoints, %u + %u boundary faces, "
-              "tetrahedron volume %.12g m^3 (two overlays of the unit cube)\n",
+              "zone volume %.12g m^3 (each overlay counts half)\n",
               report.hexes, report.zones, report.gridpoints, report.boundary_faces,
               static_cast<unsigned int>(mesh.second_overlay_face_gridpoint.size()),
               report.zone_volume);
