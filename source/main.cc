@@ -60,15 +60,20 @@ void write_zone_frame(const talus::Scene& scene, const talus::TetMesh& mesh,
   char file[64];
   std::snprintf(file, sizeof file, "_zones_%05u.vtu", frame);
   const std::string vtu = scene.output.base_name + file;
+  // One cell per zone; a hexahedral zone shows its averaged stress.
+  const std::vector<double> x = solver.positions();
+  std::vector<double> stress;
+  std::vector<unsigned char> state;
+  shown_zone_values(mesh, x, solver.stress(), solver.plastic_state(), stress, state);
   std::vector<ZoneField> cells{
-      {"stress", 6, solver.stress()}, {"principal_stress", 3, {}}, {"plastic_state", 1, {}}};
-  cells[1].values.resize(3 * mesh.n_zones());
-  for (unsigned int z = 0; z < mesh.n_zones(); ++z)
+      {"stress", 6, stress}, {"principal_stress", 3, {}}, {"plastic_state", 1, {}}};
+  cells[1].values.resize(3 * state.size());
+  for (std::size_t c = 0; c < state.size(); ++c)
   {
-    principal_stresses(&solver.stress()[6 * z], &cells[1].values[3 * z]);
-    cells[2].values.push_back(solver.plastic_state()[z]);
+    principal_stresses(&stress[6 * c], &cells[1].values[3 * c]);
+    cells[2].values.push_back(state[c]);
   }
-  writer.write(scene.output.directory + "/" + vtu, solver.positions(),
+  writer.write(scene.output.directory + "/" + vtu, x,
                {{"displacement", 3, solver.displacements()}, {"velocity", 3, solver.velocities()}},
                cells, solver.time());
   series.add(solver.time(), vtu);
@@ -186,9 +191,8 @@ void solve_deformable(talus::Scene& scene, talus::BlockModel& model, const std::
                      "model is in these groups; allowed: groups that hold blocks");
   MeshReport mesh_report;
   const bool from_file = !scene.deformable.mesh_file.empty();
-  const TetMesh mesh =
-      from_file ? *scene.deformable.mesh
-                : mesh_blocks(model, deformable, scene.deformable.edge_length, mesh_report);
+  const TetMesh mesh = from_file ? *scene.deformable.mesh
+                                 : mesh_deformable_blocks(scene, model, deformable, mesh_report);
   if (from_file)
     mesh_report = measure_mesh(mesh);
   std::printf(
@@ -199,6 +203,10 @@ void solve_deformable(talus::Scene& scene, talus::BlockModel& model, const std::
                       .c_str()
                 : ("edge length " + number(scene.deformable.edge_length) + " m").c_str(),
       mesh_report.largest_edge, mesh_report.smallest_height, mesh_report.zone_volume);
+  if (mesh_report.hexes > 0)
+    std::printf("Hexahedra:    %u (mixed discretization: the tetrahedra are their two overlays of "
+                "five)\n",
+                mesh_report.hexes);
   int argc = 1;
   char name[] = "talus";
   char* args[] = {name, nullptr};
@@ -335,6 +343,10 @@ void solve(talus::Scene& scene, talus::BlockModel& model, talus::PvdSeries& seri
         "Zones:        %u tetrahedra in %u deformable blocks, %u gridpoints (edge length %g m)\n",
         system.mesh_report.zones, system.mesh_report.blocks, system.mesh_report.gridpoints,
         scene.deformable.edge_length);
+  if (zones && system.mesh_report.hexes > 0)
+    std::printf("Hexahedra:    %u (mixed discretization: the tetrahedra are their two overlays of "
+                "five)\n",
+                system.mesh_report.hexes);
   std::printf("Time step:    %.6g s (eq. 87, fraction %g%s)\n", solver.dt(),
               scene.solver.time_step_fraction, zones ? "; eq. 84 for the zones" : "");
   PvdSeries zone_series(prefix + "_zones.pvd");

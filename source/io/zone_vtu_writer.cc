@@ -1,5 +1,7 @@
 #include <talus/io/file_output.h>
 #include <talus/io/zone_vtu_writer.h>
+#include <talus/zone/hex_mixed.h>
+#include <talus/zone/zone_triangulation.h>
 
 #include <deal.II/dofs/dof_handler.h>
 #include <deal.II/fe/fe_simplex_p.h>
@@ -32,7 +34,10 @@ using Interpretation = dealii::DataComponentInterpretation::DataComponentInterpr
 
 /// Components a field takes in the output: a symmetric tensor of 6 is
 /// written as all 9 entries, so that ParaView sees a tensor.
-unsigned int output_components(const ZoneField& f) { return f.components == 6 ? 9 : f.components; }
+unsigned int output_components(const ZoneField& f)
+{
+  return f.components == 6 ? 9 : f.components;
+}
 
 /// Which stored component (of 6: xx yy zz xy yz zx) is tensor entry (i, j),
 /// row-major.
@@ -44,6 +49,9 @@ constexpr unsigned int voigt_of[9] = {0, 3, 5, 3, 1, 4, 5, 4, 2};
 /// writes them all from one vector.
 struct ZoneWriter::Data
 {
+  std::vector<std::array<unsigned int, 4>> cells; ///< the shown tetrahedra
+  std::vector<unsigned int> cell_block;
+  std::unique_ptr<dealii::Triangulation<3>> tria;
   dealii::MappingFE<3> mapping{dealii::FE_SimplexP<3>(1)};
   std::unique_ptr<dealii::FESystem<3>> fe;
   dealii::DoFHandler<3> dofs;
@@ -53,11 +61,49 @@ struct ZoneWriter::Data
   std::vector<std::vector<dealii::types::global_dof_index>> dof_of_point, dof_of_zone;
 };
 
-ZoneWriter::ZoneWriter(const TetMesh& mesh) : mesh_(mesh)
+std::vector<std::array<unsigned int, 4>> shown_tetrahedra(const TetMesh& mesh)
 {
-  if (!mesh.triangulation)
-    throw std::logic_error("ZoneWriter: the mesh has no triangulation");
+  const std::vector<char> in_hex = zones_in_hexes(mesh);
+  std::vector<std::array<unsigned int, 4>> cells;
+  cells.reserve(mesh.n_zones());
+  for (unsigned int z = 0; z < mesh.n_zones(); ++z)
+    if (!in_hex[z])
+      cells.push_back(mesh.zone_gridpoint[z]);
+  // Hexahedra after the plain zones: the first five tetrahedra of each.
+  for (unsigned int h = 0; h < mesh.n_hexes(); ++h)
+    for (unsigned int k = 0; k < TetMesh::tets_per_hex / 2; ++k)
+      cells.push_back(mesh.zone_gridpoint[mesh.hex_first_zone[h] + k]);
+  return cells;
 }
+
+void shown_zone_values(const TetMesh& mesh, const std::vector<double>& x,
+                       const std::vector<double>& stress, const std::vector<unsigned char>& state,
+                       std::vector<double>& cell_stress, std::vector<unsigned char>& cell_state)
+{
+  const std::vector<char> in_hex = zones_in_hexes(mesh);
+  cell_stress.clear();
+  cell_state.clear();
+  for (unsigned int z = 0; z < mesh.n_zones(); ++z)
+    if (!in_hex[z])
+    {
+      cell_stress.insert(cell_stress.end(), &stress[6 * z], &stress[6 * z + 6]);
+      cell_state.push_back(state[z]);
+    }
+  const std::vector<double> hex_stress = hex_zone_stress(mesh, x, stress);
+  for (unsigned int h = 0; h < mesh.n_hexes(); ++h)
+  {
+    unsigned char flags = 0;
+    for (unsigned int k = 0; k < TetMesh::tets_per_hex; ++k)
+      flags |= state[mesh.hex_first_zone[h] + k];
+    for (unsigned int k = 0; k < TetMesh::tets_per_hex / 2; ++k)
+    {
+      cell_stress.insert(cell_stress.end(), &hex_stress[6 * h], &hex_stress[6 * h + 6]);
+      cell_state.push_back(flags);
+    }
+  }
+}
+
+ZoneWriter::ZoneWriter(const TetMesh& mesh) : mesh_(mesh) {}
 
 ZoneWriter::~ZoneWriter() = default;
 
@@ -65,10 +111,18 @@ void ZoneWriter::write(const std::string& path, const std::vector<double>& posit
                        const std::vector<ZoneField>& point_fields,
                        const std::vector<ZoneField>& zone_fields, double time)
 {
-  dealii::Triangulation<3>& tria = *mesh_.triangulation;
   if (!data_)
   {
     data_ = std::make_unique<Data>();
+    data_->cells = shown_tetrahedra(mesh_);
+    const std::vector<char> in_hex = zones_in_hexes(mesh_);
+    for (unsigned int z = 0; z < mesh_.n_zones(); ++z)
+      if (!in_hex[z])
+        data_->cell_block.push_back(mesh_.zone_block[z]);
+    for (unsigned int h = 0; h < mesh_.n_hexes(); ++h)
+      data_->cell_block.insert(data_->cell_block.end(), TetMesh::tets_per_hex / 2,
+                               mesh_.zone_block[mesh_.hex_first_zone[h]]);
+    data_->tria = build_zone_triangulation(mesh_.position, data_->cells, data_->cell_block);
     unsigned int n_point = 0, n_zone = 0;
     for (const ZoneField& f : point_fields)
     {
@@ -87,12 +141,12 @@ void ZoneWriter::write(const std::string& path, const std::vector<double>& posit
       data_->fe = std::make_unique<dealii::FESystem<3>>(dealii::FE_SimplexP<3>(1), n_point);
     else
       data_->fe = std::make_unique<dealii::FESystem<3>>(dealii::FE_SimplexDGP<3>(0), n_zone);
-    data_->dofs.reinit(tria);
+    data_->dofs.reinit(*data_->tria);
     data_->dofs.distribute_dofs(*data_->fe);
-    data_->dof_of_point.assign(
-        n_point, std::vector<dealii::types::global_dof_index>(mesh_.n_gridpoints()));
+    data_->dof_of_point.assign(n_point,
+                               std::vector<dealii::types::global_dof_index>(mesh_.n_gridpoints()));
     data_->dof_of_zone.assign(n_zone,
-                              std::vector<dealii::types::global_dof_index>(mesh_.n_zones()));
+                              std::vector<dealii::types::global_dof_index>(data_->cells.size()));
     std::vector<dealii::types::global_dof_index> local(data_->fe->n_dofs_per_cell());
     for (const auto& cell : data_->dofs.active_cell_iterators())
     {
@@ -122,7 +176,7 @@ void ZoneWriter::write(const std::string& path, const std::vector<double>& posit
 
   // The cells follow the gridpoints: the triangulation's vertices are moved
   // to the current positions for this frame.
-  for (const auto& cell : tria.active_cell_iterators())
+  for (const auto& cell : data_->tria->active_cell_iterators())
     for (unsigned int i = 0; i < 4; ++i)
     {
       const unsigned int g = cell->vertex_index(i);
@@ -151,7 +205,7 @@ void ZoneWriter::write(const std::string& path, const std::vector<double>& posit
     for (unsigned int k = 0; k < n; ++k, ++zc)
     {
       const unsigned int stored = f.components == 6 ? voigt_of[k] : k;
-      for (unsigned int z = 0; z < mesh_.n_zones(); ++z)
+      for (std::size_t z = 0; z < data_->cells.size(); ++z)
         values[data_->dof_of_zone[zc][z]] = f.values[f.components * z + stored];
       names.push_back(f.name);
       interpretation.push_back(
@@ -160,9 +214,9 @@ void ZoneWriter::write(const std::string& path, const std::vector<double>& posit
                    : dealii::DataComponentInterpretation::component_is_part_of_vector);
     }
   }
-  dealii::Vector<double> block_id(mesh_.n_zones());
-  for (unsigned int z = 0; z < mesh_.n_zones(); ++z)
-    block_id[z] = mesh_.zone_block[z];
+  dealii::Vector<double> block_id(data_->cells.size());
+  for (std::size_t z = 0; z < data_->cells.size(); ++z)
+    block_id[z] = data_->cell_block[z];
 
   dealii::DataOut<3> out;
   out.attach_dof_handler(data_->dofs);

@@ -1,8 +1,23 @@
+#include <talus/base/exceptions.h>
 #include <talus/solver/block_system.h>
 #include <talus/zone/zone_surface.h>
 
 namespace talus
 {
+
+TetMesh mesh_deformable_blocks(const Scene& scene, const BlockModel& model,
+                               const std::vector<unsigned int>& which, MeshReport& report)
+{
+  try
+  {
+    return mesh_blocks(model, which, scene.deformable.edge_length, report,
+                       scene.deformable.material.element);
+  }
+  catch (const InputError& e)
+  {
+    throw InputError(scene.parameter_file + ": " + e.what());
+  }
+}
 
 BlockSystem build_block_system(const Scene& scene, BlockModel& model)
 {
@@ -13,7 +28,7 @@ BlockSystem build_block_system(const Scene& scene, BlockModel& model)
         s.deformable_blocks.push_back(b);
   if (!s.deformable_blocks.empty())
   {
-    s.mesh = mesh_blocks(model, s.deformable_blocks, scene.deformable.edge_length, s.mesh_report);
+    s.mesh = mesh_deformable_blocks(scene, model, s.deformable_blocks, s.mesh_report);
     s.vertex_gridpoint = use_zone_surfaces(model, s.mesh);
     s.zones = std::make_unique<DeformableSolver>(
         s.mesh, std::vector<ZoneMaterial>{scene.deformable.material},

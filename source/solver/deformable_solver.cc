@@ -1,6 +1,7 @@
 #include <talus/base/exceptions.h>
 #include <talus/io/checkpoint.h>
 #include <talus/solver/deformable_solver.h>
+#include <talus/zone/hex_mixed.h>
 #include <talus/zone/zone_models.h>
 
 #include <deal.II/lac/petsc_vector.h>
@@ -69,12 +70,38 @@ DeformableSolver::DeformableSolver(const TetMesh& mesh, std::vector<ZoneMaterial
     throw InputError("internal: one material index per zone is needed");
 
   for (const ZoneMaterial& m : materials_)
+  {
     nodal_mixed_ |= m.nodal_mixed;
+    if (m.nodal_mixed && m.element == ZoneElement::hex_mixed)
+      throw InputError("internal: nodal mixed discretization and hex-mixed zones do not combine");
+  }
   // Batches: runs of one material.
   for (unsigned int z = 0; z < nz; ++z)
     if (z == 0 || material_of_zone_[z] != material_of_zone_[z - 1])
       batch_start_.push_back(z);
   batch_start_.push_back(nz);
+  // Hexahedral zones (eqs. 60-67): each material run of hex-mixed zones
+  // must be whole hexahedra, and only hex-mixed zones may be in one.
+  const std::vector<char> in_hex = zones_in_hexes(mesh_);
+  {
+    std::vector<char> hex_start(nz + 1, 0);
+    for (unsigned int first : mesh_.hex_first_zone)
+      hex_start[first] = 1;
+    hex_start[nz] = 1;
+    for (std::size_t r = 0; r + 1 < batch_start_.size(); ++r)
+    {
+      const bool hex =
+          materials_[material_of_zone_[batch_start_[r]]].element == ZoneElement::hex_mixed;
+      bool whole = hex_start[batch_start_[r]] && hex_start[batch_start_[r + 1]];
+      for (unsigned int z = batch_start_[r]; z < batch_start_[r + 1]; ++z)
+        whole &= in_hex[z] == hex;
+      if (hex ? !whole
+              : std::count(in_hex.begin() + batch_start_[r], in_hex.begin() + batch_start_[r + 1],
+                           1) != 0)
+        throw InputError("internal: hex-mixed zones must be whole hexahedra of the mesh, and "
+                         "hexahedra of the mesh must have a hex-mixed material");
+    }
+  }
 
   // Initial stress.
   stress_.assign(6 * nz, 0.0);
@@ -87,9 +114,21 @@ DeformableSolver::DeformableSolver(const TetMesh& mesh, std::vector<ZoneMaterial
         zc += 0.25 * mesh_.position[3 * mesh_.zone_gridpoint[z][a] + 2];
       initial->at(zc, &stress_[6 * z]);
     }
+  if (initial != nullptr)
+    for (unsigned int h = 0; h < mesh_.n_hexes(); ++h)
+    {
+      // The ten tetrahedra of a hexahedron start at its centroid's stress,
+      // so that they share one mean stress (eq. 67).
+      double zc = 0.0;
+      for (unsigned int g : mesh_.hex_gridpoint[h])
+        zc += 0.125 * mesh_.position[3 * g + 2];
+      for (unsigned int k = 0; k < TetMesh::tets_per_hex; ++k)
+        initial->at(zc, &stress_[6 * (mesh_.hex_first_zone[h] + k)]);
+    }
 
   // Masses: a quarter of each zone's mass to each of its gridpoints; and
-  // the stiffness of eq. 86 summed at each gridpoint (eq. 85).
+  // the stiffness of eq. 86 summed at each gridpoint (eq. 85). The
+  // tetrahedra of a hexahedral zone count half, as each overlay fills it.
   std::vector<double> mass(ng, 0.0), stiffness(ng, 0.0);
   const auto P = [&](unsigned int g)
   { return Vec3(mesh_.position[3 * g], mesh_.position[3 * g + 1], mesh_.position[3 * g + 2]); };
@@ -110,10 +149,11 @@ DeformableSolver::DeformableSolver(const TetMesh& mesh, std::vector<ZoneMaterial
     const double h_min = 3.0 * V / largest_face;
     const double k_zone =
         8.0 / 3.0 * (mat.bulk_modulus + 4.0 / 3.0 * mat.shear_modulus) * b_max * b_max / h_min;
+    const double weight = in_hex[z] ? 0.5 : 1.0;
     for (int a = 0; a < 4; ++a)
     {
-      mass[t[a]] += 0.25 * mat.density * V;
-      stiffness[t[a]] += k_zone;
+      mass[t[a]] += weight * 0.25 * mat.density * V;
+      stiffness[t[a]] += weight * k_zone;
     }
   }
   gravity_force_.assign(3 * ng, 0.0);
@@ -175,21 +215,28 @@ DeformableSolver::DeformableSolver(const TetMesh& mesh, std::vector<ZoneMaterial
     for (unsigned int i = 0; i < 3 * ng; ++i)
       v[i] = held_velocity_[i];
   }
-  for (unsigned int f = 0; f < mesh_.n_faces(); ++f)
+  // Loaded faces: the boundary triangles; those of hexahedral zones once
+  // for each overlay's split of the boundary quadrilaterals, each half.
+  const auto press = [&](const std::array<unsigned int, 3>& face, double weight)
   {
     double c[3] = {0, 0, 0};
-    for (unsigned int g : mesh_.face_gridpoint[f])
+    for (unsigned int g : face)
       for (int d = 0; d < 3; ++d)
         c[d] += mesh_.position[3 * g + d] / 3.0;
     for (const FacePressure& p : pressures_)
       if (inside(p.region, c))
       {
-        pressed_faces_.push_back(f);
+        pressed_faces_.push_back(face);
+        face_weight_.push_back(weight);
         face_pressure_.push_back(p.pressure);
         face_traction_.push_back(p.traction);
         break;
       }
-  }
+  };
+  for (unsigned int f = 0; f < mesh_.n_faces(); ++f)
+    press(mesh_.face_gridpoint[f], in_hex[mesh_.face_zone[f]] ? 0.5 : 1.0);
+  for (const auto& face : mesh_.second_overlay_face_gridpoint)
+    press(face, 0.5);
   force_size_.assign(3 * ng, 0.0);
   damper_ = Damper(s_.dynamic ? Damping::none : s_.damping, s_.local_damping,
                    s_.global_damping_ratio, dt_);
@@ -232,7 +279,7 @@ void DeformableSolver::zone_forces()
   for (std::size_t k = 0; k < pressed_faces_.size(); ++k)
   {
     const Vec3 share = face_load_share(k, x.data());
-    for (unsigned int g : mesh_.face_gridpoint[pressed_faces_[k]])
+    for (unsigned int g : pressed_faces_[k])
       for (int d = 0; d < 3; ++d)
       {
         f[3 * g + d] += share[d];
@@ -253,17 +300,28 @@ void DeformableSolver::zone_forces()
   for (std::size_t r = 0; r + 1 < batch_start_.size(); ++r)
   {
     const ZoneMaterial& mat = materials_[material_of_zone_[batch_start_[r]]];
-    for (unsigned int first = batch_start_[r]; first < batch_start_[r + 1]; first += zone_batch)
+    // Hexahedral zones: calls of whole hexahedra.
+    const bool hex = mat.element == ZoneElement::hex_mixed;
+    const unsigned int chunk =
+        hex ? zone_batch / TetMesh::tets_per_hex * TetMesh::tets_per_hex : zone_batch;
+    for (unsigned int first = batch_start_[r]; first < batch_start_[r + 1]; first += chunk)
     {
-      const unsigned int n = std::min(zone_batch, batch_start_[r + 1] - first);
+      const unsigned int n = std::min(chunk, batch_start_[r + 1] - first);
       tet4_strain_increments(mesh_, first, n, x.data(), v.data(), strain_dt, stress_.data(),
                              scratch_);
+      if (hex) // eqs. 60-63
+        hex_mixed_average_strain(n, scratch_.strain_increment.data(), scratch_.volume.data());
       StressBatch batch;
       batch.size = n;
       batch.strain_increment = scratch_.strain_increment.data();
       batch.stress = stress_.data() + 6 * first;
       batch.state = state_.data() + first;
       apply_zone_model(mat, batch);
+      if (hex) // eqs. 64-67, and each overlay's forces weighted 1/2
+      {
+        hex_mixed_average_mean_stress(n, stress_.data() + 6 * first, scratch_.volume.data());
+        hex_mixed_overlay_weight(n, scratch_.volume.data());
+      }
       tet4_nodal_forces(mesh_, first, n, stress_.data(), scratch_, f.data(), force_size_.data());
     }
   }
@@ -307,6 +365,13 @@ void DeformableSolver::nodal_mixed_zone_forces(const double* x, const double* v,
       for (int c = 0; c < 3; ++c)
         de[6 * z + c] += shift;
     }
+  // Hexahedral zones average over their hexahedra instead (eqs. 60-63).
+  const auto hex_run = [&](std::size_t r)
+  { return materials_[material_of_zone_[batch_start_[r]]].element == ZoneElement::hex_mixed; };
+  for (std::size_t r = 0; r + 1 < batch_start_.size(); ++r)
+    if (hex_run(r))
+      hex_mixed_average_strain(batch_start_[r + 1] - batch_start_[r], de + 6 * batch_start_[r],
+                               volume + batch_start_[r]);
   // The zone models, one material run at a time, with their plastic
   // volumetric strain increments.
   plastic_volumetric_.assign(nz, 0.0);
@@ -344,6 +409,14 @@ void DeformableSolver::nodal_mixed_zone_forces(const double* x, const double* v,
       const double sp = materials_[material_of_zone_[z]].bulk_modulus * plastic_volumetric_[z];
       for (int c = 0; c < 3; ++c)
         stress_[6 * z + c] += sp - mean;
+    }
+  for (std::size_t r = 0; r + 1 < batch_start_.size(); ++r)
+    if (hex_run(r)) // eqs. 64-67, and each overlay's forces weighted 1/2
+    {
+      hex_mixed_average_mean_stress(batch_start_[r + 1] - batch_start_[r],
+                                    stress_.data() + 6 * batch_start_[r], volume + batch_start_[r]);
+      hex_mixed_overlay_weight(batch_start_[r + 1] - batch_start_[r],
+                               full_scratch_.volume.data() + batch_start_[r]);
     }
   tet4_nodal_forces(mesh_, 0, nz, stress_.data(), full_scratch_, f, force_size_.data());
 }
@@ -506,13 +579,14 @@ Vec3 DeformableSolver::support_force(const Box& region) const
 
 Vec3 DeformableSolver::face_load_share(std::size_t k, const double* x) const
 {
-  const auto& t = mesh_.face_gridpoint[pressed_faces_[k]];
+  const auto& t = pressed_faces_[k];
   const Vec3 a(x[3 * t[0]], x[3 * t[0] + 1], x[3 * t[0] + 2]);
   const Vec3 b(x[3 * t[1]], x[3 * t[1] + 1], x[3 * t[1] + 2]);
   const Vec3 c(x[3 * t[2]], x[3 * t[2] + 1], x[3 * t[2] + 2]);
   const Vec3 area_normal = 0.5 * (b - a).cross(c - a); // outward, |.| = area
   // -p n A + t A, shared equally by the three gridpoints.
-  return (-face_pressure_[k] * area_normal + face_traction_[k] * area_normal.norm()) / 3.0;
+  return face_weight_[k] *
+         (-face_pressure_[k] * area_normal + face_traction_[k] * area_normal.norm()) / 3.0;
 }
 
 ImplicitElasticProblem DeformableSolver::implicit_problem() const
@@ -528,7 +602,7 @@ ImplicitElasticProblem DeformableSolver::implicit_problem() const
   for (std::size_t k = 0; k < pressed_faces_.size(); ++k)
   {
     const Vec3 share = face_load_share(k, mesh_.position.data());
-    for (unsigned int g : mesh_.face_gridpoint[pressed_faces_[k]])
+    for (unsigned int g : pressed_faces_[k])
       for (int d = 0; d < 3; ++d)
         p.nodal_force[3 * g + d] += share[d];
   }

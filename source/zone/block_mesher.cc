@@ -1,6 +1,7 @@
 #include <talus/base/exceptions.h>
 #include <talus/zone/block_mesher.h>
-#include <talus/zone/zone_triangulation.h>
+#include <talus/zone/hex_mesher.h>
+#include <talus/zone/hex_mixed.h>
 
 #include <deal.II/grid/grid_generator.h>
 #include <deal.II/grid/grid_in.h>
@@ -46,16 +47,23 @@ double signed_volume(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& d)
 }
 
 /// The fine mesh of one block as its own small triangulation.
+/// Divisions of a brick along each axis for zones of edge at most `edge`.
+std::vector<unsigned int> brick_divisions(const Box& box, double edge)
+{
+  std::vector<unsigned int> n(3);
+  for (int d = 0; d < 3; ++d)
+    n[d] =
+        std::max(1u, static_cast<unsigned int>(std::ceil((box.hi[d] - box.lo[d]) / edge - 1e-9)));
+  return n;
+}
+
 void mesh_one_block(const BlockModel& m, unsigned int b, double edge,
                     dealii::Triangulation<3>& tria)
 {
   Box box;
   if (is_axis_aligned_box(m, b, box))
   {
-    std::vector<unsigned int> n(3);
-    for (int d = 0; d < 3; ++d)
-      n[d] =
-          std::max(1u, static_cast<unsigned int>(std::ceil((box.hi[d] - box.lo[d]) / edge - 1e-9)));
+    const std::vector<unsigned int> n = brick_divisions(box, edge);
     dealii::GridGenerator::subdivided_hyper_rectangle_with_simplices(
         tria, n, Point<3>(box.lo.x(), box.lo.y(), box.lo.z()),
         Point<3>(box.hi.x(), box.hi.y(), box.hi.z()));
@@ -193,7 +201,6 @@ TetMesh read_gmsh_block(const std::string& path, unsigned int block)
   }
   TetMesh mesh;
   append_tetrahedra(mesh, tria, block);
-  mesh.triangulation = build_zone_triangulation(mesh);
   return mesh;
 }
 
@@ -205,6 +212,8 @@ MeshReport measure_mesh(const TetMesh& mesh)
   report.zones = mesh.n_zones();
   report.gridpoints = mesh.n_gridpoints();
   report.boundary_faces = mesh.n_faces();
+  report.hexes = mesh.n_hexes();
+  const std::vector<char> in_hex = zones_in_hexes(mesh);
   report.smallest_height = 1e300;
   std::vector<char> seen_block;
   for (unsigned int b : mesh.zone_block)
@@ -219,7 +228,8 @@ MeshReport measure_mesh(const TetMesh& mesh)
     const double v = signed_volume(P(t[0]), P(t[1]), P(t[2]), P(t[3]));
     if (!(v > 0.0))
       throw InputError("a zone has zero volume (a degenerate block or mesh)");
-    report.zone_volume += v;
+    // The two overlays of a hexahedral zone fill it twice.
+    report.zone_volume += in_hex[&t - mesh.zone_gridpoint.data()] ? 0.5 * v : v;
     double largest_face = 0.0;
     for (int i = 0; i < 4; ++i)
       for (int j = i + 1; j < 4; ++j)
@@ -235,19 +245,34 @@ MeshReport measure_mesh(const TetMesh& mesh)
 }
 
 TetMesh mesh_blocks(const BlockModel& m, const std::vector<unsigned int>& which, double edge_length,
-                    MeshReport& report)
+                    MeshReport& report, ZoneElement element)
 {
   if (!(edge_length > 0.0))
     throw InputError("zone edge length must be positive");
+  if (element == ZoneElement::tet10)
+    throw InputError("entry 'Element' in subsection 'Deformable': tet10 is not built yet; allowed: "
+                     "tet4 or hex-mixed");
   TetMesh mesh;
   for (unsigned int b : which)
   {
+    if (element == ZoneElement::hex_mixed)
+    {
+      Box box;
+      if (!is_axis_aligned_box(m, b, box))
+        throw InputError("entry 'Element' in subsection 'Deformable': hex-mixed needs every "
+                         "deformable block to be an axis-aligned brick, and block " +
+                         std::to_string(b) + " (" +
+                         std::to_string(m.face_start[b + 1] - m.face_start[b]) +
+                         " faces) is not one; allowed: tet4 for blocks of other shapes");
+      const std::vector<unsigned int> n = brick_divisions(box, edge_length);
+      append_hex_mixed_brick(mesh, box, {n[0], n[1], n[2]}, b);
+      continue;
+    }
     dealii::Triangulation<3> one;
     mesh_one_block(m, b, edge_length, one);
     append_tetrahedra(mesh, one, b);
   }
   report = measure_mesh(mesh);
-  mesh.triangulation = build_zone_triangulation(mesh);
   return mesh;
 }
 

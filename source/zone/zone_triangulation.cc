@@ -7,30 +7,27 @@
 namespace talus
 {
 
-std::shared_ptr<dealii::Triangulation<3, 3>> build_zone_triangulation(const TetMesh& mesh)
+std::unique_ptr<dealii::Triangulation<3, 3>>
+build_zone_triangulation(const std::vector<double>& position,
+                         const std::vector<std::array<unsigned int, 4>>& tetrahedra,
+                         const std::vector<unsigned int>& block)
 {
-  std::vector<dealii::Point<3>> vertices(mesh.n_gridpoints());
-  for (unsigned int g = 0; g < mesh.n_gridpoints(); ++g)
-    vertices[g] =
-        dealii::Point<3>(mesh.position[3 * g], mesh.position[3 * g + 1], mesh.position[3 * g + 2]);
-  std::vector<dealii::CellData<3>> cells(mesh.n_zones(), dealii::CellData<3>(4));
-  for (unsigned int z = 0; z < mesh.n_zones(); ++z)
+  std::vector<dealii::Point<3>> vertices(position.size() / 3);
+  for (std::size_t g = 0; g < vertices.size(); ++g)
+    vertices[g] = dealii::Point<3>(position[3 * g], position[3 * g + 1], position[3 * g + 2]);
+  std::vector<dealii::CellData<3>> cells(tetrahedra.size(), dealii::CellData<3>(4));
+  for (std::size_t k = 0; k < tetrahedra.size(); ++k)
   {
     for (unsigned int i = 0; i < 4; ++i)
-      cells[z].vertices[i] = mesh.zone_gridpoint[z][i];
-    cells[z].material_id = mesh.zone_block[z];
+      cells[k].vertices[i] = tetrahedra[k][i];
+    cells[k].material_id = block[k];
   }
-  auto tria = std::make_shared<dealii::Triangulation<3, 3>>();
+  auto tria = std::make_unique<dealii::Triangulation<3, 3>>();
   tria->create_triangulation(vertices, cells, dealii::SubCellData());
-  // Output and zone data are indexed by zone and gridpoint; a cell or
-  // vertex that deal.II renumbered would silently scramble them.
   for (const auto& cell : tria->active_cell_iterators())
-  {
-    const auto z = cell->active_cell_index();
     for (unsigned int i = 0; i < 4; ++i)
-      if (cell->vertex_index(i) != mesh.zone_gridpoint[z][i])
+      if (cell->vertex_index(i) != tetrahedra[cell->active_cell_index()][i])
         throw std::logic_error("deal.II renumbered the zones of the deformable blocks");
-  }
   return tria;
 }
 

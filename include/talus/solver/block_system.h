@@ -25,6 +25,12 @@ struct BlockSystem
   std::unique_ptr<RigidSolver> solver;
 };
 
+/// Meshes blocks `which` of `model` with the scene's zone edge length and
+/// element (entry 'Element'); an InputError of the mesher is given the
+/// parameter file's name.
+TetMesh mesh_deformable_blocks(const Scene& scene, const BlockModel& model,
+                               const std::vector<unsigned int>& which, MeshReport& report);
+
 /// Meshes the blocks of the scene's deformable groups, gives them their zone
 /// surfaces as shapes in `model` (which it changes) and builds the solvers.
 /// `scene` and `model` must outlive the result.

@@ -167,7 +167,8 @@ private:
   std::vector<unsigned char> held_;     ///< per gridpoint, bit d: component d held
   std::vector<double> held_velocity_;   ///< 3 per gridpoint, m/s
   std::vector<double> held_until_;      ///< 3 per gridpoint: model time the velocity stops, s
-  std::vector<unsigned int> pressed_faces_;
+  std::vector<std::array<unsigned int, 3>> pressed_faces_; ///< gridpoints, normal outward
+  std::vector<double> face_weight_;   ///< 1, or 1/2 for each overlay's split of a hexahedron's face
   std::vector<double> face_pressure_; ///< Pa, per pressed face
   std::vector<Vec3> face_traction_;   ///< Pa, per pressed face
   /// The load of pressed face k on each of its three gridpoints at

@@ -2,6 +2,7 @@
 
 #include <talus/model/block_model.h>
 #include <talus/zone/tet_mesh.h>
+#include <talus/zone/zone_material.h>
 
 #include <string>
 #include <vector>
@@ -19,6 +20,7 @@ namespace talus
 struct MeshReport
 {
   unsigned int blocks = 0, zones = 0, gridpoints = 0, boundary_faces = 0;
+  unsigned int hexes = 0;       ///< hexahedral zones of mixed discretization (10 of `zones` each)
   double zone_volume = 0.0;     ///< m^3, sum over zones (equals the blocks' volume)
   double smallest_height = 0.0; ///< m, smallest zone height (eq. 86)
   double largest_edge = 0.0;    ///< m, largest zone edge (eq. 86)
@@ -45,7 +47,13 @@ MeshReport measure_mesh(const TetMesh& mesh);
 /// is split into tetrahedra from its centroid over its triangulated faces,
 /// which are then refined (each into eight) until the edge length is
 /// reached.
+///
+/// With `element` hex_mixed every block must be an axis-aligned brick: it
+/// becomes hexahedral zones of two overlays of five tetrahedra
+/// (append_hex_mixed_brick); any other block throws InputError naming the
+/// entry 'Element'. tet10 is not built yet (InputError).
 TetMesh mesh_blocks(const BlockModel& blocks, const std::vector<unsigned int>& which,
-                    double edge_length, MeshReport& report);
+                    double edge_length, MeshReport& report,
+                    ZoneElement element = ZoneElement::tet4);
 
 } // namespace talus

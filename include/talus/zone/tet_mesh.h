@@ -1,14 +1,7 @@
 #pragma once
 
 #include <array>
-#include <memory>
 #include <vector>
-
-namespace dealii
-{
-template <int dim, int spacedim>
-class Triangulation;
-}
 
 namespace talus
 {
@@ -30,14 +23,27 @@ struct TetMesh
   /// of the block, and the zone they belong to.
   std::vector<std::array<unsigned int, 3>> face_gridpoint;
   std::vector<unsigned int> face_zone;
-  /// The same zones as one deal.II triangulation (cell z = zone z, vertex
-  /// g = gridpoint g, material_id = block), for deal.II's output tools;
-  /// null until the mesher has finished the mesh.
-  std::shared_ptr<dealii::Triangulation<3, 3>> triangulation;
+
+  /// Hexahedral zones of mixed discretization (eqs. 60-67; empty for a mesh
+  /// of plain tetrahedra). Hexahedron h is the ten consecutive zones
+  /// hex_first_zone[h] + [0, 10): five tetrahedra of one overlay, then the
+  /// five of the mirror-image split, all on its eight corners hex_gridpoint[h]
+  /// (corner i + 2j + 4k at (i, j, k) in the brick's axes). Each overlay
+  /// counts half: in nodal forces, masses and stiffness.
+  std::vector<std::array<unsigned int, 8>> hex_gridpoint;
+  std::vector<unsigned int> hex_first_zone;
+  /// The boundary triangles of the second overlay, which splits each
+  /// boundary quadrilateral along its other diagonal (face_gridpoint holds
+  /// the first overlay's, which contacts use). Face loads are taken half on
+  /// each split, so that each corner of a quadrilateral gets a quarter of a
+  /// uniform load, as the averaged overlays need.
+  std::vector<std::array<unsigned int, 3>> second_overlay_face_gridpoint;
 
   unsigned int n_gridpoints() const { return static_cast<unsigned int>(position.size() / 3); }
   unsigned int n_zones() const { return static_cast<unsigned int>(zone_gridpoint.size()); }
   unsigned int n_faces() const { return static_cast<unsigned int>(face_gridpoint.size()); }
+  unsigned int n_hexes() const { return static_cast<unsigned int>(hex_gridpoint.size()); }
+  static constexpr unsigned int tets_per_hex = 10;
 };
 
 } // namespace talus

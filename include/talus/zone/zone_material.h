@@ -10,6 +10,9 @@ enum class ZoneModel
   mohr_coulomb ///< shear yield with tension cut-off, non-associated flow
 };
 
+/// The kind of zone a deformable block is meshed into.
+enum class ZoneElement { tet4, tet10, hex_mixed };
+
 /// Material of the zones of a deformable block. SI units; stresses are
 /// positive in tension (compression negative), as in the manual.
 struct ZoneMaterial
@@ -26,6 +29,8 @@ struct ZoneMaterial
   /// volumetric strain and plastic pressure averaged at the gridpoints, so
   /// that constant-strain tetrahedra do not lock in incompressible flow.
   bool nodal_mixed = false;
+  /// Zone type: plain tetrahedra, or hexahedra of two 5-tetrahedron overlays (eqs. 60-67).
+  ZoneElement element = ZoneElement::tet4;
 
   /// Young's modulus and Poisson's ratio from K and G.
   double young() const
