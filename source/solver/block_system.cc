@@ -1,4 +1,5 @@
 #include <talus/solver/block_system.h>
+#include <talus/zone/tet10_mesh.h>
 #include <talus/zone/zone_surface.h>
 
 namespace talus
@@ -14,6 +15,11 @@ BlockSystem build_block_system(const Scene& scene, BlockModel& model)
   if (!s.deformable_blocks.empty())
   {
     s.mesh = mesh_blocks(model, s.deformable_blocks, scene.deformable.edge_length, s.mesh_report);
+    if (scene.deformable.material.element == ZoneElement::tet10)
+    {
+      make_quadratic(s.mesh);
+      s.mesh_report = measure_mesh(s.mesh);
+    }
     s.vertex_gridpoint = use_zone_surfaces(model, s.mesh);
     s.zones = std::make_unique<DeformableSolver>(
         s.mesh, std::vector<ZoneMaterial>{scene.deformable.material},

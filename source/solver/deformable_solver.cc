@@ -67,7 +67,18 @@ DeformableSolver::DeformableSolver(const TetMesh& mesh, std::vector<ZoneMaterial
     throw InputError("internal: one material index per zone is needed");
 
   for (const ZoneMaterial& m : materials_)
+  {
     nodal_mixed_ |= m.nodal_mixed;
+    if (m.element == ZoneElement::hex_mixed)
+      throw InputError("Element hex-mixed is not built yet; allowed: tet4 or tet10");
+    if ((m.element == ZoneElement::tet10) != mesh_.quadratic())
+      throw InputError("internal: the zone type of a material does not match the mesh "
+                       "(make_quadratic makes 10-node zones)");
+  }
+  if (mesh_.quadratic() && nodal_mixed_)
+    throw InputError("nodal mixed discretization is for 4-node zones only; 10-node zones do "
+                     "not lock and need none (allowed: Element tet4 with it, or tet10 without)");
+  points_per_zone_ = mesh_.quadratic() ? 4 : 1;
   // Batches: runs of one material.
   for (unsigned int z = 0; z < nz; ++z)
     if (z == 0 || material_of_zone_[z] != material_of_zone_[z - 1])
@@ -75,9 +86,17 @@ DeformableSolver::DeformableSolver(const TetMesh& mesh, std::vector<ZoneMaterial
   batch_start_.push_back(nz);
 
   // Initial stress.
-  stress_.assign(6 * nz, 0.0);
-  state_.assign(nz, 0);
-  if (initial != nullptr)
+  stress_.assign(6 * points_per_zone_ * nz, 0.0);
+  state_.assign(points_per_zone_ * nz, 0);
+  if (initial != nullptr && mesh_.quadratic())
+    for (unsigned int z = 0; z < nz; ++z)
+    {
+      double point[4][3];
+      tet10_gauss_points(mesh_, z, point);
+      for (int q = 0; q < 4; ++q)
+        initial->at(point[q][2], &stress_[6 * (4 * z + q)]);
+    }
+  else if (initial != nullptr)
     for (unsigned int z = 0; z < nz; ++z)
     {
       double zc = 0.0;
@@ -95,6 +114,19 @@ DeformableSolver::DeformableSolver(const TetMesh& mesh, std::vector<ZoneMaterial
   {
     const auto& t = mesh_.zone_gridpoint[z];
     const ZoneMaterial& mat = materials_[material_of_zone_[z]];
+    if (mesh_.quadratic())
+    {
+      double m10[10], k10[10];
+      tet10_mass_and_stiffness(mesh_, z, mat.density, mat.bulk_modulus, mat.shear_modulus, m10,
+                               k10);
+      for (int a = 0; a < 10; ++a)
+      {
+        const unsigned int g = a < 4 ? t[a] : mesh_.zone_edge_gridpoint[z][a - 4];
+        mass[g] += m10[a];
+        stiffness[g] += k10[a];
+      }
+      continue;
+    }
     const double V = (P(t[1]) - P(t[0])).dot((P(t[2]) - P(t[0])).cross(P(t[3]) - P(t[0]))) / 6.0;
     double b_max = 0.0, largest_face = 0.0;
     for (int i = 0; i < 4; ++i)
@@ -171,6 +203,13 @@ DeformableSolver::DeformableSolver(const TetMesh& mesh, std::vector<ZoneMaterial
     for (unsigned int i = 0; i < 3 * ng; ++i)
       v[i] = held_velocity_[i];
   }
+  // 10-node zones: a zone vertex (not a midpoint) is where a boundary
+  // sub-triangle takes no load (face_share_).
+  std::vector<bool> is_vertex(mesh_.quadratic() ? ng : 0, false);
+  for (const auto& t : mesh_.zone_gridpoint)
+    for (unsigned int g : t)
+      if (mesh_.quadratic())
+        is_vertex[g] = true;
   for (unsigned int f = 0; f < mesh_.n_faces(); ++f)
   {
     double c[3] = {0, 0, 0};
@@ -183,6 +222,20 @@ DeformableSolver::DeformableSolver(const TetMesh& mesh, std::vector<ZoneMaterial
         pressed_faces_.push_back(f);
         face_pressure_.push_back(p.pressure);
         face_traction_.push_back(p.traction);
+        // Share of the face's load on each of its gridpoints. A 10-node
+        // zone's face is four sub-triangles; the consistent load of a
+        // uniform pressure on a 6-node triangle is nothing at the vertices
+        // and a third at each midpoint, which the sub-triangles give when
+        // a corner one puts half its load on each of its two midpoints and
+        // the middle one a third on each (2 A/8 + A/12 = A/3).
+        std::array<double, 3> share{1.0 / 3.0, 1.0 / 3.0, 1.0 / 3.0};
+        for (int k = 0; k < 3 && mesh_.quadratic(); ++k)
+          if (is_vertex[mesh_.face_gridpoint[f][k]])
+          {
+            share = {0.5, 0.5, 0.5};
+            share[k] = 0.0;
+          }
+        face_share_.push_back(share);
         break;
       }
   }
@@ -227,13 +280,17 @@ void DeformableSolver::zone_forces()
   // of the face's gridpoints.
   for (std::size_t k = 0; k < pressed_faces_.size(); ++k)
   {
-    const Vec3 share = face_load_share(k, x.data());
-    for (unsigned int g : mesh_.face_gridpoint[pressed_faces_[k]])
+    const Vec3 load = face_load(k, x.data());
+    for (int a = 0; a < 3; ++a)
+    {
+      const unsigned int g = mesh_.face_gridpoint[pressed_faces_[k]][a];
+      const Vec3 share = mesh_.quadratic() ? Vec3(face_share_[k][a] * load) : Vec3(load / 3.0);
       for (int d = 0; d < 3; ++d)
       {
         f[3 * g + d] += share[d];
         force_size_[3 * g + d] += std::abs(share[d]);
       }
+    }
   }
   // The velocities are those of the last motion (x - v dt -> x); before the
   // first motion there is none, so no strain.
@@ -241,6 +298,31 @@ void DeformableSolver::zone_forces()
   if (nodal_mixed_)
   {
     nodal_mixed_zone_forces(x.data(), v.data(), f.data(), strain_dt);
+    return;
+  }
+  if (mesh_.quadratic())
+  {
+    // 10-node zones: the same three stages, the model at every Gauss point.
+    constexpr unsigned int batch10 = zone_batch / 4;
+    scratch10_.resize(batch10);
+    for (std::size_t r = 0; r + 1 < batch_start_.size(); ++r)
+    {
+      const ZoneMaterial& mat = materials_[material_of_zone_[batch_start_[r]]];
+      for (unsigned int first = batch_start_[r]; first < batch_start_[r + 1]; first += batch10)
+      {
+        const unsigned int n = std::min(batch10, batch_start_[r + 1] - first);
+        tet10_strain_increments(mesh_, first, n, x.data(), v.data(), strain_dt, stress_.data(),
+                                scratch10_);
+        StressBatch batch;
+        batch.size = 4 * n;
+        batch.strain_increment = scratch10_.strain_increment.data();
+        batch.stress = stress_.data() + 24 * std::size_t(first);
+        batch.state = state_.data() + 4 * std::size_t(first);
+        apply_zone_model(mat, batch);
+        tet10_nodal_forces(mesh_, first, n, stress_.data(), scratch10_, f.data(),
+                           force_size_.data());
+      }
+    }
     return;
   }
   // Zones, one batch of one material at a time: strain increments, the
@@ -495,15 +577,15 @@ Vec3 DeformableSolver::support_force(const Box& region) const
   return sum;
 }
 
-Vec3 DeformableSolver::face_load_share(std::size_t k, const double* x) const
+Vec3 DeformableSolver::face_load(std::size_t k, const double* x) const
 {
   const auto& t = mesh_.face_gridpoint[pressed_faces_[k]];
   const Vec3 a(x[3 * t[0]], x[3 * t[0] + 1], x[3 * t[0] + 2]);
   const Vec3 b(x[3 * t[1]], x[3 * t[1] + 1], x[3 * t[1] + 2]);
   const Vec3 c(x[3 * t[2]], x[3 * t[2] + 1], x[3 * t[2] + 2]);
   const Vec3 area_normal = 0.5 * (b - a).cross(c - a); // outward, |.| = area
-  // -p n A + t A, shared equally by the three gridpoints.
-  return (-face_pressure_[k] * area_normal + face_traction_[k] * area_normal.norm()) / 3.0;
+  // -p n A + t A, shared by the gridpoints as face_share_ says.
+  return -face_pressure_[k] * area_normal + face_traction_[k] * area_normal.norm();
 }
 
 ImplicitElasticProblem DeformableSolver::implicit_problem() const
@@ -518,10 +600,11 @@ ImplicitElasticProblem DeformableSolver::implicit_problem() const
   p.nodal_force = gravity_force_;
   for (std::size_t k = 0; k < pressed_faces_.size(); ++k)
   {
-    const Vec3 share = face_load_share(k, mesh_.position.data());
-    for (unsigned int g : mesh_.face_gridpoint[pressed_faces_[k]])
+    const Vec3 load = face_load(k, mesh_.position.data());
+    for (int a = 0; a < 3; ++a)
       for (int d = 0; d < 3; ++d)
-        p.nodal_force[3 * g + d] += share[d];
+        p.nodal_force[3 * mesh_.face_gridpoint[pressed_faces_[k]][a] + d] +=
+            mesh_.quadratic() ? face_share_[k][a] * load[d] : load[d] / 3.0;
   }
   p.fixed = held_;
   return p;

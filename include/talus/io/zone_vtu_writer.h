@@ -15,7 +15,9 @@ using ZoneField = BlockField;
 
 /// Writes the zones of deformable blocks as VTK tetrahedra (type 10) at the
 /// gridpoints' current positions (3 per gridpoint, m), with block id as
-/// cell data plus `point_fields` and `cell_fields`.
+/// cell data plus `point_fields` and `cell_fields`. A 10-node zone is written
+/// as its eight sub-tetrahedra (tet10_subcell), so cell fields then hold 8
+/// values per zone (tet10_subcell_values).
 void write_zones_vtu(const std::string& path, const TetMesh& mesh,
                      const std::vector<double>& positions,
                      const std::vector<ZoneField>& point_fields,

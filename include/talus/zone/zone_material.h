@@ -10,6 +10,9 @@ enum class ZoneModel
   mohr_coulomb ///< shear yield with tension cut-off, non-associated flow
 };
 
+/// The zone type of a deformable block.
+enum class ZoneElement { tet4, tet10, hex_mixed };
+
 /// Material of the zones of a deformable block. SI units; stresses are
 /// positive in tension (compression negative), as in the manual.
 struct ZoneMaterial
@@ -26,6 +29,7 @@ struct ZoneMaterial
   /// volumetric strain and plastic pressure averaged at the gridpoints, so
   /// that constant-strain tetrahedra do not lock in incompressible flow.
   bool nodal_mixed = false;
+  ZoneElement element = ZoneElement::tet4; ///< zone type (tet10: 10-node zones, 4 Gauss points)
 
   /// Young's modulus and Poisson's ratio from K and G.
   double young() const
