@@ -116,6 +116,16 @@ DeformableSolver::DeformableSolver(const TetMesh& mesh, std::vector<ZoneMaterial
     const ZoneMaterial& mat = materials_[material_of_zone_[z]];
     if (mesh_.quadratic())
     {
+      // The bound of tet10_mass_and_stiffness is for the undamped cycle.
+      // Local damping (eq. 79) and combined damping (eq. 83) change the
+      // force on a component by -alpha |F| sign(.), so by at most a factor
+      // 1 + alpha (when it adds to a force opposing the motion); the
+      // largest eigenvalue that the step sees grows by that factor at most,
+      // and so must the nodal stiffness.
+      const double damped = !s_.dynamic && (s_.damping == Damping::local ||
+                                            s_.damping == Damping::combined)
+                                ? 1.0 + s_.local_damping
+                                : 1.0;
       double m10[10], k10[10];
       tet10_mass_and_stiffness(mesh_, z, mat.density, mat.bulk_modulus, mat.shear_modulus, m10,
                                k10);
@@ -123,7 +133,7 @@ DeformableSolver::DeformableSolver(const TetMesh& mesh, std::vector<ZoneMaterial
       {
         const unsigned int g = a < 4 ? t[a] : mesh_.zone_edge_gridpoint[z][a - 4];
         mass[g] += m10[a];
-        stiffness[g] += k10[a];
+        stiffness[g] += damped * k10[a];
       }
       continue;
     }
