@@ -196,7 +196,8 @@ void solve_deformable(talus::Scene& scene, talus::BlockModel& model, const std::
   std::printf(
       "Zones:        %u %s, %u gridpoints, %u boundary faces (%s; largest edge %.4g m, "
       "smallest height %.4g m), zone volume %.9g m^3\n",
-      mesh_report.zones, mesh.quadratic() ? "10-node tetrahedra" : "tetrahedra", mesh_report.gridpoints, mesh_report.boundary_faces,
+      mesh_report.zones, mesh.quadratic() ? "10-node tetrahedra" : "tetrahedra",
+      mesh_report.gridpoints, mesh_report.boundary_faces,
       from_file ? ("from " + std::filesystem::path(scene.deformable.mesh_file).filename().string())
                       .c_str()
                 : ("edge length " + number(scene.deformable.edge_length) + " m").c_str(),

@@ -75,8 +75,7 @@ void write_zones_vtu(const std::string& path, const TetMesh& mesh,
         }
         data_array(out, "Int64", "connectivity", 1, connectivity);
         data_array(out, "Int64", "offsets", 1, offsets);
-        data_array(out, "UInt8", "types", 1,
-                   std::vector<unsigned char>(n_cells, 10)); // VTK_TETRA
+        data_array(out, "UInt8", "types", 1, std::vector<unsigned char>(n_cells, 10)); // VTK_TETRA
         out << "      </Cells>\n      <PointData>\n";
         for (const ZoneField& f : point_fields)
           data_array(out, "Float64", f.name, f.components, f.values);

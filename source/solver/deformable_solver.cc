@@ -122,10 +122,10 @@ DeformableSolver::DeformableSolver(const TetMesh& mesh, std::vector<ZoneMaterial
       // 1 + alpha (when it adds to a force opposing the motion); the
       // largest eigenvalue that the step sees grows by that factor at most,
       // and so must the nodal stiffness.
-      const double damped = !s_.dynamic && (s_.damping == Damping::local ||
-                                            s_.damping == Damping::combined)
-                                ? 1.0 + s_.local_damping
-                                : 1.0;
+      const double damped =
+          !s_.dynamic && (s_.damping == Damping::local || s_.damping == Damping::combined)
+              ? 1.0 + s_.local_damping
+              : 1.0;
       double m10[10], k10[10];
       tet10_mass_and_stiffness(mesh_, z, mat.density, mat.bulk_modulus, mat.shear_modulus, m10,
                                k10);

@@ -170,9 +170,8 @@ inline Lanes invert(const Lanes (&J)[3][3], Lanes (&Jinv)[3][3])
 
 /// Pass 1 at Gauss point q for one group.
 template <int q>
-inline void strain_at(const Lanes (&p)[10][3], const Lanes (&mid)[10][3],
-                      const Lanes (&vel)[10][3], double dt, double* geometry, Lanes (&de)[6],
-                      Lanes (&sg)[6])
+inline void strain_at(const Lanes (&p)[10][3], const Lanes (&mid)[10][3], const Lanes (&vel)[10][3],
+                      double dt, double* geometry, Lanes (&de)[6], Lanes (&sg)[6])
 {
   // Current geometry, for the nodal forces of pass 2.
   Lanes J[3][3], Jinv[3][3];

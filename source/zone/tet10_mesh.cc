@@ -31,8 +31,8 @@ void make_quadratic(TetMesh& mesh)
   mesh.zone_edge_gridpoint.resize(mesh.n_zones());
   for (unsigned int z = 0; z < mesh.n_zones(); ++z)
     for (int e = 0; e < 6; ++e)
-      mesh.zone_edge_gridpoint[z][e] =
-          midpoint_of(mesh.zone_gridpoint[z][tet10_edge[e][0]], mesh.zone_gridpoint[z][tet10_edge[e][1]]);
+      mesh.zone_edge_gridpoint[z][e] = midpoint_of(mesh.zone_gridpoint[z][tet10_edge[e][0]],
+                                                   mesh.zone_gridpoint[z][tet10_edge[e][1]]);
   // Each boundary triangle a b c into four with the same orientation.
   std::vector<std::array<unsigned int, 3>> faces;
   std::vector<unsigned int> face_zone;
@@ -40,8 +40,8 @@ void make_quadratic(TetMesh& mesh)
   {
     const auto [a, b, c] = mesh.face_gridpoint[f];
     const unsigned int ab = midpoint_of(a, b), bc = midpoint_of(b, c), ca = midpoint_of(c, a);
-    const std::array<unsigned int, 3> four[4] = {{{a, ab, ca}}, {{ab, b, bc}}, {{ca, bc, c}},
-                                                 {{ab, bc, ca}}};
+    const std::array<unsigned int, 3> four[4] = {
+        {{a, ab, ca}}, {{ab, b, bc}}, {{ca, bc, c}}, {{ab, bc, ca}}};
     for (const std::array<unsigned int, 3>& t : four)
     {
       faces.push_back(t);

@@ -24,8 +24,9 @@ int main(int argc, char** argv)
 {
   ParallelEnvironment env(argc, argv);
   {
-    Scene scene = read_scene(
-        std::string(SOURCE_DIR) + "/../../parameters/verification/deformable_on_incline.prm", false);
+    Scene scene = read_scene(std::string(SOURCE_DIR) +
+                                 "/../../parameters/verification/deformable_on_incline.prm",
+                             false);
     scene.deformable.material.element = ZoneElement::tet10;
     BuildReport built;
     BlockModel model = build_blocks(scene, built);

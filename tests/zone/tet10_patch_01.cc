@@ -104,8 +104,7 @@ int main(int argc, char** argv)
     solver.step(); // the strain of that motion
     // The gradient on the mid-step geometry x0 + G x0 dt / 2, where the
     // kernel measures it: G (I + G dt / 2)^-1.
-    const Eigen::Matrix3d L =
-        G * (Eigen::Matrix3d::Identity() + 0.5 * solver.dt() * G).inverse();
+    const Eigen::Matrix3d L = G * (Eigen::Matrix3d::Identity() + 0.5 * solver.dt() * G).inverse();
     double exact[6];
     elastic_stress(rock, L, solver.dt(), exact);
     double scale = 0.0, deviation = 0.0;
@@ -197,8 +196,9 @@ int main(int argc, char** argv)
     const Eigen::Matrix3d turned = Eigen::AngleAxisd(M_PI / 2, axis).toRotationMatrix();
     double position_error = 0.0;
     for (unsigned int g = 0; g < curved.n_gridpoints(); ++g)
-      position_error = std::max(
-          position_error, (at(x, g) - (centre + turned * (at(curved.position, g) - centre))).norm());
+      position_error =
+          std::max(position_error,
+                   (at(x, g) - (centre + turned * (at(curved.position, g) - centre))).norm());
     std::fprintf(stderr, "3. position error %g m, largest stress / E %g\n", position_error,
                  largest / rock.young());
     std::printf("3. rigid rotation by 90 degrees: turned as a rigid body: %s; largest stress "

@@ -9,14 +9,14 @@
 // - with the true masses the step 2 min sqrt(m_n / k_n) is below the
 //   critical step 2 / omega_max (printed: their ratio, how conservative).
 
+#include <Eigen/Dense>
+#include <cmath>
+#include <cstdio>
 #include <talus/base/parallel_environment.h>
 #include <talus/zone/block_mesher.h>
 #include <talus/zone/tet10_kernel.h>
 #include <talus/zone/tet10_mesh.h>
 #include <talus/zone/zone_models.h>
-#include <Eigen/Dense>
-#include <cstdio>
-#include <cmath>
 using namespace talus;
 int main(int argc, char** argv)
 {

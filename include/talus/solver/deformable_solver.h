@@ -167,7 +167,7 @@ private:
   Vec3 face_load(std::size_t k, const double* x) const;
   std::vector<double> force_size_; ///< 3 per gridpoint: sum of |zone force| (N), for the ratio
   Tet4Scratch scratch_;
-  Tet10Scratch scratch10_;          ///< 10-node zones only
+  Tet10Scratch scratch10_;           ///< 10-node zones only
   unsigned int points_per_zone_ = 1; ///< stress points per zone
   // Nodal mixed discretization only (empty otherwise).
   bool nodal_mixed_ = false;

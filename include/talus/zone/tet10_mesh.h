@@ -23,9 +23,9 @@ void make_quadratic(TetMesh& mesh);
 /// For output: each 10-node zone as eight 4-node sub-tetrahedra (four
 /// corner ones and the inner octahedron cut along the 2-0 / 1-3 midpoint
 /// diagonal), as local node numbers 0-9, positively oriented.
-inline constexpr unsigned int tet10_subcell[8][4] = {
-    {0, 4, 6, 7}, {4, 1, 5, 8}, {6, 5, 2, 9}, {7, 8, 9, 3},
-    {6, 8, 4, 5}, {6, 8, 5, 9}, {6, 8, 9, 7}, {6, 8, 7, 4}};
+inline constexpr unsigned int tet10_subcell[8][4] = {{0, 4, 6, 7}, {4, 1, 5, 8}, {6, 5, 2, 9},
+                                                     {7, 8, 9, 3}, {6, 8, 4, 5}, {6, 8, 5, 9},
+                                                     {6, 8, 9, 7}, {6, 8, 7, 4}};
 
 /// Gauss-point values (4 per zone, `components` numbers each, zone-major)
 /// to the eight output sub-tetrahedra of each zone: the linear field
