@@ -14,6 +14,7 @@
 #include <talus/solver/block_system.h>
 #include <talus/solver/rigid_solver.h>
 #include <talus/zone/block_mesher.h>
+#include <talus/zone/tet10_mesh.h>
 
 #include <chrono>
 #include <cmath>
@@ -60,11 +61,19 @@ void write_zone_frame(const talus::Scene& scene, const talus::TetMesh& mesh,
   char file[64];
   std::snprintf(file, sizeof file, "_zones_%05u.vtu", frame);
   const std::string vtu = scene.output.base_name + file;
-  // One cell per zone; a hexahedral zone shows its averaged stress.
+  // One cell per shown tetrahedron: a hexahedral zone shows its averaged
+  // stress on its first overlay; a 10-node zone is eight sub-tetrahedra
+  // with the Gauss-point stresses and states carried over (tet10_mesh.h).
   const std::vector<double> x = solver.positions();
   std::vector<double> stress;
   std::vector<unsigned char> state;
-  shown_zone_values(mesh, x, solver.stress(), solver.plastic_state(), stress, state);
+  if (mesh.quadratic())
+  {
+    stress = tet10_subcell_values(solver.stress(), 6);
+    state = tet10_subcell_flags(solver.plastic_state());
+  }
+  else
+    shown_zone_values(mesh, x, solver.stress(), solver.plastic_state(), stress, state);
   std::vector<ZoneField> cells{
       {"stress", 6, stress}, {"principal_stress", 3, {}}, {"plastic_state", 1, {}}};
   cells[1].values.resize(3 * state.size());
@@ -141,8 +150,15 @@ struct PointHistory
       for (const std::vector<double>* q : {&u, &v})
         for (int d = 0; d < 3; ++d)
           row.push_back((*q)[3 * gridpoint[k] + d]);
+      // The zone's mean over its stress points (Gauss points of 10-node zones).
+      const unsigned int p = zones.stress_points_per_zone();
       for (int c = 0; c < 6; ++c)
-        row.push_back(zones.stress()[6 * zone[k] + c]);
+      {
+        double sum = 0.0;
+        for (unsigned int q = 0; q < p; ++q)
+          sum += zones.stress()[6 * (p * zone[k] + q) + c];
+        row.push_back(sum / p);
+      }
     }
   }
 };
@@ -159,6 +175,8 @@ void implicit_check(const talus::Scene& scene, const talus::DeformableSolver& so
     return refuse("the zones are not elastic");
   if (scene.has_initial_stress)
     return refuse("the zones have an initial stress");
+  if (solver.mesh().quadratic())
+    return refuse("the reference solver has 4-node zones only");
   for (const GridpointCondition& c : scene.gridpoint_conditions)
     if (c.velocity.norm() > 0.0)
       return refuse("a boundary moves at a velocity");
@@ -191,14 +209,17 @@ void solve_deformable(talus::Scene& scene, talus::BlockModel& model, const std::
                      "model is in these groups; allowed: groups that hold blocks");
   MeshReport mesh_report;
   const bool from_file = !scene.deformable.mesh_file.empty();
-  const TetMesh mesh = from_file ? *scene.deformable.mesh
-                                 : mesh_deformable_blocks(scene, model, deformable, mesh_report);
+  TetMesh mesh = from_file ? *scene.deformable.mesh
+                           : mesh_deformable_blocks(scene, model, deformable, mesh_report);
+  if (from_file && scene.deformable.material.element == ZoneElement::tet10)
+    make_quadratic(mesh);
   if (from_file)
     mesh_report = measure_mesh(mesh);
   std::printf(
-      "Zones:        %u tetrahedra, %u gridpoints, %u boundary faces (%s; largest edge %.4g m, "
+      "Zones:        %u %s, %u gridpoints, %u boundary faces (%s; largest edge %.4g m, "
       "smallest height %.4g m), zone volume %.9g m^3\n",
-      mesh_report.zones, mesh_report.gridpoints, mesh_report.boundary_faces,
+      mesh_report.zones, mesh.quadratic() ? "10-node tetrahedra" : "tetrahedra",
+      mesh_report.gridpoints, mesh_report.boundary_faces,
       from_file ? ("from " + std::filesystem::path(scene.deformable.mesh_file).filename().string())
                       .c_str()
                 : ("edge length " + number(scene.deformable.edge_length) + " m").c_str(),
@@ -294,9 +315,15 @@ void solve_deformable(talus::Scene& scene, talus::BlockModel& model, const std::
   std::printf("Steps:        %lu (time %.6g s)\n", solver.steps_done(), solver.time());
   std::printf("Unbalanced force ratio: %.3g\n", solver.unbalanced_ratio());
   std::printf("Largest displacement: %.6g m\n", largest_displacement());
-  unsigned int yielding = 0;
-  for (unsigned char st : solver.plastic_state())
-    yielding += st != 0;
+  unsigned int yielding = 0; // zones with a yielding stress point
+  const unsigned int per_zone = solver.stress_points_per_zone();
+  for (unsigned int z = 0; z < mesh.n_zones(); ++z)
+  {
+    bool any = false;
+    for (unsigned int q = 0; q < per_zone; ++q)
+      any |= solver.plastic_state()[per_zone * z + q] != 0;
+    yielding += any;
+  }
   if (scene.deformable.material.model == ZoneModel::mohr_coulomb)
     std::printf("Plastic zones: %u of %u\n", yielding, mesh.n_zones());
   for (const ReactionReport& r : scene.reactions)

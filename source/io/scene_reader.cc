@@ -286,7 +286,10 @@ void declare_deformable(ParameterFile& prm)
       "Nodal mixed discretization", "false", P::Bool(), "true or false",
       "Average the zones' volumetric strain and plastic pressure at the gridpoints (eqs. "
       "68-76): constant-strain tetrahedra then do not lock in incompressible or plastic flow.");
-  prm.declare("Element", "tet4", P::Selection("tet4|tet10|hex-mixed"), "tet4, tet10 or hex-mixed", "Zone type: 4-node constant-strain tetrahedra, 10-node tetrahedra, or hexahedral zones of two overlays of five tetrahedra (mixed discretization, eqs. 60-67; brick blocks only).");
+  prm.declare(
+      "Element", "tet4", P::Selection("tet4|tet10|hex-mixed"), "tet4, tet10 or hex-mixed",
+      "Zone type: 4-node constant-strain tetrahedra, 10-node tetrahedra, or hexahedral zones of "
+      "two overlays of five tetrahedra (mixed discretization, eqs. 60-67; brick blocks only).");
   prm.declare("Implicit check", "false", P::Bool(), "true or false",
               "After a static run of elastic zones, solve the same problem implicitly (CG with "
               "algebraic multigrid) and print the difference.");
@@ -329,18 +332,21 @@ void parse_deformable(ParameterFile& prm, Scene& scene)
   d.material.element = element == "hex-mixed" ? ZoneElement::hex_mixed
                        : element == "tet10"   ? ZoneElement::tet10
                                               : ZoneElement::tet4;
-  if (d.material.element == ZoneElement::tet10)
-    throw prm.error("Element", "tet10 is not built yet", "tet4 or hex-mixed");
   if (d.material.element == ZoneElement::hex_mixed && !prm.get("Mesh file").empty())
     throw prm.error("Element",
                     "hex-mixed meshes brick blocks into hexahedra itself and cannot use the "
                     "tetrahedra of 'Mesh file'",
-                    "tet4 with a mesh file, or hex-mixed without one");
+                    "tet4 or tet10 with a mesh file, or hex-mixed without one");
   if (d.material.element == ZoneElement::hex_mixed && d.material.nodal_mixed)
     throw prm.error("Element",
                     "hex-mixed averages over its hexahedra and does not combine with 'Nodal mixed "
                     "discretization = true'",
                     "tet4 with nodal mixed discretization, or hex-mixed without it");
+  if (d.material.element == ZoneElement::tet10 && d.material.nodal_mixed)
+    throw prm.error("Element",
+                    "tet10 cannot be combined with 'Nodal mixed discretization = true' (10-node "
+                    "zones do not lock and need no mixed discretization)",
+                    "tet4 with nodal mixed discretization, or tet10 without it");
   d.mesh_file = prm.get("Mesh file");
   if (!d.mesh_file.empty())
   {

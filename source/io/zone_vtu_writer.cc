@@ -1,6 +1,7 @@
 #include <talus/io/file_output.h>
 #include <talus/io/zone_vtu_writer.h>
 #include <talus/zone/hex_mixed.h>
+#include <talus/zone/tet10_mesh.h>
 #include <talus/zone/zone_triangulation.h>
 
 #include <deal.II/dofs/dof_handler.h>
@@ -63,6 +64,22 @@ struct ZoneWriter::Data
 
 std::vector<std::array<unsigned int, 4>> shown_tetrahedra(const TetMesh& mesh)
 {
+  if (mesh.quadratic())
+  {
+    std::vector<std::array<unsigned int, 4>> cells;
+    cells.reserve(8 * mesh.n_zones());
+    for (unsigned int z = 0; z < mesh.n_zones(); ++z)
+    {
+      unsigned int node[10];
+      for (int k = 0; k < 4; ++k)
+        node[k] = mesh.zone_gridpoint[z][k];
+      for (int k = 0; k < 6; ++k)
+        node[4 + k] = mesh.zone_edge_gridpoint[z][k];
+      for (const auto& sub : tet10_subcell)
+        cells.push_back({node[sub[0]], node[sub[1]], node[sub[2]], node[sub[3]]});
+    }
+    return cells;
+  }
   const std::vector<char> in_hex = zones_in_hexes(mesh);
   std::vector<std::array<unsigned int, 4>> cells;
   cells.reserve(mesh.n_zones());
@@ -118,7 +135,8 @@ void ZoneWriter::write(const std::string& path, const std::vector<double>& posit
     const std::vector<char> in_hex = zones_in_hexes(mesh_);
     for (unsigned int z = 0; z < mesh_.n_zones(); ++z)
       if (!in_hex[z])
-        data_->cell_block.push_back(mesh_.zone_block[z]);
+        data_->cell_block.insert(data_->cell_block.end(), mesh_.quadratic() ? 8 : 1,
+                                 mesh_.zone_block[z]);
     for (unsigned int h = 0; h < mesh_.n_hexes(); ++h)
       data_->cell_block.insert(data_->cell_block.end(), TetMesh::tets_per_hex / 2,
                                mesh_.zone_block[mesh_.hex_first_zone[h]]);

@@ -1,5 +1,6 @@
 #include <talus/base/exceptions.h>
 #include <talus/solver/block_system.h>
+#include <talus/zone/tet10_mesh.h>
 #include <talus/zone/zone_surface.h>
 
 namespace talus
@@ -10,8 +11,16 @@ TetMesh mesh_deformable_blocks(const Scene& scene, const BlockModel& model,
 {
   try
   {
-    return mesh_blocks(model, which, scene.deformable.edge_length, report,
-                       scene.deformable.material.element);
+    const ZoneElement element = scene.deformable.material.element;
+    // 10-node zones are made from the 4-node mesh (tet10_mesh.h).
+    TetMesh mesh = mesh_blocks(model, which, scene.deformable.edge_length, report,
+                               element == ZoneElement::tet10 ? ZoneElement::tet4 : element);
+    if (element == ZoneElement::tet10)
+    {
+      make_quadratic(mesh);
+      report = measure_mesh(mesh);
+    }
+    return mesh;
   }
   catch (const InputError& e)
   {

@@ -74,7 +74,14 @@ DeformableSolver::DeformableSolver(const TetMesh& mesh, std::vector<ZoneMaterial
     nodal_mixed_ |= m.nodal_mixed;
     if (m.nodal_mixed && m.element == ZoneElement::hex_mixed)
       throw InputError("internal: nodal mixed discretization and hex-mixed zones do not combine");
+    if ((m.element == ZoneElement::tet10) != mesh_.quadratic())
+      throw InputError("internal: the zone type of a material does not match the mesh "
+                       "(make_quadratic makes 10-node zones)");
   }
+  if (mesh_.quadratic() && nodal_mixed_)
+    throw InputError("nodal mixed discretization is for 4-node zones only; 10-node zones do "
+                     "not lock and need none (allowed: Element tet4 with it, or tet10 without)");
+  points_per_zone_ = mesh_.quadratic() ? 4 : 1;
   // Batches: runs of one material.
   for (unsigned int z = 0; z < nz; ++z)
     if (z == 0 || material_of_zone_[z] != material_of_zone_[z - 1])
@@ -104,9 +111,17 @@ DeformableSolver::DeformableSolver(const TetMesh& mesh, std::vector<ZoneMaterial
   }
 
   // Initial stress.
-  stress_.assign(6 * nz, 0.0);
-  state_.assign(nz, 0);
-  if (initial != nullptr)
+  stress_.assign(6 * points_per_zone_ * nz, 0.0);
+  state_.assign(points_per_zone_ * nz, 0);
+  if (initial != nullptr && mesh_.quadratic())
+    for (unsigned int z = 0; z < nz; ++z)
+    {
+      double point[4][3];
+      tet10_gauss_points(mesh_, z, point);
+      for (int q = 0; q < 4; ++q)
+        initial->at(point[q][2], &stress_[6 * (4 * z + q)]);
+    }
+  else if (initial != nullptr)
     for (unsigned int z = 0; z < nz; ++z)
     {
       double zc = 0.0;
@@ -136,6 +151,29 @@ DeformableSolver::DeformableSolver(const TetMesh& mesh, std::vector<ZoneMaterial
   {
     const auto& t = mesh_.zone_gridpoint[z];
     const ZoneMaterial& mat = materials_[material_of_zone_[z]];
+    if (mesh_.quadratic())
+    {
+      // The bound of tet10_mass_and_stiffness is for the undamped cycle.
+      // Local damping (eq. 79) and combined damping (eq. 83) change the
+      // force on a component by -alpha |F| sign(.), so by at most a factor
+      // 1 + alpha (when it adds to a force opposing the motion); the
+      // largest eigenvalue that the step sees grows by that factor at most,
+      // and so must the nodal stiffness.
+      const double damped =
+          !s_.dynamic && (s_.damping == Damping::local || s_.damping == Damping::combined)
+              ? 1.0 + s_.local_damping
+              : 1.0;
+      double m10[10], k10[10];
+      tet10_mass_and_stiffness(mesh_, z, mat.density, mat.bulk_modulus, mat.shear_modulus, m10,
+                               k10);
+      for (int a = 0; a < 10; ++a)
+      {
+        const unsigned int g = a < 4 ? t[a] : mesh_.zone_edge_gridpoint[z][a - 4];
+        mass[g] += m10[a];
+        stiffness[g] += damped * k10[a];
+      }
+      continue;
+    }
     const double V = (P(t[1]) - P(t[0])).dot((P(t[2]) - P(t[0])).cross(P(t[3]) - P(t[0]))) / 6.0;
     double b_max = 0.0, largest_face = 0.0;
     for (int i = 0; i < 4; ++i)
@@ -217,6 +255,13 @@ DeformableSolver::DeformableSolver(const TetMesh& mesh, std::vector<ZoneMaterial
   }
   // Loaded faces: the boundary triangles; those of hexahedral zones once
   // for each overlay's split of the boundary quadrilaterals, each half.
+  // 10-node zones: a zone vertex (not a midpoint) is where a boundary
+  // sub-triangle takes no load.
+  std::vector<bool> is_vertex(mesh_.quadratic() ? ng : 0, false);
+  if (mesh_.quadratic())
+    for (const auto& t : mesh_.zone_gridpoint)
+      for (unsigned int g : t)
+        is_vertex[g] = true;
   const auto press = [&](const std::array<unsigned int, 3>& face, double weight)
   {
     double c[3] = {0, 0, 0};
@@ -227,9 +272,25 @@ DeformableSolver::DeformableSolver(const TetMesh& mesh, std::vector<ZoneMaterial
       if (inside(p.region, c))
       {
         pressed_faces_.push_back(face);
-        face_weight_.push_back(weight);
         face_pressure_.push_back(p.pressure);
         face_traction_.push_back(p.traction);
+        // Share of the face's load on each of its gridpoints (times the
+        // overlay weight of hexahedral zones). A 10-node
+        // zone's face is four sub-triangles; the consistent load of a
+        // uniform pressure on a 6-node triangle is nothing at the vertices
+        // and a third at each midpoint, which the sub-triangles give when
+        // a corner one puts half its load on each of its two midpoints and
+        // the middle one a third on each (2 A/8 + A/12 = A/3).
+        std::array<double, 3> share{1.0 / 3.0, 1.0 / 3.0, 1.0 / 3.0};
+        for (int k = 0; k < 3 && mesh_.quadratic(); ++k)
+          if (is_vertex[face[k]])
+          {
+            share = {0.5, 0.5, 0.5};
+            share[k] = 0.0;
+          }
+        for (double& w : share)
+          w *= weight;
+        face_share_.push_back(share);
         break;
       }
   };
@@ -278,13 +339,17 @@ void DeformableSolver::zone_forces()
   // of the face's gridpoints.
   for (std::size_t k = 0; k < pressed_faces_.size(); ++k)
   {
-    const Vec3 share = face_load_share(k, x.data());
-    for (unsigned int g : pressed_faces_[k])
+    const Vec3 load = face_load(k, x.data());
+    for (int a = 0; a < 3; ++a)
+    {
+      const unsigned int g = pressed_faces_[k][a];
+      const Vec3 share = face_share_[k][a] * load;
       for (int d = 0; d < 3; ++d)
       {
         f[3 * g + d] += share[d];
         force_size_[3 * g + d] += std::abs(share[d]);
       }
+    }
   }
   // The velocities are those of the last motion (x - v dt -> x); before the
   // first motion there is none, so no strain.
@@ -292,6 +357,31 @@ void DeformableSolver::zone_forces()
   if (nodal_mixed_)
   {
     nodal_mixed_zone_forces(x.data(), v.data(), f.data(), strain_dt);
+    return;
+  }
+  if (mesh_.quadratic())
+  {
+    // 10-node zones: the same three stages, the model at every Gauss point.
+    constexpr unsigned int batch10 = zone_batch / 4;
+    scratch10_.resize(batch10);
+    for (std::size_t r = 0; r + 1 < batch_start_.size(); ++r)
+    {
+      const ZoneMaterial& mat = materials_[material_of_zone_[batch_start_[r]]];
+      for (unsigned int first = batch_start_[r]; first < batch_start_[r + 1]; first += batch10)
+      {
+        const unsigned int n = std::min(batch10, batch_start_[r + 1] - first);
+        tet10_strain_increments(mesh_, first, n, x.data(), v.data(), strain_dt, stress_.data(),
+                                scratch10_);
+        StressBatch batch;
+        batch.size = 4 * n;
+        batch.strain_increment = scratch10_.strain_increment.data();
+        batch.stress = stress_.data() + 24 * std::size_t(first);
+        batch.state = state_.data() + 4 * std::size_t(first);
+        apply_zone_model(mat, batch);
+        tet10_nodal_forces(mesh_, first, n, stress_.data(), scratch10_, f.data(),
+                           force_size_.data());
+      }
+    }
     return;
   }
   // Zones, one batch of one material at a time: strain increments, the
@@ -577,16 +667,15 @@ Vec3 DeformableSolver::support_force(const Box& region) const
   return sum;
 }
 
-Vec3 DeformableSolver::face_load_share(std::size_t k, const double* x) const
+Vec3 DeformableSolver::face_load(std::size_t k, const double* x) const
 {
   const auto& t = pressed_faces_[k];
   const Vec3 a(x[3 * t[0]], x[3 * t[0] + 1], x[3 * t[0] + 2]);
   const Vec3 b(x[3 * t[1]], x[3 * t[1] + 1], x[3 * t[1] + 2]);
   const Vec3 c(x[3 * t[2]], x[3 * t[2] + 1], x[3 * t[2] + 2]);
   const Vec3 area_normal = 0.5 * (b - a).cross(c - a); // outward, |.| = area
-  // -p n A + t A, shared equally by the three gridpoints.
-  return face_weight_[k] *
-         (-face_pressure_[k] * area_normal + face_traction_[k] * area_normal.norm()) / 3.0;
+  // -p n A + t A, shared by the gridpoints as face_share_ says.
+  return -face_pressure_[k] * area_normal + face_traction_[k] * area_normal.norm();
 }
 
 ImplicitElasticProblem DeformableSolver::implicit_problem() const
@@ -601,10 +690,10 @@ ImplicitElasticProblem DeformableSolver::implicit_problem() const
   p.nodal_force = gravity_force_;
   for (std::size_t k = 0; k < pressed_faces_.size(); ++k)
   {
-    const Vec3 share = face_load_share(k, mesh_.position.data());
-    for (unsigned int g : pressed_faces_[k])
+    const Vec3 load = face_load(k, mesh_.position.data());
+    for (int a = 0; a < 3; ++a)
       for (int d = 0; d < 3; ++d)
-        p.nodal_force[3 * g + d] += share[d];
+        p.nodal_force[3 * pressed_faces_[k][a] + d] += face_share_[k][a] * load[d];
   }
   p.fixed = held_;
   return p;

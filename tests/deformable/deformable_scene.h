@@ -8,6 +8,7 @@
 #include <talus/model/build_blocks.h>
 #include <talus/solver/deformable_solver.h>
 #include <talus/zone/block_mesher.h>
+#include <talus/zone/tet10_mesh.h>
 
 #include <memory>
 #include <string>
@@ -36,6 +37,8 @@ struct DeformableScene
         if (model.group_names[model.group[b]] == g)
           which.push_back(b);
     mesh = talus::mesh_blocks(model, which, scene.deformable.edge_length, mesh_report);
+    if (scene.deformable.material.element == talus::ZoneElement::tet10)
+      talus::make_quadratic(mesh);
     solver = std::make_unique<talus::DeformableSolver>(
         mesh, std::vector<talus::ZoneMaterial>{scene.deformable.material},
         std::vector<unsigned int>(mesh.n_zones(), 0), scene.solver, scene.gridpoint_conditions,

@@ -16,8 +16,9 @@ namespace talus
 using ZoneField = BlockField;
 
 /// The tetrahedra that show the zones in ParaView, four gridpoints each: a
-/// 4-node zone as itself, a hexahedral zone of mixed discretization as the
-/// five tetrahedra of its first overlay (which alone fill the block
+/// 4-node zone as itself, a 10-node zone as its eight sub-tetrahedra
+/// (tet10_subcell), a hexahedral zone of mixed discretization as the five
+/// tetrahedra of its first overlay (which alone fill the block
 /// conformingly).
 std::vector<std::array<unsigned int, 4>> shown_tetrahedra(const TetMesh& mesh);
 

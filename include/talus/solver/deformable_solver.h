@@ -5,10 +5,12 @@
 #include <talus/solver/rigid_solver.h>
 #include <talus/zone/implicit_elastic.h>
 #include <talus/zone/stress_batch.h>
+#include <talus/zone/tet10_kernel.h>
 #include <talus/zone/tet4_kernel.h>
 #include <talus/zone/tet_mesh.h>
 #include <talus/zone/zone_material.h>
 
+#include <array>
 #include <limits>
 #include <memory>
 #include <vector>
@@ -119,8 +121,11 @@ public:
   std::vector<double> positions() const;
   std::vector<double> displacements() const;
   std::vector<double> velocities() const;
-  /// Zone stresses, 6 per zone (xx, yy, zz, xy, yz, zx), Pa.
+  /// Stresses, 6 per stress point (xx, yy, zz, xy, yz, zx), Pa; the stress
+  /// points of zone z are [z p, z p + p), p = stress_points_per_zone() (1 for
+  /// 4-node zones, the 4 Gauss points of 10-node zones). Plastic state alike.
   const std::vector<double>& stress() const { return stress_; }
+  unsigned int stress_points_per_zone() const { return points_per_zone_; }
   const std::vector<unsigned char>& plastic_state() const { return state_; }
   /// The same problem for the implicit elastic reference solve: gravity and
   /// face pressures as nodal forces on the initial geometry, held
@@ -168,14 +173,18 @@ private:
   std::vector<double> held_velocity_;   ///< 3 per gridpoint, m/s
   std::vector<double> held_until_;      ///< 3 per gridpoint: model time the velocity stops, s
   std::vector<std::array<unsigned int, 3>> pressed_faces_; ///< gridpoints, normal outward
-  std::vector<double> face_weight_;   ///< 1, or 1/2 for each overlay's split of a hexahedron's face
-  std::vector<double> face_pressure_; ///< Pa, per pressed face
-  std::vector<Vec3> face_traction_;   ///< Pa, per pressed face
-  /// The load of pressed face k on each of its three gridpoints at
-  /// positions x (N).
-  Vec3 face_load_share(std::size_t k, const double* x) const;
+  std::vector<double> face_pressure_;                      ///< Pa, per pressed face
+  std::vector<Vec3> face_traction_;                        ///< Pa, per pressed face
+  /// Per pressed face, the fraction of its load on each of its gridpoints
+  /// (a third each for 4-node zones, half that on each overlay's split of
+  /// a hexahedral zone's face).
+  std::vector<std::array<double, 3>> face_share_;
+  /// The load of pressed face k at positions x (N).
+  Vec3 face_load(std::size_t k, const double* x) const;
   std::vector<double> force_size_; ///< 3 per gridpoint: sum of |zone force| (N), for the ratio
   Tet4Scratch scratch_;
+  Tet10Scratch scratch10_;           ///< 10-node zones only
+  unsigned int points_per_zone_ = 1; ///< stress points per zone
   // Nodal mixed discretization only (empty otherwise).
   bool nodal_mixed_ = false;
   Tet4Scratch full_scratch_;               ///< every zone's gradients and strain

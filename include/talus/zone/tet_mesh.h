@@ -23,6 +23,11 @@ struct TetMesh
   /// of the block, and the zone they belong to.
   std::vector<std::array<unsigned int, 3>> face_gridpoint;
   std::vector<unsigned int> face_zone;
+  /// 10-node zones only (empty for 4-node zones): the gridpoints at the six
+  /// edge midpoints of each zone, in deal.II's edge order (0-1, 1-2, 2-0,
+  /// 0-3, 1-3, 2-3), so that zone_gridpoint then zone_edge_gridpoint are
+  /// the nodes of FE_SimplexP<3>(2). Set by make_quadratic (tet10_mesh.h).
+  std::vector<std::array<unsigned int, 6>> zone_edge_gridpoint;
 
   /// Hexahedral zones of mixed discretization (eqs. 60-67; empty for a mesh
   /// of plain tetrahedra). Hexahedron h is the ten consecutive zones
@@ -41,6 +46,7 @@ struct TetMesh
 
   unsigned int n_gridpoints() const { return static_cast<unsigned int>(position.size() / 3); }
   unsigned int n_zones() const { return static_cast<unsigned int>(zone_gridpoint.size()); }
+  bool quadratic() const { return !zone_edge_gridpoint.empty(); }
   unsigned int n_faces() const { return static_cast<unsigned int>(face_gridpoint.size()); }
   unsigned int n_hexes() const { return static_cast<unsigned int>(hex_gridpoint.size()); }
   static constexpr unsigned int tets_per_hex = 10;
