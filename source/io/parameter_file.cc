@@ -3,6 +3,9 @@
 #include <deal.II/base/utilities.h>
 
 #include <algorithm>
+#include <cerrno>
+#include <cstring>
+#include <filesystem>
 #include <fstream>
 #include <regex>
 #include <sstream>
@@ -43,12 +46,21 @@ std::string join_path(const std::vector<std::string>& parts)
 
 ParameterFile::ParameterFile(const std::string& filename) : filename_(filename)
 {
-  std::ifstream in(filename);
+  std::error_code ec;
+  if (!std::filesystem::is_regular_file(filename, ec))
+    throw InputError(filename + ": " +
+                     (std::filesystem::exists(filename, ec) ? "not a file"
+                                                            : "no such parameter file") +
+                     "; allowed: a readable parameter file (.prm)");
+  std::ifstream in(filename, std::ios::binary);
   if (!in)
-    throw InputError(filename + ": cannot open the parameter file (missing or unreadable)");
+    throw InputError(filename + ": cannot open the parameter file (" + std::strerror(errno) +
+                     "); allowed: a readable parameter file (.prm)");
   std::stringstream buffer;
   buffer << in.rdbuf();
   text_ = buffer.str();
+  if (in.bad())
+    throw InputError(filename + ": reading the parameter file failed");
 
   // A lenient first pass that only records where things are; the real parse
   // (and its error reporting) is ParameterHandler's.
@@ -62,6 +74,7 @@ ParameterFile::ParameterFile(const std::string& filename) : filename_(filename)
     if (code.rfind("subsection ", 0) == 0 || code.rfind("subsection\t", 0) == 0)
     {
       stack.push_back(collapse(code.substr(10)));
+      section_line_.emplace(join_path(stack), number);
       if (stack.size() == 1 &&
           std::find(sections_in_file_.begin(), sections_in_file_.end(), stack[0]) ==
               sections_in_file_.end())
@@ -215,6 +228,14 @@ InputError ParameterFile::error(const std::string& name, const std::string& prob
   const unsigned int line = line_of(path(), name);
   return InputError::at(filename_, line, path(), name,
                         line == 0 ? problem + " (default value)" : problem, allowed);
+}
+
+std::map<std::string, unsigned int> ParameterFile::lines() const
+{
+  std::map<std::string, unsigned int> lines = section_line_;
+  for (const auto& [where, line] : entry_line_)
+    lines.emplace(where.first + " / " + where.second, line);
+  return lines;
 }
 
 std::string ParameterFile::used_parameters() const

@@ -53,6 +53,11 @@ public:
 
   const std::string& filename() const { return filename_; }
 
+  /// Line of each subsection ("Joint set 1", first opening) and of each
+  /// entry the file sets ("Joint set 1 / Spacing"), for messages about
+  /// problems found after reading.
+  std::map<std::string, unsigned int> lines() const;
+
 private:
   std::string path() const;
   unsigned int line_of(const std::string& path, const std::string& name) const;
@@ -65,6 +70,8 @@ private:
   std::vector<std::string> sections_in_file_;
   /// (subsection path, entry) -> line of its `set` statement.
   std::map<std::pair<std::string, std::string>, unsigned int> entry_line_;
+  /// subsection path -> line where it is first opened.
+  std::map<std::string, unsigned int> section_line_;
   /// line -> (subsection path, entry, value) for every `set` statement.
   std::map<unsigned int, std::vector<std::string>> line_entry_;
   /// subsection path -> entries declared there, with what they allow.

@@ -48,4 +48,10 @@ MeshReport measure_mesh(const TetMesh& mesh);
 TetMesh mesh_blocks(const BlockModel& blocks, const std::vector<unsigned int>& which,
                     double edge_length, MeshReport& report);
 
+/// The number of zones mesh_blocks would make, found without meshing (as a
+/// double: a bad edge length can ask for more than any integer holds), so
+/// that a scene too large for memory is refused before it is meshed.
+double count_zones(const BlockModel& blocks, const std::vector<unsigned int>& which,
+                   double edge_length);
+
 } // namespace talus
