@@ -12,8 +12,7 @@
 namespace talus
 {
 
-void write_file_atomically(const std::string& path,
-                           const std::function<void(std::ostream&)>& write)
+void write_file_atomically(const std::string& path, const std::function<void(std::ostream&)>& write)
 {
   // Same folder as the target, so that the rename cannot cross file systems;
   // the process id keeps two runs writing into one folder apart.

@@ -16,8 +16,7 @@ namespace
 {
 double wall_seconds()
 {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch())
-      .count();
+  return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count();
 }
 } // namespace
 
@@ -83,7 +82,10 @@ ProgressLine::ProgressLine(unsigned long total_steps, double interval)
   terminal_ = isatty(fileno(stderr)) != 0;
 }
 
-ProgressLine::~ProgressLine() { finish(); }
+ProgressLine::~ProgressLine()
+{
+  finish();
+}
 
 void ProgressLine::finish()
 {
@@ -113,8 +115,8 @@ void ProgressLine::update(unsigned long step, double time)
     return;
   last_ = now;
   shown_ = true;
-  std::cerr << '\r' << format(step, total_, time, step / std::max(now - start_, 1e-9))
-            << "   " << std::flush;
+  std::cerr << '\r' << format(step, total_, time, step / std::max(now - start_, 1e-9)) << "   "
+            << std::flush;
 }
 
 } // namespace talus

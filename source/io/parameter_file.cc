@@ -4,6 +4,8 @@
 
 #include <algorithm>
 #include <cerrno>
+#include <cstdio>
+#include <cstdlib>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
@@ -67,8 +69,18 @@ ParameterFile::ParameterFile(const std::string& filename) : filename_(filename)
   std::istringstream lines(text_);
   std::string line;
   std::vector<std::string> stack;
+  bool any_statement = false;
   for (unsigned int number = 1; std::getline(lines, line); ++number)
   {
+    for (const char c : line)
+      if ((static_cast<unsigned char>(c) < 32 && c != '\t' && c != '\r') || c == 127)
+      {
+        char byte[8];
+        std::snprintf(byte, sizeof byte, "0x%02x", static_cast<unsigned char>(c));
+        throw InputError(filename + ":" + std::to_string(number) +
+                         ": the line holds a control character (byte " + byte +
+                         "), so this is not a text file; allowed: a parameter file of text lines");
+      }
     const auto hash = line.find('#');
     const std::string code = trim(hash == std::string::npos ? line : line.substr(0, hash));
     if (code.rfind("subsection ", 0) == 0 || code.rfind("subsection\t", 0) == 0)
@@ -91,7 +103,11 @@ ParameterFile::ParameterFile(const std::string& filename) : filename_(filename)
       entry_line_.emplace(std::make_pair(join_path(stack), name), number);
       line_entry_[number] = {join_path(stack), name, value};
     }
+    any_statement |= !code.empty();
   }
+  if (!any_statement)
+    throw InputError(filename + ": the file is empty (it sets nothing); allowed: a parameter "
+                                "file with at least one subsection");
 }
 
 void ParameterFile::enter(const std::string& section)
@@ -203,7 +219,9 @@ std::string ParameterFile::get(const std::string& name) const
 
 double ParameterFile::get_double(const std::string& name) const
 {
-  return handler_.get_double(name);
+  // As get_doubles: a number too small for a double is taken as the nearest
+  // value (ParameterHandler::get_double would refuse what its pattern took).
+  return std::strtod(handler_.get(name).c_str(), nullptr);
 }
 
 long ParameterFile::get_integer(const std::string& name) const
@@ -216,10 +234,22 @@ bool ParameterFile::get_bool(const std::string& name) const
   return handler_.get_bool(name);
 }
 
+std::vector<double> ParameterFile::get_doubles(const std::string& name) const
+{
+  // The entry's pattern has accepted every number; strtod (unlike std::stod)
+  // takes one too small for a double as the nearest value, as the pattern did.
+  std::vector<double> values;
+  for (const std::string& part : dealii::Utilities::split_string_list(get(name), ','))
+    values.push_back(std::strtod(part.c_str(), nullptr));
+  return values;
+}
+
 Vec3 ParameterFile::get_vec3(const std::string& name) const
 {
-  const auto parts = dealii::Utilities::split_string_list(get(name), ',');
-  return Vec3(std::stod(parts.at(0)), std::stod(parts.at(1)), std::stod(parts.at(2)));
+  const std::vector<double> v = get_doubles(name);
+  if (v.size() != 3)
+    throw error(name, "must be three numbers", "three numbers separated by commas");
+  return Vec3(v[0], v[1], v[2]);
 }
 
 InputError ParameterFile::error(const std::string& name, const std::string& problem,

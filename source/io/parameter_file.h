@@ -42,6 +42,8 @@ public:
   long get_integer(const std::string& name) const;
   bool get_bool(const std::string& name) const;
   Vec3 get_vec3(const std::string& name) const;
+  /// A list of numbers separated by commas (the pattern has checked them).
+  std::vector<double> get_doubles(const std::string& name) const;
 
   /// An InputError about an entry of the current subsection, at its line in
   /// the file (or naming the default when the file does not set it).

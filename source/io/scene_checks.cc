@@ -94,8 +94,8 @@ void check_model_size(const Scene& scene)
 
 void check_built_model(const Scene& scene, const BlockModel& model, const BuildReport& report)
 {
-  const auto cuts_nothing = [&](const std::string& section,
-                                const std::pair<unsigned long, unsigned long>& cuts)
+  const auto cuts_nothing =
+      [&](const std::string& section, const std::pair<unsigned long, unsigned long>& cuts)
   {
     if (cuts.first > 0)
       return;
@@ -163,14 +163,15 @@ void check_built_model(const Scene& scene, const BlockModel& model, const BuildR
   const double edge = scene.deformable.edge_length;
   if (edge > largest_extent)
     throw scene_error(scene, "Deformable", "Edge length",
-                      number(edge) + " m is larger than every deformable block (the largest spans " +
+                      number(edge) +
+                          " m is larger than every deformable block (the largest spans " +
                           number(largest_extent) + " m)",
                       "a number > 0 and at most " + number(largest_extent) + " (m)");
   const double zones = count_zones(model, deformable, edge);
   if (!(zones <= max_zones))
     throw scene_error(scene, "Deformable", "Edge length",
-                      number(edge) + " m would make " + number(zones) +
-                          " zones, more than the " + number(max_zones) +
+                      number(edge) + " m would make " + number(zones) + " zones, more than the " +
+                          number(max_zones) +
                           " talus meshes (about 620 bytes of memory each while meshing)",
                       "an edge length that makes at most " + number(max_zones) + " zones");
 }

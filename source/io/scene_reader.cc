@@ -383,9 +383,9 @@ void parse_deformable(ParameterFile& prm, Scene& scene)
   prm.enter("Initial stress");
   const auto six = [&](const std::string& name, double* out)
   {
-    const auto parts = dealii::Utilities::split_string_list(prm.get(name));
+    const std::vector<double> values = prm.get_doubles(name);
     for (int c = 0; c < 6; ++c)
-      out[c] = std::stod(parts[c]);
+      out[c] = values.at(c);
   };
   six("Stress", scene.initial_stress.base);
   six("Gradient", scene.initial_stress.gradient);

@@ -119,9 +119,10 @@ std::vector<std::pair<std::size_t, std::size_t>> number_spans(const std::string&
          std::isdigit(static_cast<unsigned char>(text[i + 1]))))
     {
       std::size_t j = i + 1;
-      while (j < to && (std::isdigit(static_cast<unsigned char>(text[j])) || text[j] == '.' ||
-                        text[j] == 'e' || text[j] == 'E' ||
-                        ((text[j] == '-' || text[j] == '+') && (text[j - 1] == 'e' || text[j - 1] == 'E'))))
+      while (j < to &&
+             (std::isdigit(static_cast<unsigned char>(text[j])) || text[j] == '.' ||
+              text[j] == 'e' || text[j] == 'E' ||
+              ((text[j] == '-' || text[j] == '+') && (text[j - 1] == 'e' || text[j - 1] == 'E'))))
         ++j;
       spans.emplace_back(i, j);
       i = j;
@@ -154,12 +155,20 @@ bool replace_number(std::vector<std::string>& lines, Random& random, Make make)
   return true;
 }
 
-const std::vector<std::string> kind_names{
-    "delete a line",       "duplicate a line",       "truncate",
-    "swap two values",     "huge number",            "negative number",
-    "zero",                "nan or inf",             "text for a value",
-    "unbalanced sections", "unknown or odd names",   "byte flips",
-    "empty or garbage file", "odd statements"};
+const std::vector<std::string> kind_names{"delete a line",
+                                          "duplicate a line",
+                                          "truncate",
+                                          "swap two values",
+                                          "huge number",
+                                          "negative number",
+                                          "zero",
+                                          "nan or inf",
+                                          "text for a value",
+                                          "unbalanced sections",
+                                          "unknown or odd names",
+                                          "byte flips",
+                                          "empty or garbage file",
+                                          "odd statements"};
 
 /// Mutates a parameter file's text in the way `kind` names.
 std::string mutate_parameters(const std::string& text, unsigned int kind, Random& random)
@@ -169,132 +178,141 @@ std::string mutate_parameters(const std::string& text, unsigned int kind, Random
   const auto set_lines = lines_where(lines, is_set_line);
   switch (kind)
   {
+  case 0:
+    lines.erase(lines.begin() + static_cast<long>(any_line()));
+    break;
+  case 1:
+  {
+    const std::size_t at = any_line();
+    lines.insert(lines.begin() + static_cast<long>(at), lines[at]);
+    break;
+  }
+  case 2:
+    return text.substr(0, random.below(text.size()));
+  case 3:
+  {
+    const std::size_t a = random.pick(set_lines), b = random.pick(set_lines);
+    const auto [ab, ae] = value_span(lines[a]);
+    const auto [bb, be] = value_span(lines[b]);
+    const std::string va = lines[a].substr(ab, ae - ab), vb = lines[b].substr(bb, be - bb);
+    lines[a] = lines[a].substr(0, ab) + vb + lines[a].substr(ae);
+    lines[b] = lines[b].substr(0, bb) + va + lines[b].substr(be);
+    break;
+  }
+  case 4:
+  {
+    static const std::vector<std::string> huge{
+        "1e300",      "1e308", "-1e300", "1e400", "123456789012345678901234567890",
+        "4294967296", "1e12"};
+    replace_number(lines, random, [&](const std::string&) { return random.pick(huge); });
+    break;
+  }
+  case 5:
+    replace_number(lines, random,
+                   [](const std::string& old)
+                   { return old[0] == '-' ? old.substr(1) : "-" + old; });
+    break;
+  case 6:
+    replace_number(lines, random, [](const std::string&) { return std::string("0"); });
+    break;
+  case 7:
+  {
+    static const std::vector<std::string> odd{"nan", "NaN", "inf", "-inf", "1e-400", "0x1p3"};
+    replace_number(lines, random, [&](const std::string&) { return random.pick(odd); });
+    break;
+  }
+  case 8:
+  {
+    static const std::vector<std::string> text_values{
+        "abc", "", "1 2 3", "1,,2", ";", "true", "1, 2, 3, 4", "\"1\"", ",", "x, y, z"};
+    const std::size_t at = random.pick(set_lines);
+    const auto [b, e] = value_span(lines[at]);
+    lines[at] = lines[at].substr(0, b) + " " + random.pick(text_values) + lines[at].substr(e);
+    break;
+  }
+  case 9:
+  {
+    const auto ends = lines_where(lines, [](const std::string& l) { return l == "end"; });
+    switch (random.below(4))
+    {
     case 0:
-      lines.erase(lines.begin() + static_cast<long>(any_line()));
+      lines.erase(lines.begin() + static_cast<long>(random.pick(ends)));
       break;
     case 1:
-    {
-      const std::size_t at = any_line();
-      lines.insert(lines.begin() + static_cast<long>(at), lines[at]);
+      lines.insert(lines.begin() + static_cast<long>(any_line()), "end");
       break;
-    }
     case 2:
-      return text.substr(0, random.below(text.size()));
+      lines.insert(lines.begin() + static_cast<long>(any_line()), "subsection Solver");
+      break;
+    default:
+      lines.push_back("subsection Model");
+    }
+    break;
+  }
+  case 10:
+  {
+    static const std::vector<std::string> names{
+        "subsection Joint set 0",    "subsection Joint set 99999999999999999999",
+        "subsection Joint set -1",   "subsection Group 1x",
+        "subsection Blocks",         "subsection Load 4294967297",
+        "subsection Excavation 007", "subsection"};
+    const auto sections =
+        lines_where(lines, [](const std::string& l) { return l.rfind("subsection", 0) == 0; });
+    if (random.below(2) == 0 && !sections.empty())
+      lines[random.pick(sections)] = random.pick(names);
+    else
+    {
+      std::string& l = lines[random.pick(set_lines)];
+      const std::size_t eq = l.find('=');
+      l.insert(eq > 0 && l[eq - 1] == ' ' ? eq - 1 : eq, random.below(2) ? "x" : " Speed");
+    }
+    break;
+  }
+  case 11:
+  {
+    std::string flipped = text;
+    const std::size_t n = 1 + random.below(4);
+    for (std::size_t k = 0; k < n && !flipped.empty(); ++k)
+      flipped[random.below(flipped.size())] ^= static_cast<char>(1u << random.below(8));
+    return flipped;
+  }
+  case 12:
+  {
+    switch (random.below(5))
+    {
+    case 0:
+      return "";
+    case 1:
+      return "\n\n   \n";
+    case 2:
+      return "# nothing but a comment\n";
     case 3:
     {
-      const std::size_t a = random.pick(set_lines), b = random.pick(set_lines);
-      const auto [ab, ae] = value_span(lines[a]);
-      const auto [bb, be] = value_span(lines[b]);
-      const std::string va = lines[a].substr(ab, ae - ab), vb = lines[b].substr(bb, be - bb);
-      lines[a] = lines[a].substr(0, ab) + vb + lines[a].substr(ae);
-      lines[b] = lines[b].substr(0, bb) + va + lines[b].substr(be);
-      break;
-    }
-    case 4:
-    {
-      static const std::vector<std::string> huge{"1e300", "1e308", "-1e300", "1e400",
-                                                 "123456789012345678901234567890", "4294967296",
-                                                 "1e12"};
-      replace_number(lines, random, [&](const std::string&) { return random.pick(huge); });
-      break;
-    }
-    case 5:
-      replace_number(lines, random, [](const std::string& old)
-                     { return old[0] == '-' ? old.substr(1) : "-" + old; });
-      break;
-    case 6:
-      replace_number(lines, random, [](const std::string&) { return std::string("0"); });
-      break;
-    case 7:
-    {
-      static const std::vector<std::string> odd{"nan", "NaN", "inf", "-inf", "1e-400", "0x1p3"};
-      replace_number(lines, random, [&](const std::string&) { return random.pick(odd); });
-      break;
-    }
-    case 8:
-    {
-      static const std::vector<std::string> text_values{"abc", "", "1 2 3", "1,,2", ";", "true",
-                                                        "1, 2, 3, 4", "\"1\"", ",", "x, y, z"};
-      const std::size_t at = random.pick(set_lines);
-      const auto [b, e] = value_span(lines[at]);
-      lines[at] = lines[at].substr(0, b) + " " + random.pick(text_values) + lines[at].substr(e);
-      break;
-    }
-    case 9:
-    {
-      const auto ends = lines_where(lines, [](const std::string& l) { return l == "end"; });
-      switch (random.below(4))
-      {
-        case 0:
-          lines.erase(lines.begin() + static_cast<long>(random.pick(ends)));
-          break;
-        case 1:
-          lines.insert(lines.begin() + static_cast<long>(any_line()), "end");
-          break;
-        case 2:
-          lines.insert(lines.begin() + static_cast<long>(any_line()), "subsection Solver");
-          break;
-        default:
-          lines.push_back("subsection Model");
-      }
-      break;
-    }
-    case 10:
-    {
-      static const std::vector<std::string> names{
-          "subsection Joint set 0", "subsection Joint set 99999999999999999999",
-          "subsection Joint set -1", "subsection Group 1x", "subsection Blocks",
-          "subsection Load 4294967297", "subsection Excavation 007", "subsection"};
-      const auto sections =
-          lines_where(lines, [](const std::string& l) { return l.rfind("subsection", 0) == 0; });
-      if (random.below(2) == 0 && !sections.empty())
-        lines[random.pick(sections)] = random.pick(names);
-      else
-      {
-        std::string& l = lines[random.pick(set_lines)];
-        const std::size_t eq = l.find('=');
-        l.insert(eq > 0 && l[eq - 1] == ' ' ? eq - 1 : eq, random.below(2) ? "x" : " Speed");
-      }
-      break;
-    }
-    case 11:
-    {
-      std::string flipped = text;
-      const std::size_t n = 1 + random.below(4);
-      for (std::size_t k = 0; k < n && !flipped.empty(); ++k)
-        flipped[random.below(flipped.size())] ^= static_cast<char>(1u << random.below(8));
-      return flipped;
-    }
-    case 12:
-    {
-      switch (random.below(5))
-      {
-        case 0:
-          return "";
-        case 1:
-          return "\n\n   \n";
-        case 2:
-          return "# nothing but a comment\n";
-        case 3:
-        {
-          std::string garbage;
-          for (int k = 0; k < 200; ++k)
-            garbage.push_back(static_cast<char>(random.below(256)));
-          return garbage;
-        }
-        default:
-          return std::string(1000, '\0');
-      }
+      std::string garbage;
+      for (int k = 0; k < 200; ++k)
+        garbage.push_back(static_cast<char>(random.below(256)));
+      return garbage;
     }
     default:
-    {
-      static const std::vector<std::string> statements{
-          "set Steps = 10",  "set = 3",     "=",
-          "subsection Model\nsubsection Model\nend\nend", "set Density = 1 # comment = 2",
-          "set Density",     "end end",     "subsection Solver\n  set Steps = 5\n  set Steps = 7\nend",
-          std::string(100000, 'x'), "\t set\tDensity\t=\t2600", "set Density == 2600"};
-      lines.insert(lines.begin() + static_cast<long>(any_line()), random.pick(statements));
+      return std::string(1000, '\0');
     }
+  }
+  default:
+  {
+    static const std::vector<std::string> statements{
+        "set Steps = 10",
+        "set = 3",
+        "=",
+        "subsection Model\nsubsection Model\nend\nend",
+        "set Density = 1 # comment = 2",
+        "set Density",
+        "end end",
+        "subsection Solver\n  set Steps = 5\n  set Steps = 7\nend",
+        std::string(100000, 'x'),
+        "\t set\tDensity\t=\t2600",
+        "set Density == 2600"};
+    lines.insert(lines.begin() + static_cast<long>(any_line()), random.pick(statements));
+  }
   }
   return join_lines(lines);
 }
@@ -306,49 +324,50 @@ std::string mutate_mesh(const std::string& text, unsigned int kind, Random& rand
   const std::size_t at = random.below(lines.size());
   switch (kind % 8)
   {
-    case 0:
-      lines.erase(lines.begin() + static_cast<long>(at));
-      break;
-    case 1:
-      lines.insert(lines.begin() + static_cast<long>(at), lines[at]);
-      break;
-    case 2:
-      return text.substr(0, random.below(text.size()));
-    case 3:
-    {
-      static const std::vector<std::string> values{"0", "-1", "99999999999", "1e300", "nan",
-                                                   "4294967295", "abc", "9"};
-      std::vector<std::pair<std::size_t, std::pair<std::size_t, std::size_t>>> all;
-      for (std::size_t i = 0; i < lines.size(); ++i)
-        for (const auto& s : number_spans(lines[i], 0, lines[i].size()))
-          all.emplace_back(i, s);
-      const auto& [line, span] = all[random.below(all.size())];
-      std::string& l = lines[line];
-      l = l.substr(0, span.first) + random.pick(values) + l.substr(span.second);
-      break;
-    }
-    case 4:
-    {
-      std::string flipped = text;
-      for (std::size_t k = 0; k < 1 + random.below(3); ++k)
-        flipped[random.below(flipped.size())] ^= static_cast<char>(1u << random.below(8));
-      return flipped;
-    }
-    case 5:
-      // Two tetrahedra sharing the same corners: the body is not a valid mesh.
-      lines.insert(lines.end() - 1, "6 4 2 1 1 1 2 3 6");
-      for (std::string& l : lines)
-        if (l == "5")
-          l = "6";
-      break;
-    case 6:
-      // A node moved: a flat or inverted zone, or a body that is not closed.
-      for (std::string& l : lines)
-        if (l.rfind("7 ", 0) == 0 && l.size() < 12)
-          l = random.below(2) ? "7 0.5 0.5 0.5" : "7 0 0 0";
-      break;
-    default:
-      lines.insert(lines.begin() + static_cast<long>(at), random.below(2) ? "$Nodes" : "$EndElements");
+  case 0:
+    lines.erase(lines.begin() + static_cast<long>(at));
+    break;
+  case 1:
+    lines.insert(lines.begin() + static_cast<long>(at), lines[at]);
+    break;
+  case 2:
+    return text.substr(0, random.below(text.size()));
+  case 3:
+  {
+    static const std::vector<std::string> values{"0",   "-1",         "99999999999", "1e300",
+                                                 "nan", "4294967295", "abc",         "9"};
+    std::vector<std::pair<std::size_t, std::pair<std::size_t, std::size_t>>> all;
+    for (std::size_t i = 0; i < lines.size(); ++i)
+      for (const auto& s : number_spans(lines[i], 0, lines[i].size()))
+        all.emplace_back(i, s);
+    const auto& [line, span] = all[random.below(all.size())];
+    std::string& l = lines[line];
+    l = l.substr(0, span.first) + random.pick(values) + l.substr(span.second);
+    break;
+  }
+  case 4:
+  {
+    std::string flipped = text;
+    for (std::size_t k = 0; k < 1 + random.below(3); ++k)
+      flipped[random.below(flipped.size())] ^= static_cast<char>(1u << random.below(8));
+    return flipped;
+  }
+  case 5:
+    // Two tetrahedra sharing the same corners: the body is not a valid mesh.
+    lines.insert(lines.end() - 1, "6 4 2 1 1 1 2 3 6");
+    for (std::string& l : lines)
+      if (l == "5")
+        l = "6";
+    break;
+  case 6:
+    // A node moved: a flat or inverted zone, or a body that is not closed.
+    for (std::string& l : lines)
+      if (l.rfind("7 ", 0) == 0 && l.size() < 12)
+        l = random.below(2) ? "7 0.5 0.5 0.5" : "7 0 0 0";
+    break;
+  default:
+    lines.insert(lines.begin() + static_cast<long>(at),
+                 random.below(2) ? "$Nodes" : "$EndElements");
   }
   return join_lines(lines);
 }
@@ -377,6 +396,7 @@ struct Outcome
 Outcome run_talus(const std::string& prm, const std::string& folder, double limit_seconds)
 {
   const std::string err_file = folder + "/stderr.txt";
+  std::fflush(stdout); // else the child would write out what is buffered
   const pid_t child = fork();
   if (child == 0)
   {
@@ -423,8 +443,7 @@ struct Tally
 };
 
 /// Judges one run: prints nothing for a good ending, everything for a bad one.
-void judge(const Outcome& o, const std::string& name, const std::string& what,
-           const std::string& text, Tally& tally)
+void judge(const Outcome& o, const std::string& name, const std::string& what, Tally& tally)
 {
   ++tally.mutations;
   std::string problem;
@@ -456,8 +475,8 @@ void judge(const Outcome& o, const std::string& name, const std::string& what,
     }
   }
   ++tally.failed;
-  std::printf("FAILED %s (%s): %s\n  stderr: %s\n  input (first 600 bytes):\n%s\n", name.c_str(),
-              what.c_str(), problem.c_str(), o.error_text.c_str(), text.substr(0, 600).c_str());
+  std::printf("FAILED %s (%s): %s\n  stderr: %s\n", name.c_str(), what.c_str(), problem.c_str(),
+              o.error_text.c_str());
 }
 
 } // namespace
@@ -466,7 +485,7 @@ int main()
 {
   const fs::path source = fs::path(SOURCE_DIR) / ".." / "..";
   std::vector<fs::path> inputs;
-  for (const fs::path folder : {source / "parameters", source / "parameters" / "verification"})
+  for (const fs::path& folder : {source / "parameters", source / "parameters" / "verification"})
     for (const auto& entry : fs::directory_iterator(folder))
       if (entry.path().extension() == ".prm")
         inputs.push_back(entry.path());
@@ -481,7 +500,7 @@ int main()
   const double limit_seconds = 60.0;
 
   // Parameter files: every kind of mutation on every file in turn.
-  const unsigned int n_parameter_mutations = 14 * 18;
+  const unsigned int n_parameter_mutations = 14 * 16;
   Tally parameters;
   std::map<std::string, std::array<unsigned int, 2>> per_kind; // refused, ran
   for (unsigned int m = 0; m < n_parameter_mutations; ++m)
@@ -496,7 +515,7 @@ int main()
     std::ofstream(work / file, std::ios::binary) << text;
     const Tally before = parameters;
     judge(run_talus((work / file).string(), work.string(), limit_seconds), file,
-          kind_names[kind] + " of " + base.filename().string(), text, parameters);
+          kind_names[kind] + " of " + base.filename().string(), parameters);
     per_kind[kind_names[kind]][0] += parameters.refused - before.refused;
     per_kind[kind_names[kind]][1] += parameters.ran - before.ran;
   }
@@ -504,7 +523,7 @@ int main()
   // Mesh files: a one-block deformable scene reading a mutated gmsh file.
   const std::string mesh_text =
       read_text(source / "tests" / "deformable" / "unit_cube_5_tetrahedra.msh");
-  const unsigned int n_mesh_mutations = 48;
+  const unsigned int n_mesh_mutations = 32;
   Tally meshes;
   for (unsigned int m = 0; m < n_mesh_mutations; ++m)
   {
@@ -521,25 +540,28 @@ int main()
                               << "subsection Solver\n  set Steps = 20\nend\n"
                               << "subsection Output\n  set Directory = mesh_output\nend\n";
     judge(run_talus((work / prm).string(), work.string(), limit_seconds), prm,
-          "mesh mutation " + std::to_string(m % 8), mesh, meshes);
+          "mesh mutation " + std::to_string(m % 8), meshes);
   }
 
   // Paths that name no parameter file.
   Tally paths;
   fs::create_directories(work / "folder.prm");
   for (const std::string name : {"missing.prm", "folder.prm"})
-    judge(run_talus((work / name).string(), work.string(), limit_seconds), name, "not a file", "",
+    judge(run_talus((work / name).string(), work.string(), limit_seconds), name, "not a file",
           paths);
 
   for (const auto& [kind, counts] : per_kind)
-    std::printf("%-22s %3u refused with a message, %3u ran\n", kind.c_str(), counts[0],
-                counts[1]);
+    std::printf("%-22s %3u refused with a message, %3u ran\n", kind.c_str(), counts[0], counts[1]);
   std::printf("%u mutated parameter files: %u refused with a message, %u ran, %u failed\n",
               parameters.mutations, parameters.refused, parameters.ran, parameters.failed);
   std::printf("%u mutated mesh files: %u refused with a message, %u ran, %u failed\n",
               meshes.mutations, meshes.refused, meshes.ran, meshes.failed);
   std::printf("%u paths that are no parameter file: %u refused with a message, %u ran, %u failed\n",
               paths.mutations, paths.refused, paths.ran, paths.failed);
-  fs::remove_all(work);
+  // The mutated files stay for a look when a run failed.
+  if (parameters.failed + meshes.failed + paths.failed == 0)
+    fs::remove_all(work);
+  else
+    std::printf("the mutated files are in %s\n", work.c_str());
   return 0;
 }
