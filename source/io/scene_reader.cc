@@ -665,8 +665,8 @@ Scene read_scene(const std::string& filename, bool prepare_output)
     if (std::regex_match(s, m, numbered))
     {
       if (m[2].length() > 9)
-        throw InputError(filename + ":" + std::to_string(prm.lines().at(s)) + ": subsection '" +
-                         s + "': the number is too large; allowed: numbers up to 999999999");
+        throw InputError(filename + ":" + std::to_string(prm.lines().at(s)) + ": subsection '" + s +
+                         "': the number is too large; allowed: numbers up to 999999999");
       found.emplace_back(m[1], std::stol(m[2]), s);
     }
   }

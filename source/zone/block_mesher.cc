@@ -127,8 +127,7 @@ void check_one_closed_body(const TetMesh& mesh, const std::string& path)
                                       mesh.zone_gridpoint[z][f[2]]};
       std::sort(key.begin(), key.end());
       if (key[0] == key[1] || key[1] == key[2])
-        throw InputError(path + ": tetrahedron " + std::to_string(z + 1) +
-                         " uses one node twice");
+        throw InputError(path + ": tetrahedron " + std::to_string(z + 1) + " uses one node twice");
       zones_of_face[key].push_back(z);
     }
   // Zones joined through shared faces (union-find), and the boundary edges.
@@ -159,8 +158,8 @@ void check_one_closed_body(const TetMesh& mesh, const std::string& path)
       const unsigned int g = edge.first;
       throw InputError(path + ": the boundary of the body is not a closed surface (an edge at " +
                        number(mesh.position[3 * g]) + ", " + number(mesh.position[3 * g + 1]) +
-                       ", " + number(mesh.position[3 * g + 2]) + " joins " +
-                       std::to_string(count) + " boundary faces instead of 2)");
+                       ", " + number(mesh.position[3 * g + 2]) + " joins " + std::to_string(count) +
+                       " boundary faces instead of 2)");
     }
   unsigned int bodies = 0;
   for (unsigned int z = 0; z < mesh.n_zones(); ++z)
@@ -356,7 +355,8 @@ double count_zones(const BlockModel& m, const std::vector<unsigned int>& which, 
       const unsigned int first = m.face_loop_start[f], n = m.face_loop_start[f + 1] - first;
       for (unsigned int k = 1; k + 1 < n; ++k)
       {
-        const std::array<Vec3, 4> t{m.vertex[m.face_vertex[first]], m.vertex[m.face_vertex[first + k]],
+        const std::array<Vec3, 4> t{m.vertex[m.face_vertex[first]],
+                                    m.vertex[m.face_vertex[first + k]],
                                     m.vertex[m.face_vertex[first + k + 1]], c};
         for (int i = 0; i < 4; ++i)
           for (int j = i + 1; j < 4; ++j)
