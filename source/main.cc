@@ -9,6 +9,7 @@
 #include <talus/io/file_output.h>
 #include <talus/io/history_file.h>
 #include <talus/io/scene.h>
+#include <talus/io/scene_checks.h>
 #include <talus/io/zone_vtu_writer.h>
 #include <talus/model/build_blocks.h>
 #include <talus/solver/block_system.h>
@@ -203,10 +204,6 @@ void solve_deformable(talus::Scene& scene, talus::BlockModel& model, const std::
     for (const std::string& g : scene.deformable.groups)
       if (model.group_names[model.group[b]] == g)
         deformable.push_back(b);
-  if (deformable.empty())
-    throw InputError(scene.parameter_file +
-                     ": entry 'Groups' in subsection 'Deformable': no block of the "
-                     "model is in these groups; allowed: groups that hold blocks");
   MeshReport mesh_report;
   const bool from_file = !scene.deformable.mesh_file.empty();
   TetMesh mesh = from_file ? *scene.deformable.mesh
@@ -343,13 +340,6 @@ void solve(talus::Scene& scene, talus::BlockModel& model, talus::PvdSeries& seri
 {
   using namespace talus;
   resolve_group_names(scene, model);
-  for (unsigned int b : scene.solver.history_blocks)
-    if (b >= model.n_blocks())
-      throw InputError(scene.parameter_file +
-                       ": entry 'History blocks' in subsection 'Solver': "
-                       "block " +
-                       std::to_string(b) + " does not exist; allowed: 0 to " +
-                       std::to_string(model.n_blocks() - 1));
   // Deformable blocks among rigid ones: their zones, and their surfaces as
   // their shapes for the contacts.
   std::unique_ptr<ParallelEnvironment> parallel;
@@ -486,13 +476,14 @@ int run(const std::string& filename)
   if (!restart_from.empty())
     talus::check_checkpoint_scene(restart_from, scene);
 
-  // read_scene has checked every value and prepared the output folder.
+  // read_scene has checked every value and prepared the output folder;
+  // what needs the blocks is checked before anything is written.
+  talus::BuildReport report;
+  talus::BlockModel model = talus::build_blocks(scene, report);
+  talus::check_built_model(scene, model, report);
   const std::string prefix = scene.output.directory + "/" + scene.output.base_name;
   talus::write_file_atomically(prefix + "_used_parameters.prm",
                                [&](std::ostream& out) { out << scene.used_parameters; });
-
-  talus::BuildReport report;
-  talus::BlockModel model = talus::build_blocks(scene, report);
   const auto built = std::chrono::steady_clock::now();
 
   std::printf("talus: scene %s\n", std::filesystem::path(filename).filename().c_str());

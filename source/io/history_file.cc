@@ -1,27 +1,46 @@
-#include <talus/base/exceptions.h>
+#include <talus/io/file_output.h>
 #include <talus/io/history_file.h>
 
 #include <unistd.h>
-#include <cstdio>
 
+#include <algorithm>
 #include <chrono>
 #include <cstdio>
 #include <iostream>
-#include <algorithm>
+#include <stdexcept>
 
 namespace talus
 {
 
+namespace
+{
+double wall_seconds()
+{
+  return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count();
+}
+} // namespace
+
 HistoryFile::HistoryFile(const std::string& path, const std::vector<std::string>& columns,
                          unsigned int flush_every)
-    : path_(path), out_(path), n_columns_(columns.size()), flush_every_(flush_every)
+    : path_(path), n_columns_(columns.size()), flush_every_(std::max(flush_every, 1u))
 {
-  if (!out_)
-    throw InputError(path + ": cannot create the history file (is its folder writable?)");
-  out_.precision(12);
   for (std::size_t c = 0; c < columns.size(); ++c)
-    out_ << (c ? "," : "") << columns[c];
-  out_ << '\n';
+    text_ += (c ? "," : "") + columns[c];
+  text_ += '\n';
+  write_file_atomically(path_, [&](std::ostream& out) { out << text_; });
+  last_write_ = wall_seconds();
+}
+
+HistoryFile::~HistoryFile()
+{
+  try
+  {
+    flush();
+  }
+  catch (const std::exception& e)
+  {
+    std::fprintf(stderr, "talus: %s\n", e.what()); // a destructor must not throw
+  }
 }
 
 void HistoryFile::record(const std::vector<double>& values)
@@ -29,21 +48,32 @@ void HistoryFile::record(const std::vector<double>& values)
   if (values.size() != n_columns_)
     throw std::logic_error(path_ + ": a history row has " + std::to_string(values.size()) +
                            " values for " + std::to_string(n_columns_) + " columns");
+  char number[32];
   for (std::size_t c = 0; c < values.size(); ++c)
-    out_ << (c ? "," : "") << values[c];
-  out_ << '\n';
-  if (++rows_ % flush_every_ == 0)
-    out_.flush();
+  {
+    std::snprintf(number, sizeof number, "%.12g", values[c]);
+    text_ += (c ? "," : "");
+    text_ += number;
+  }
+  text_ += '\n';
+  ++rows_;
+  // Rewriting the whole file costs time in its length: wait at least ten
+  // times as long as the last write took, so that it stays a small share.
+  if (rows_ - rows_on_disk_ >= flush_every_ &&
+      wall_seconds() - last_write_ >= std::max(1.0, 10.0 * write_seconds_))
+    flush();
 }
 
-namespace
+void HistoryFile::flush()
 {
-double wall_seconds()
-{
-  return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch())
-      .count();
+  if (rows_on_disk_ == rows_)
+    return;
+  const double start = wall_seconds();
+  write_file_atomically(path_, [&](std::ostream& out) { out << text_; });
+  last_write_ = wall_seconds();
+  write_seconds_ = last_write_ - start;
+  rows_on_disk_ = rows_;
 }
-} // namespace
 
 ProgressLine::ProgressLine(unsigned long total_steps, double interval)
     : total_(total_steps), interval_(interval), start_(wall_seconds())
@@ -52,7 +82,10 @@ ProgressLine::ProgressLine(unsigned long total_steps, double interval)
   terminal_ = isatty(fileno(stderr)) != 0;
 }
 
-ProgressLine::~ProgressLine() { finish(); }
+ProgressLine::~ProgressLine()
+{
+  finish();
+}
 
 void ProgressLine::finish()
 {
@@ -82,8 +115,8 @@ void ProgressLine::update(unsigned long step, double time)
     return;
   last_ = now;
   shown_ = true;
-  std::cerr << '\r' << format(step, total_, time, step / std::max(now - start_, 1e-9))
-            << "   " << std::flush;
+  std::cerr << '\r' << format(step, total_, time, step / std::max(now - start_, 1e-9)) << "   "
+            << std::flush;
 }
 
 } // namespace talus

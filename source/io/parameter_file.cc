@@ -3,6 +3,11 @@
 #include <deal.II/base/utilities.h>
 
 #include <algorithm>
+#include <cerrno>
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+#include <filesystem>
 #include <fstream>
 #include <regex>
 #include <sstream>
@@ -43,25 +48,45 @@ std::string join_path(const std::vector<std::string>& parts)
 
 ParameterFile::ParameterFile(const std::string& filename) : filename_(filename)
 {
-  std::ifstream in(filename);
+  std::error_code ec;
+  if (!std::filesystem::is_regular_file(filename, ec))
+    throw InputError(filename + ": " +
+                     (std::filesystem::exists(filename, ec) ? "not a file"
+                                                            : "no such parameter file") +
+                     "; allowed: a readable parameter file (.prm)");
+  std::ifstream in(filename, std::ios::binary);
   if (!in)
-    throw InputError(filename + ": cannot open the parameter file (missing or unreadable)");
+    throw InputError(filename + ": cannot open the parameter file (" + std::strerror(errno) +
+                     "); allowed: a readable parameter file (.prm)");
   std::stringstream buffer;
   buffer << in.rdbuf();
   text_ = buffer.str();
+  if (in.bad())
+    throw InputError(filename + ": reading the parameter file failed");
 
   // A lenient first pass that only records where things are; the real parse
   // (and its error reporting) is ParameterHandler's.
   std::istringstream lines(text_);
   std::string line;
   std::vector<std::string> stack;
+  bool any_statement = false;
   for (unsigned int number = 1; std::getline(lines, line); ++number)
   {
+    for (const char c : line)
+      if ((static_cast<unsigned char>(c) < 32 && c != '\t' && c != '\r') || c == 127)
+      {
+        char byte[8];
+        std::snprintf(byte, sizeof byte, "0x%02x", static_cast<unsigned char>(c));
+        throw InputError(filename + ":" + std::to_string(number) +
+                         ": the line holds a control character (byte " + byte +
+                         "), so this is not a text file; allowed: a parameter file of text lines");
+      }
     const auto hash = line.find('#');
     const std::string code = trim(hash == std::string::npos ? line : line.substr(0, hash));
     if (code.rfind("subsection ", 0) == 0 || code.rfind("subsection\t", 0) == 0)
     {
       stack.push_back(collapse(code.substr(10)));
+      section_line_.emplace(join_path(stack), number);
       if (stack.size() == 1 &&
           std::find(sections_in_file_.begin(), sections_in_file_.end(), stack[0]) ==
               sections_in_file_.end())
@@ -78,7 +103,11 @@ ParameterFile::ParameterFile(const std::string& filename) : filename_(filename)
       entry_line_.emplace(std::make_pair(join_path(stack), name), number);
       line_entry_[number] = {join_path(stack), name, value};
     }
+    any_statement |= !code.empty();
   }
+  if (!any_statement)
+    throw InputError(filename + ": the file is empty (it sets nothing); allowed: a parameter "
+                                "file with at least one subsection");
 }
 
 void ParameterFile::enter(const std::string& section)
@@ -190,7 +219,9 @@ std::string ParameterFile::get(const std::string& name) const
 
 double ParameterFile::get_double(const std::string& name) const
 {
-  return handler_.get_double(name);
+  // As get_doubles: a number too small for a double is taken as the nearest
+  // value (ParameterHandler::get_double would refuse what its pattern took).
+  return std::strtod(handler_.get(name).c_str(), nullptr);
 }
 
 long ParameterFile::get_integer(const std::string& name) const
@@ -203,10 +234,22 @@ bool ParameterFile::get_bool(const std::string& name) const
   return handler_.get_bool(name);
 }
 
+std::vector<double> ParameterFile::get_doubles(const std::string& name) const
+{
+  // The entry's pattern has accepted every number; strtod (unlike std::stod)
+  // takes one too small for a double as the nearest value, as the pattern did.
+  std::vector<double> values;
+  for (const std::string& part : dealii::Utilities::split_string_list(get(name), ','))
+    values.push_back(std::strtod(part.c_str(), nullptr));
+  return values;
+}
+
 Vec3 ParameterFile::get_vec3(const std::string& name) const
 {
-  const auto parts = dealii::Utilities::split_string_list(get(name), ',');
-  return Vec3(std::stod(parts.at(0)), std::stod(parts.at(1)), std::stod(parts.at(2)));
+  const std::vector<double> v = get_doubles(name);
+  if (v.size() != 3)
+    throw error(name, "must be three numbers", "three numbers separated by commas");
+  return Vec3(v[0], v[1], v[2]);
 }
 
 InputError ParameterFile::error(const std::string& name, const std::string& problem,
@@ -215,6 +258,14 @@ InputError ParameterFile::error(const std::string& name, const std::string& prob
   const unsigned int line = line_of(path(), name);
   return InputError::at(filename_, line, path(), name,
                         line == 0 ? problem + " (default value)" : problem, allowed);
+}
+
+std::map<std::string, unsigned int> ParameterFile::lines() const
+{
+  std::map<std::string, unsigned int> lines = section_line_;
+  for (const auto& [where, line] : entry_line_)
+    lines.emplace(where.first + " / " + where.second, line);
+  return lines;
 }
 
 std::string ParameterFile::used_parameters() const

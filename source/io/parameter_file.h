@@ -42,6 +42,8 @@ public:
   long get_integer(const std::string& name) const;
   bool get_bool(const std::string& name) const;
   Vec3 get_vec3(const std::string& name) const;
+  /// A list of numbers separated by commas (the pattern has checked them).
+  std::vector<double> get_doubles(const std::string& name) const;
 
   /// An InputError about an entry of the current subsection, at its line in
   /// the file (or naming the default when the file does not set it).
@@ -52,6 +54,11 @@ public:
   std::string used_parameters() const;
 
   const std::string& filename() const { return filename_; }
+
+  /// Line of each subsection ("Joint set 1", first opening) and of each
+  /// entry the file sets ("Joint set 1 / Spacing"), for messages about
+  /// problems found after reading.
+  std::map<std::string, unsigned int> lines() const;
 
 private:
   std::string path() const;
@@ -65,6 +72,8 @@ private:
   std::vector<std::string> sections_in_file_;
   /// (subsection path, entry) -> line of its `set` statement.
   std::map<std::pair<std::string, std::string>, unsigned int> entry_line_;
+  /// subsection path -> line where it is first opened.
+  std::map<std::string, unsigned int> section_line_;
   /// line -> (subsection path, entry, value) for every `set` statement.
   std::map<unsigned int, std::vector<std::string>> line_entry_;
   /// subsection path -> entries declared there, with what they allow.

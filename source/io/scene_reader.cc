@@ -1,15 +1,18 @@
 #include <talus/io/scene.h>
 
 #include <talus/io/file_output.h>
+#include <talus/io/scene_checks.h>
 #include <talus/zone/block_mesher.h>
 
 #include "parameter_file.h"
 
+#include <cerrno>
 #include <cmath>
 #include <cstdlib>
 
 #include <algorithm>
 #include <filesystem>
+#include <limits>
 #include <regex>
 #include <tuple>
 
@@ -110,7 +113,8 @@ void declare_joint_set(ParameterFile& prm, const std::string& section)
   declare_orientation(prm);
   prm.declare("Spacing", "1", P::Double(), "a number > 0 (m)",
               "Normal distance between neighbouring joints of the set (m).");
-  prm.declare("Number of joints", "0", P::Integer(0), "an integer >= 0 (0: unlimited)",
+  prm.declare("Number of joints", "0", P::Integer(0, 1000000000),
+              "an integer from 0 to 1e9 (0: unlimited)",
               "Joints from the one through Origin along the upward normal; 0 fills the model.");
   prm.leave();
 }
@@ -182,6 +186,7 @@ ExcavationSpec parse_excavation(ParameterFile& prm, const std::string& section)
   {
     e.region = ConvexRegion::box(read_box(prm, "Corner min", "Corner max"));
     e.description = section + ": box";
+    e.section = section;
   }
   else
   {
@@ -195,6 +200,7 @@ ExcavationSpec parse_excavation(ParameterFile& prm, const std::string& section)
     e.region = ConvexRegion::cylinder(a, b, radius, sides);
     e.description = section + ": cylinder of radius " + prm.get("Radius") + " m, " +
                     std::to_string(sides) + " sides";
+    e.section = section;
   }
   prm.leave();
   return e;
@@ -400,9 +406,9 @@ void parse_deformable(ParameterFile& prm, Scene& scene)
   prm.enter("Initial stress");
   const auto six = [&](const std::string& name, double* out)
   {
-    const auto parts = dealii::Utilities::split_string_list(prm.get(name));
+    const std::vector<double> values = prm.get_doubles(name);
     for (int c = 0; c < 6; ++c)
-      out[c] = std::stod(parts[c]);
+      out[c] = values.at(c);
   };
   six("Stress", scene.initial_stress.base);
   six("Gradient", scene.initial_stress.gradient);
@@ -502,8 +508,12 @@ void parse_output(ParameterFile& prm, Scene& scene)
   prm.enter("Output");
   scene.output.directory = prm.get("Directory");
   scene.output.base_name = prm.get("Base name");
-  if (scene.output.base_name.empty() || scene.output.base_name.find('/') != std::string::npos)
-    throw prm.error("Base name", "must be a plain file name", "a non-empty name without '/'");
+  const std::string& base = scene.output.base_name;
+  if (base.empty() || base.size() > 200 || base.find('/') != std::string::npos ||
+      std::any_of(base.begin(), base.end(),
+                  [](char c) { return static_cast<unsigned char>(c) < 32 || c == 127; }))
+    throw prm.error("Base name", "must be a plain file name",
+                    "a name of 1 to 200 characters without '/' or control characters");
   scene.output.write_vtu = prm.get_bool("Write VTU");
   scene.output.checkpoint_interval =
       static_cast<unsigned long>(prm.get_integer("Checkpoint interval"));
@@ -511,6 +521,22 @@ void parse_output(ParameterFile& prm, Scene& scene)
 }
 
 // ---- Solver, contacts and joints ------------------------------------------
+
+/// TALUS_MAX_STEPS, when set, caps every scene's 'Steps' (tests that run
+/// many scenes keep each one short with it).
+unsigned long step_limit_from_environment()
+{
+  const char* text = std::getenv("TALUS_MAX_STEPS");
+  if (text == nullptr)
+    return std::numeric_limits<unsigned long>::max();
+  char* end = nullptr;
+  errno = 0;
+  const unsigned long limit = std::strtoul(text, &end, 10);
+  if (end == text || *end != '\0' || errno != 0 || text[0] == '-')
+    throw InputError(std::string("environment variable TALUS_MAX_STEPS: '") + text +
+                     "' is not a number of steps; allowed: an integer >= 0, or unset");
+  return limit;
+}
 
 void declare_solver(ParameterFile& prm)
 {
@@ -546,9 +572,10 @@ void declare_solver(ParameterFile& prm)
       "History points", "", P::Anything(), "points 'x, y, z' separated by ';' (m)",
       "Deformable blocks: the displacement and velocity of the gridpoint nearest each point and "
       "the stress of the zone nearest it go to the history.");
-  prm.declare("History blocks", "", P::List(P::Integer(0)), "block numbers separated by commas",
+  prm.declare("History blocks", "", P::List(P::Integer(0, 2000000000)),
+              "block numbers separated by commas",
               "Blocks whose displacement and velocity are written to the history.");
-  prm.declare("History interval", "10", P::Integer(1), "an integer >= 1",
+  prm.declare("History interval", "10", P::Integer(1, 1000000000), "an integer from 1 to 1e9",
               "Steps between history rows.");
   prm.declare("Output interval", "0", P::Integer(0), "an integer >= 0 (0: first and last)",
               "Steps between VTU files.");
@@ -558,7 +585,7 @@ void declare_solver(ParameterFile& prm)
   prm.declare("Tolerance", "0", P::Double(0.0),
               "a number >= 0 (m; 0: 0.5 % of the mean block size)",
               "CTOL: contacts are made within this gap and deleted beyond it (m).");
-  prm.declare("Update period", "10", P::Integer(1), "an integer >= 1",
+  prm.declare("Update period", "10", P::Integer(1, 1000000000), "an integer from 1 to 1e9",
               "Steps between common-plane and sub-contact updates.");
   prm.declare("Rotation constant", "0", P::Double(), "a number (m)", "K_T of eq. 12 (m).");
   prm.declare(
@@ -591,6 +618,7 @@ void parse_solver(ParameterFile& prm, Scene& scene)
   prm.enter("Solver");
   s.dynamic = prm.get("Mode") == "dynamic";
   s.steps = static_cast<unsigned long>(prm.get_integer("Steps"));
+  s.steps = std::min(s.steps, step_limit_from_environment());
   s.target_ratio = prm.get_double("Target ratio");
   s.local_damping = s.dynamic ? 0.0 : prm.get_double("Local damping");
   const std::string damping = prm.get("Damping");
@@ -678,7 +706,12 @@ Scene read_scene(const std::string& filename, bool prepare_output)
   {
     std::smatch m;
     if (std::regex_match(s, m, numbered))
+    {
+      if (m[2].length() > 9)
+        throw InputError(filename + ":" + std::to_string(prm.lines().at(s)) + ": subsection '" + s +
+                         "': the number is too large; allowed: numbers up to 999999999");
       found.emplace_back(m[1], std::stol(m[2]), s);
+    }
   }
   // Joint set 2 is cut after Joint set 1 whatever the order in the file.
   std::sort(found.begin(), found.end());
@@ -717,9 +750,15 @@ Scene read_scene(const std::string& filename, bool prepare_output)
   for (const auto& [kind, name] : numbered_sections)
   {
     if (kind == "Joint set")
+    {
       scene.joint_sets.push_back(parse_joint_set(prm, name));
+      scene.joint_set_sections.push_back(name);
+    }
     else if (kind == "Joint")
+    {
       scene.joint_planes.push_back(parse_joint(prm, name));
+      scene.joint_plane_sections.push_back(name);
+    }
     else if (kind == "Excavation")
       scene.excavations.push_back(parse_excavation(prm, name));
     else if (kind == "Group")
@@ -733,6 +772,8 @@ Scene read_scene(const std::string& filename, bool prepare_output)
       parse_boundary(prm, name, scene);
   parse_deformable(prm, scene);
   scene.used_parameters = prm.used_parameters();
+  scene.lines = prm.lines();
+  check_model_size(scene);
 
   // Last, once every value is known to be good: nothing is created on disk
   // for a file that is refused.

@@ -6,11 +6,24 @@ namespace talus
 BlockModel build_blocks(const Scene& scene, BuildReport& report)
 {
   BlockGenerator generator(ConvexPolyhedron::box(scene.brick.lo, scene.brick.hi), scene.cutting);
+  // Cuts made and refused by one operation.
+  const auto counted = [&generator](auto cut)
+  {
+    const CuttingReport before = generator.report();
+    cut();
+    return std::make_pair(generator.report().cuts - before.cuts,
+                          generator.report().skipped_slivers - before.skipped_slivers);
+  };
   for (const JointSetSpec& set : scene.joint_sets)
-    generator.cut_joint_set(set);
+    report.joint_set_cuts.push_back(counted([&] { generator.cut_joint_set(set); }));
   for (const JointPlaneSpec& joint : scene.joint_planes)
-    generator.cut_plane(Plane::through(joint.origin, normal_from_dip(joint.dip, joint.dip_direction)),
-                        joint.limited ? &joint.extent : nullptr);
+    report.joint_cuts.push_back(counted(
+        [&]
+        {
+          generator.cut_plane(
+              Plane::through(joint.origin, normal_from_dip(joint.dip, joint.dip_direction)),
+              joint.limited ? &joint.extent : nullptr);
+        }));
   for (const ExcavationSpec& excavation : scene.excavations)
     report.excavated_volume.push_back(generator.excavate(excavation.region));
   report.cutting = generator.report();

@@ -8,6 +8,7 @@
 #include <deal.II/grid/tria.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <fstream>
 #include <map>
@@ -46,16 +47,28 @@ double signed_volume(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& d)
   return (b - a).dot((c - a).cross(d - a)) / 6.0;
 }
 
-/// The fine mesh of one block as its own small triangulation.
+/// Hexahedra along a side of `length` of an axis-aligned block (m).
+double hexahedra_along(double length, double edge)
+{
+  return std::max(1.0, std::ceil(length / edge - 1e-9));
+}
+
+/// Times a tetrahedron of longest edge `longest` is split into eight.
+double refinement_levels(double longest, double edge)
+{
+  return longest > edge ? std::ceil(std::log2(longest / edge) - 1e-9) : 0.0;
+}
+
 /// Divisions of a brick along each axis for zones of edge at most `edge`.
 std::vector<unsigned int> brick_divisions(const Box& box, double edge)
 {
   std::vector<unsigned int> n(3);
   for (int d = 0; d < 3; ++d)
-    n[d] =
-        std::max(1u, static_cast<unsigned int>(std::ceil((box.hi[d] - box.lo[d]) / edge - 1e-9)));
+    n[d] = static_cast<unsigned int>(hexahedra_along(box.hi[d] - box.lo[d], edge));
   return n;
 }
+
+/// The fine mesh of one block as its own small triangulation.
 
 void mesh_one_block(const BlockModel& m, unsigned int b, double edge,
                     dealii::Triangulation<3>& tria)
@@ -102,10 +115,81 @@ void mesh_one_block(const BlockModel& m, unsigned int b, double edge,
     }
   }
   tria.create_triangulation(vertices, cells, dealii::SubCellData());
-  const unsigned int levels =
-      longest > edge ? static_cast<unsigned int>(std::ceil(std::log2(longest / edge) - 1e-9)) : 0;
+  const unsigned int levels = static_cast<unsigned int>(refinement_levels(longest, edge));
   if (levels > 0)
     tria.refine_global(levels);
+}
+
+/// Throws InputError naming `path` unless the zones form one body: every
+/// zone face shared by at most two zones, the boundary faces a closed
+/// surface (each of their edges on exactly two of them), all zones connected
+/// through shared faces.
+void check_one_closed_body(const TetMesh& mesh, const std::string& path)
+{
+  if (mesh.n_zones() == 0)
+    throw InputError(path + ": the mesh holds no tetrahedra");
+  static const int face_of[4][3] = {{1, 2, 3}, {0, 3, 2}, {0, 1, 3}, {0, 2, 1}};
+  std::map<std::array<unsigned int, 3>, std::vector<unsigned int>> zones_of_face;
+  for (unsigned int z = 0; z < mesh.n_zones(); ++z)
+    for (const auto& f : face_of)
+    {
+      std::array<unsigned int, 3> key{mesh.zone_gridpoint[z][f[0]], mesh.zone_gridpoint[z][f[1]],
+                                      mesh.zone_gridpoint[z][f[2]]};
+      std::sort(key.begin(), key.end());
+      if (key[0] == key[1] || key[1] == key[2])
+        throw InputError(path + ": tetrahedron " + std::to_string(z + 1) + " uses one node twice");
+      zones_of_face[key].push_back(z);
+    }
+  // Zones joined through shared faces (union-find), and the boundary edges.
+  std::vector<unsigned int> root(mesh.n_zones());
+  for (unsigned int z = 0; z < mesh.n_zones(); ++z)
+    root[z] = z;
+  const auto find = [&](unsigned int z)
+  {
+    while (root[z] != z)
+      z = root[z] = root[root[z]];
+    return z;
+  };
+  std::map<std::pair<unsigned int, unsigned int>, unsigned int> boundary_edges;
+  for (const auto& [face, zones] : zones_of_face)
+  {
+    if (zones.size() > 2)
+      throw InputError(path + ": " + std::to_string(zones.size()) +
+                       " tetrahedra share one face (zones overlap)");
+    if (zones.size() == 2)
+      root[find(zones[0])] = find(zones[1]);
+    else
+      for (int i = 0; i < 3; ++i)
+        ++boundary_edges[std::minmax(face[i], face[(i + 1) % 3])];
+  }
+  for (const auto& [edge, count] : boundary_edges)
+    if (count != 2)
+    {
+      const unsigned int g = edge.first;
+      throw InputError(path + ": the boundary of the body is not a closed surface (an edge at " +
+                       number(mesh.position[3 * g]) + ", " + number(mesh.position[3 * g + 1]) +
+                       ", " + number(mesh.position[3 * g + 2]) + " joins " + std::to_string(count) +
+                       " boundary faces instead of 2)");
+    }
+  unsigned int bodies = 0;
+  for (unsigned int z = 0; z < mesh.n_zones(); ++z)
+    bodies += find(z) == z;
+  if (bodies != 1)
+    throw InputError(path + ": the tetrahedra form " + std::to_string(bodies) +
+                     " separate bodies (a deformable block is one body)");
+  // Zones that overlap fill more than their boundary encloses (the volume
+  // inside the outward boundary faces, by the divergence theorem).
+  const auto P = [&](unsigned int g)
+  { return Vec3(mesh.position[3 * g], mesh.position[3 * g + 1], mesh.position[3 * g + 2]); };
+  double filled = 0.0, enclosed = 0.0;
+  for (const auto& t : mesh.zone_gridpoint)
+    filled += std::abs(signed_volume(P(t[0]), P(t[1]), P(t[2]), P(t[3])));
+  const Vec3 o = P(0); // near the body, for round-off
+  for (const auto& f : mesh.face_gridpoint)
+    enclosed += (P(f[0]) - o).dot((P(f[1]) - o).cross(P(f[2]) - o)) / 6.0;
+  if (!(std::abs(filled - enclosed) <= 1e-8 * filled))
+    throw InputError(path + ": the tetrahedra overlap (they fill " + number(filled) +
+                     " m^3, while the boundary of the body encloses " + number(enclosed) + " m^3)");
 }
 
 } // namespace
@@ -201,6 +285,7 @@ TetMesh read_gmsh_block(const std::string& path, unsigned int block)
   }
   TetMesh mesh;
   append_tetrahedra(mesh, tria, block);
+  check_one_closed_body(mesh, path);
   return mesh;
 }
 
@@ -274,6 +359,43 @@ TetMesh mesh_blocks(const BlockModel& m, const std::vector<unsigned int>& which,
   }
   report = measure_mesh(mesh);
   return mesh;
+}
+
+double count_zones(const BlockModel& m, const std::vector<unsigned int>& which, double edge_length)
+{
+  double zones = 0.0;
+  for (unsigned int b : which)
+  {
+    Box box;
+    if (is_axis_aligned_box(m, b, box))
+    {
+      double hexahedra = 1.0;
+      for (int d = 0; d < 3; ++d)
+        hexahedra *= hexahedra_along(box.hi[d] - box.lo[d], edge_length);
+      zones += 5.0 * hexahedra;
+      continue;
+    }
+    // As mesh_one_block: a fan of tetrahedra over each face to the centroid,
+    // each split into eight per refinement level.
+    double fan = 0.0, longest = 0.0;
+    const Vec3& c = m.centroid[b];
+    for (unsigned int f = m.face_start[b]; f < m.face_start[b + 1]; ++f)
+    {
+      const unsigned int first = m.face_loop_start[f], n = m.face_loop_start[f + 1] - first;
+      for (unsigned int k = 1; k + 1 < n; ++k)
+      {
+        const std::array<Vec3, 4> t{m.vertex[m.face_vertex[first]],
+                                    m.vertex[m.face_vertex[first + k]],
+                                    m.vertex[m.face_vertex[first + k + 1]], c};
+        for (int i = 0; i < 4; ++i)
+          for (int j = i + 1; j < 4; ++j)
+            longest = std::max(longest, (t[i] - t[j]).norm());
+        fan += 1.0;
+      }
+    }
+    zones += fan * std::pow(8.0, refinement_levels(longest, edge_length));
+  }
+  return zones;
 }
 
 } // namespace talus

@@ -1,6 +1,5 @@
 #pragma once
 
-#include <fstream>
 #include <string>
 #include <vector>
 
@@ -11,16 +10,27 @@ class CheckpointReader;
 class CheckpointWriter;
 
 /// A history: one CSV row per recorded step, one column per quantity, the
-/// names (with units) in the header row. Rows are flushed every
-/// `flush_every` records so that a long run can be watched while it goes.
+/// names (with units) in the header row. The file on disk is always whole:
+/// it is rewritten under a temporary name and renamed into place (never
+/// appended to), at most every `flush_every` rows and no more often than
+/// about once a second (and never taking more than a tenth of the run), so a
+/// killed run leaves every row up to the last rewrite and no partial line.
 class HistoryFile
 {
 public:
+  /// Writes the header row at once: a run stopped later leaves a valid file.
   HistoryFile(const std::string& path, const std::vector<std::string>& columns,
               unsigned int flush_every = 100);
+  /// Writes the rows not yet on disk.
+  ~HistoryFile();
+  HistoryFile(const HistoryFile&) = delete;
+  HistoryFile& operator=(const HistoryFile&) = delete;
 
   /// Appends one row; `values` must match the columns in number.
   void record(const std::vector<double>& values);
+
+  /// Writes every row recorded so far to disk now (e.g. with a checkpoint).
+  void flush();
 
   unsigned int n_rows() const { return rows_; }
 
@@ -31,10 +41,13 @@ public:
 
 private:
   std::string path_;
-  std::ofstream out_;
+  std::string text_; ///< the whole file: header and every row
   std::size_t n_columns_;
   unsigned int flush_every_;
   unsigned int rows_ = 0;
+  unsigned int rows_on_disk_ = 0;
+  double last_write_ = 0.0;    ///< s, wall clock at the end of the last write
+  double write_seconds_ = 0.0; ///< s, how long the last write took
 };
 
 /// A one-line progress report for long runs: step, time, rate and the

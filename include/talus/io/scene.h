@@ -5,6 +5,7 @@
 #include <talus/solver/deformable_solver.h>
 #include <talus/solver/rigid_solver.h>
 
+#include <map>
 #include <memory>
 #include <string>
 #include <vector>
@@ -34,6 +35,7 @@ struct ExcavationSpec
 {
   ConvexRegion region;
   std::string description;
+  std::string section; ///< its subsection, "Excavation N"
 };
 
 /// Which blocks are deformable and what they are made of.
@@ -73,6 +75,8 @@ struct Scene
   CuttingSettings cutting;
   std::vector<JointSetSpec> joint_sets;
   std::vector<JointPlaneSpec> joint_planes;
+  std::vector<std::string> joint_set_sections;   ///< "Joint set N" of each joint set
+  std::vector<std::string> joint_plane_sections; ///< "Joint N" of each joint plane
   std::vector<ExcavationSpec> excavations;
   std::string default_group = "rock";
   std::vector<GroupSpec> groups;
@@ -89,6 +93,10 @@ struct Scene
   InitialStress initial_stress;
   /// The parameters as used, every entry with its value (defaults included).
   std::string used_parameters;
+  /// Line in the parameter file of each subsection ("Joint set 1") and of
+  /// each entry it sets ("Joint set 1 / Spacing"), for messages about
+  /// problems found once the blocks exist (scene_error).
+  std::map<std::string, unsigned int> lines;
 };
 
 /// Reads and checks a parameter file. Throws InputError with file, line,

@@ -4,6 +4,7 @@
 #include <talus/model/block_model.h>
 
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace talus
@@ -14,6 +15,9 @@ struct BuildReport
 {
   CuttingReport cutting;
   std::vector<double> excavated_volume; ///< m^3, one per excavation in order
+  /// Cuts made and cuts refused by the minimum block volume, per joint set
+  /// and per single joint in order (a set that cuts nothing is refused).
+  std::vector<std::pair<unsigned long, unsigned long>> joint_set_cuts, joint_cuts;
 };
 
 /// Builds the blocks a scene describes: the brick cut by every joint set,

@@ -56,4 +56,10 @@ TetMesh mesh_blocks(const BlockModel& blocks, const std::vector<unsigned int>& w
                     double edge_length, MeshReport& report,
                     ZoneElement element = ZoneElement::tet4);
 
+/// The number of zones mesh_blocks would make, found without meshing (as a
+/// double: a bad edge length can ask for more than any integer holds), so
+/// that a scene too large for memory is refused before it is meshed.
+double count_zones(const BlockModel& blocks, const std::vector<unsigned int>& which,
+                   double edge_length);
+
 } // namespace talus

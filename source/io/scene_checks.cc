@@ -1,0 +1,179 @@
+#include <talus/io/scene_checks.h>
+#include <talus/zone/block_mesher.h>
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+
+namespace talus
+{
+
+InputError scene_error(const Scene& scene, const std::string& section, const std::string& entry,
+                       const std::string& problem, const std::string& allowed)
+{
+  const auto line_of = [&](const std::string& key)
+  {
+    const auto it = scene.lines.find(key);
+    return it == scene.lines.end() ? 0u : it->second;
+  };
+  if (!entry.empty())
+  {
+    const unsigned int line = line_of(section + " / " + entry);
+    return InputError::at(scene.parameter_file, line, section, entry,
+                          line == 0 ? problem + " (default value)" : problem, allowed);
+  }
+  const unsigned int line = line_of(section);
+  return InputError(scene.parameter_file + (line > 0 ? ":" + std::to_string(line) : "") +
+                    ": subsection '" + section + "': " + problem +
+                    (allowed.empty() ? "" : "; allowed: " + allowed));
+}
+
+namespace
+{
+
+/// Joints of a set that cross `box` (counted along the set's normal), as a
+/// double so that a tiny spacing or a huge brick cannot overflow.
+double joints_across(const JointSetSpec& set, const Box& box)
+{
+  const Vec3 n = normal_from_dip(set.dip, set.dip_direction);
+  double lo = 1e308, hi = -1e308;
+  for (int corner = 0; corner < 8; ++corner)
+  {
+    const Vec3 p((corner & 1 ? box.hi : box.lo).x(), (corner & 2 ? box.hi : box.lo).y(),
+                 (corner & 4 ? box.hi : box.lo).z());
+    const double s = n.dot(p - set.origin);
+    lo = std::min(lo, s);
+    hi = std::max(hi, s);
+  }
+  const double count = (hi - lo) / set.spacing + 1.0;
+  return set.count > 0 ? std::min(count, static_cast<double>(set.count)) : count;
+}
+
+} // namespace
+
+void check_model_size(const Scene& scene)
+{
+  // Planes in general position split space into 1 + e1 + e2 + e3 cells,
+  // where e_k sums the products of k plane counts; parallel joints of one
+  // set never meet, so only products across sets count.
+  double e1 = 0.0, e2 = 0.0, e3 = 0.0, most = -1.0;
+  std::size_t densest = 0;
+  for (std::size_t i = 0; i < scene.joint_sets.size(); ++i)
+  {
+    const JointSetSpec& set = scene.joint_sets[i];
+    Box box = scene.brick;
+    if (set.limited)
+    {
+      box.lo = box.lo.cwiseMax(set.extent.lo);
+      box.hi = box.hi.cwiseMin(set.extent.hi).cwiseMax(box.lo);
+    }
+    const double n = joints_across(set, box);
+    e3 += e2 * n;
+    e2 += e1 * n;
+    e1 += n;
+    if (!(n <= most))
+    {
+      most = n;
+      densest = i;
+    }
+  }
+  for (std::size_t j = 0; j < scene.joint_planes.size(); ++j)
+  {
+    e3 += e2;
+    e2 += e1;
+    e1 += 1.0;
+  }
+  const double blocks = 1.0 + e1 + e2 + e3;
+  if (!(blocks <= max_blocks) && !scene.joint_sets.empty())
+    throw scene_error(scene, scene.joint_set_sections[densest], "Spacing",
+                      "the joint sets would cut the brick into about " + number(blocks) +
+                          " blocks, more than the " + number(max_blocks) +
+                          " talus builds (about 1 KB of memory each)",
+                      "a spacing that leaves at most " + number(max_blocks) + " blocks");
+}
+
+void check_built_model(const Scene& scene, const BlockModel& model, const BuildReport& report)
+{
+  const auto cuts_nothing =
+      [&](const std::string& section, const std::pair<unsigned long, unsigned long>& cuts)
+  {
+    if (cuts.first > 0)
+      return;
+    throw scene_error(scene, section, "",
+                      cuts.second > 0 ? "cuts no block: its " + std::to_string(cuts.second) +
+                                            " cuts would all leave pieces smaller than the "
+                                            "'Minimum block volume' of subsection 'Model'"
+                                      : "cuts no block (its planes miss the blocks, or lie on "
+                                        "faces that are already there)",
+                      "joints that cross the model (see Origin, Dip, Dip direction and the "
+                      "extent)");
+  };
+  for (std::size_t i = 0; i < report.joint_set_cuts.size(); ++i)
+    cuts_nothing(scene.joint_set_sections[i], report.joint_set_cuts[i]);
+  for (std::size_t i = 0; i < report.joint_cuts.size(); ++i)
+    cuts_nothing(scene.joint_plane_sections[i], report.joint_cuts[i]);
+
+  for (std::size_t e = 0; e < scene.excavations.size(); ++e)
+    if (!(report.excavated_volume[e] > 0.0))
+      throw scene_error(scene, scene.excavations[e].section, "",
+                        "removes no rock (the region lies outside the blocks that are left)",
+                        "a region that overlaps the model");
+  if (model.n_blocks() == 0)
+    throw scene_error(scene, scene.excavations.empty() ? "Model" : scene.excavations.back().section,
+                      "", "no block is left: the excavations remove the whole model",
+                      "excavations that leave part of the brick");
+
+  for (unsigned int b : scene.solver.history_blocks)
+    if (b >= model.n_blocks())
+      throw scene_error(scene, "Solver", "History blocks",
+                        "block " + std::to_string(b) + " does not exist (the model has " +
+                            std::to_string(model.n_blocks()) + " blocks)",
+                        "0 to " + std::to_string(model.n_blocks() - 1));
+
+  if (scene.deformable.groups.empty())
+    return;
+  std::vector<unsigned int> deformable;
+  for (unsigned int b = 0; b < model.n_blocks(); ++b)
+    if (std::find(scene.deformable.groups.begin(), scene.deformable.groups.end(),
+                  model.group_names[model.group[b]]) != scene.deformable.groups.end())
+      deformable.push_back(b);
+  if (deformable.empty())
+    throw scene_error(scene, "Deformable", "Groups", "no block of the model is in these groups",
+                      "groups that hold blocks");
+  if (!scene.deformable.mesh_file.empty())
+  {
+    if (model.n_blocks() != 1)
+      throw scene_error(scene, "Deformable", "Mesh file",
+                        "a mesh file is the body of a scene of one block, and this scene has " +
+                            std::to_string(model.n_blocks()) + " blocks",
+                        "a mesh file only for a scene without joints or excavations");
+    return; // the file's zones are used, not the edge length
+  }
+  double largest_extent = 0.0;
+  for (unsigned int b : deformable)
+  {
+    Box box{model.vertex[model.vertex_start[b]], model.vertex[model.vertex_start[b]]};
+    for (unsigned int v = model.vertex_start[b]; v < model.vertex_start[b + 1]; ++v)
+    {
+      box.lo = box.lo.cwiseMin(model.vertex[v]);
+      box.hi = box.hi.cwiseMax(model.vertex[v]);
+    }
+    largest_extent = std::max(largest_extent, (box.hi - box.lo).maxCoeff());
+  }
+  const double edge = scene.deformable.edge_length;
+  if (edge > largest_extent)
+    throw scene_error(scene, "Deformable", "Edge length",
+                      number(edge) +
+                          " m is larger than every deformable block (the largest spans " +
+                          number(largest_extent) + " m)",
+                      "a number > 0 and at most " + number(largest_extent) + " (m)");
+  const double zones = count_zones(model, deformable, edge);
+  if (!(zones <= max_zones))
+    throw scene_error(scene, "Deformable", "Edge length",
+                      number(edge) + " m would make " + number(zones) + " zones, more than the " +
+                          number(max_zones) +
+                          " talus meshes (about 620 bytes of memory each while meshing)",
+                      "an edge length that makes at most " + number(max_zones) + " zones");
+}
+
+} // namespace talus
