@@ -531,13 +531,11 @@ void RigidSolver::load_state(CheckpointReader& in)
 
 void HistoryFile::save_state(CheckpointWriter& out)
 {
-  out_.flush();
-  std::ifstream in(path_, std::ios::binary);
-  const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-  if (!in.good() && !in.eof())
-    throw InputError(path_ + ": cannot read the history back for the checkpoint");
+  // The history holds its whole text; the file gets it too, so that the
+  // checkpoint and the file on disk agree.
+  flush();
   out.tag("history");
-  out.put(text);
+  out.put(text_);
   out.put(rows_);
 }
 
@@ -549,11 +547,9 @@ void HistoryFile::load_state(CheckpointReader& in)
   in.get(rows_);
   // The rows up to the checkpoint's step, exactly as they were; the rows of
   // the run beyond it (if it went on) are dropped and written again.
-  out_.close();
-  write_file_atomically(path_, [&](std::ostream& file) { file << text; });
-  out_.open(path_, std::ios::app);
-  if (!out_)
-    throw InputError(path_ + ": cannot reopen the history file to continue it");
+  text_ = std::move(text);
+  write_file_atomically(path_, [&](std::ostream& file) { file << text_; });
+  rows_on_disk_ = rows_;
 }
 
 void PvdSeries::save_state(CheckpointWriter& out) const
