@@ -367,10 +367,10 @@ void solve(talus::Scene& scene, talus::BlockModel& model, talus::PvdSeries& seri
   {
     progress.update(step, time);
     const EnergyAccount e = solver.energy_account();
-    std::vector<double> row{double(step),   time,        solver.unbalanced_ratio(),
+    std::vector<double> row{double(step),   time,           solver.unbalanced_ratio(),
                             e.kinetic,      e.gravity_work, e.joint_elastic,
-                            e.friction,     e.damping,   e.boundary_work,
-                            e.zone_elastic, e.plastic,   e.error()};
+                            e.friction,     e.damping,      e.boundary_work,
+                            e.zone_elastic, e.plastic,      e.error()};
     for (unsigned int b : scene.solver.history_blocks)
       for (const Vec3* q : {&solver.displacement[b], &solver.velocity[b]})
         for (int d = 0; d < 3; ++d)

@@ -9,9 +9,9 @@
 
 #include <algorithm>
 #include <array>
-#include <tuple>
 #include <chrono>
 #include <cmath>
+#include <tuple>
 
 namespace talus
 {
@@ -470,18 +470,16 @@ void DeformableSolver::step()
   compute_forces();
   check_finite_forces(step_ + 1, dt_);
   move();
-  if (step_ % EnergyGrowthWatch::period == 0)
   {
     EnergyAccount e;
     add_work(e);
-    if (growth_watch_.diverging(e.kinetic,
+    if (growth_watch_.diverging(step_, e.kinetic,
                                 std::abs(e.initial_stored) + std::abs(e.gravity_work) +
                                     std::abs(e.boundary_work),
-                                1e-30))
+                                1e-6))
       throw DivergenceError("the run diverged at step " + std::to_string(step_) +
                             ": the kinetic energy, " + number(e.kinetic) +
-                            " J, has grown geometrically with no source; " +
-                            divergence_site(dt_));
+                            " J, has grown far beyond its sources; " + divergence_site(dt_));
   }
 }
 
@@ -551,18 +549,18 @@ void DeformableSolver::check_finite_forces(unsigned long step, double dt) const
   if (std::isfinite(sum))
     return;
   unsigned int g = 0;
-  while (g + 1 < n / 3 &&
-         std::isfinite(f[3 * g]) && std::isfinite(f[3 * g + 1]) && std::isfinite(f[3 * g + 2]))
+  while (g + 1 < n / 3 && std::isfinite(f[3 * g]) && std::isfinite(f[3 * g + 1]) &&
+         std::isfinite(f[3 * g + 2]))
     ++g;
   LocalArray x(petsc_->position);
   const auto [zone, volume] = smallest_zone_at(g, x.data());
   throw DivergenceError(
       "the run diverged at step " + std::to_string(step) + ": the force on gridpoint " +
       std::to_string(g) + " (zone " + std::to_string(zone) + ") is not finite; likely cause: " +
-      (volume <= 0.0 ? "zone " + std::to_string(zone) + " is inverted (volume " + number(volume) +
-                           " m^3)"
-                     : "the time step " + number(dt) + " s against the stable step of the zones, " +
-                           number(stable_time_step()) + " s (eq. 84)"));
+      (volume <= 0.0
+           ? "zone " + std::to_string(zone) + " is inverted (volume " + number(volume) + " m^3)"
+           : "the time step " + number(dt) + " s against the stable step of the zones, " +
+                 number(stable_time_step()) + " s (eq. 84)"));
 }
 
 double DeformableSolver::largest_gridpoint_energy() const
@@ -570,7 +568,8 @@ double DeformableSolver::largest_gridpoint_energy() const
   LocalArray v(petsc_->velocity), m(petsc_->inertial_mass);
   double largest = 0.0;
   for (unsigned int i = 0; i < 3 * mesh_.n_gridpoints(); i += 3)
-    largest = std::max(largest, 0.5 * m[i] * (v[i] * v[i] + v[i + 1] * v[i + 1] + v[i + 2] * v[i + 2]));
+    largest =
+        std::max(largest, 0.5 * m[i] * (v[i] * v[i] + v[i + 1] * v[i + 1] + v[i + 2] * v[i + 2]));
   return largest;
 }
 
@@ -594,8 +593,10 @@ std::string DeformableSolver::divergence_site(double dt) const
   if (volume <= 0.0)
     cause = "zone " + std::to_string(zone) + " is inverted (volume " + number(volume) + " m^3)";
   else
-    cause = "the time step " + number(dt) + " s is too large for the zones or the joints on them: "
-            "eq. 84 with the joint stiffness gives at most " + number(stable_time_step()) + " s";
+    cause = "the time step " + number(dt) +
+            " s is too large for the zones or the joints on them: "
+            "eq. 84 with the joint stiffness gives at most " +
+            number(stable_time_step()) + " s";
   return "gridpoint " + std::to_string(worst) + " of zone " + std::to_string(zone) +
          " moves fastest; likely cause: " + cause;
 }

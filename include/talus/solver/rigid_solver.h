@@ -26,9 +26,9 @@ struct BlockLoad
   Vec3 force = Vec3::Zero();      ///< N, per block
   Vec3 force_rate = Vec3::Zero(); ///< N/s, per block
   bool prescribe_velocity = false;
-  Vec3 velocity = Vec3::Zero();      ///< m/s
-  bool held[3] = {true, true, true}; ///< which components of the velocity are held
-  bool hold_rotation = false;        ///< the blocks do not rotate (a stiff platen)
+  Vec3 velocity = Vec3::Zero();         ///< m/s
+  bool held[3] = {true, true, true};    ///< which components of the velocity are held
+  bool hold_rotation = false;           ///< the blocks do not rotate (a stiff platen)
   Vec3 initial_velocity = Vec3::Zero(); ///< m/s at t = 0 (free components)
   Vec3 initial_spin = Vec3::Zero();     ///< rad/s at t = 0 about the centroid
 };
@@ -167,11 +167,11 @@ private:
   double* gp_f_ = nullptr;
   double dt_ = 0.0, time_ = 0.0, ratio_ = 1.0;
   double gravity_work_ = 0.0, friction_work_ = 0.0, damping_work_ = 0.0;
-  double boundary_work_ = 0.0; ///< J: applied forces and prescribed velocities
-  double kinetic_whole_step_ = 0.0; ///< J: kinetic term of the account (see EnergyAccount)
+  double boundary_work_ = 0.0;          ///< J: applied forces and prescribed velocities
+  double kinetic_whole_step_ = 0.0;     ///< J: kinetic term of the account (see EnergyAccount)
   bool moved_beyond_tolerance_ = false; ///< a block moved more than CTOL since detection (eq. 1)
-  double initial_stored_ = 0.0;     ///< J: kinetic and joint energy at the start
-  double energy_floor_ = 0.0;       ///< J: below this, growth is not judged
+  double initial_stored_ = 0.0;         ///< J: kinetic and joint energy at the start
+  double energy_floor_ = 0.0;           ///< J: below this, growth is not judged
   EnergyGrowthWatch growth_watch_;
   unsigned long step_ = 0;
   mutable SolverReport timing_;
