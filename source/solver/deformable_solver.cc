@@ -214,6 +214,12 @@ DeformableSolver::DeformableSolver(const TetMesh& mesh, std::vector<ZoneMaterial
   if (!pressed_faces_.empty())
     pressure_force_.assign(3 * ng, 0.0);
   std::tie(initial_elastic_, initial_plastic_elastic_) = elastic_energy(mesh_.position.data());
+  {
+    // Held velocities are there from the start: energy at the start.
+    LocalArray m(petsc_->inertial_mass);
+    for (unsigned int i = 0; i < 3 * ng; ++i)
+      initial_elastic_ += 0.5 * m[i] * held_velocity_[i] * held_velocity_[i];
+  }
   damper_ = Damper(s_.dynamic ? Damping::none : s_.damping, s_.local_damping,
                    s_.global_damping_ratio, dt_);
   if (!s_.dynamic && s_.damping == Damping::combined)
@@ -470,6 +476,7 @@ void DeformableSolver::step()
   compute_forces();
   check_finite_forces(step_ + 1, dt_);
   move();
+  if (s_.dynamic) // statics: scaled masses, gridpoints held at velocities set later
   {
     EnergyAccount e;
     add_work(e);

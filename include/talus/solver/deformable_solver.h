@@ -196,7 +196,7 @@ private:
   double gravity_work_ = 0.0, boundary_work_ = 0.0, damping_work_ = 0.0;
   double kinetic_whole_step_ = 0.0;
   double plastic_stress_work_ = 0.0; ///< sum of V sigma : d(eps) over zones of plastic materials
-  double initial_elastic_ = 0.0, initial_plastic_elastic_ = 0.0;
+  double initial_elastic_ = 0.0, initial_plastic_elastic_ = 0.0; ///< and held kinetic
   std::vector<double> pressure_force_; ///< 3 per gridpoint, N (only with face pressures)
   EnergyGrowthWatch growth_watch_;     ///< standalone runs (step())
 };
