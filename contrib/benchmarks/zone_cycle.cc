@@ -38,8 +38,10 @@
 // One core; run from a Release build:
 //   cmake --build build --target benchmark_zone_cycle
 //   build/contrib/benchmarks/benchmark_zone_cycle [steps] [n ...] [elastic|mc]
-// Defaults: 30 steps, n = 20 40 60 80 100, both models (name one to profile
-// it alone). peakB/z (VmHWM over the run so
+// Defaults: 30 steps, n = 20 40 60 80 100, four modes: elastic, mc,
+// nmd-elastic, nmd-mc (the last two with nodal mixed discretization; their
+// rows end with the cost per zone-update over the plain run of the same
+// size and model). Name one mode to profile it alone. peakB/z (VmHWM over the run so
 // far) is the meshing peak only while the sizes increase.
 
 #include <talus/base/parallel_environment.h>
@@ -49,6 +51,7 @@
 #include <malloc.h>
 
 #include <algorithm>
+#include <cctype>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -83,13 +86,13 @@ int main(int argc, char** argv)
   const unsigned long steps = argc > 1 ? std::strtoul(argv[1], nullptr, 10) : 30;
   const double budget = 4e7; // zone-updates timed per size and model
   std::vector<unsigned int> sizes;
-  bool run_model[2] = {true, true};
+  // Modes: elastic, Mohr-Coulomb, and both with nodal mixed discretization.
+  const char* mode_name[4] = {"elastic", "mc", "nmd-elastic", "nmd-mc"};
+  bool run_model[4] = {true, true, true, true};
   for (int i = 2; i < argc; ++i)
-    if (std::strcmp(argv[i], "elastic") == 0 || std::strcmp(argv[i], "mc") == 0)
-    {
-      run_model[0] = argv[i][0] == 'e';
-      run_model[1] = !run_model[0];
-    }
+    if (std::isalpha(static_cast<unsigned char>(argv[i][0])))
+      for (int m = 0; m < 4; ++m)
+        run_model[m] = std::strcmp(argv[i], mode_name[m]) == 0;
     else
       sizes.push_back(static_cast<unsigned int>(std::strtoul(argv[i], nullptr, 10)));
   if (sizes.empty())
@@ -118,7 +121,7 @@ int main(int argc, char** argv)
   std::printf("%-6s %4s %8s %8s %5s %8s %10s %10s %9s %8s %7s %8s %8s %8s %8s %7s %7s\n", "model",
               "n", "zones", "gridpts", "runs", "seconds", "Mzone-u/s", "Mgp-u/s", "zone/gp%",
               "hotB/z", "gp%", "rssB/z", "peakB/z", "t/zu rel", "cpuMz/s", "yield%", "ever%");
-  double first_cost[2] = {0.0, 0.0};
+  double first_cost[4] = {0.0, 0.0, 0.0, 0.0};
   for (unsigned int n : sizes)
   {
     const double baseline = resident_bytes();
@@ -130,18 +133,20 @@ int main(int argc, char** argv)
     const unsigned int repeats = std::max(1u, static_cast<unsigned int>(budget / (nz * steps)));
     const std::vector<unsigned int> material_of_zone(nz, 0);
 
-    for (int mode = 0; mode < 2; ++mode)
+    double plain_cost[2] = {0.0, 0.0}; // this size, without nodal mixed discretization
+    for (int mode = 0; mode < 4; ++mode)
     {
       if (!run_model[mode])
         continue;
-      const bool mc = mode == 1;
+      const bool mc = mode % 2 == 1, nmd = mode >= 2;
+      ZoneMaterial material = mc ? plastic : elastic;
+      material.nodal_mixed = nmd;
       double best = 1e300, best_cpu = 1e300, best_gridpoints = 1e300, seconds = 0.0,
              seconds_zones = 0.0, seconds_gridpoints = 0.0, rss = 0.0, peak = 0.0, ratio = 0.0;
       std::vector<unsigned char> state;
       for (unsigned int r = 0; r < repeats; ++r)
       {
-        DeformableSolver solver(mesh, {mc ? plastic : elastic}, material_of_zone, settings, {base},
-                                {}, &initial);
+        DeformableSolver solver(mesh, {material}, material_of_zone, settings, {base}, {}, &initial);
         if (r == 0)
         {
           rss = resident_bytes() - baseline;
@@ -163,8 +168,12 @@ int main(int argc, char** argv)
         state = solver.plastic_state();
       }
       const double updates = double(nz) * steps; // per run
-      const double zone_bytes = sizeof(mesh.zone_gridpoint[0]) + 6 * sizeof(double) + (mc ? 1 : 0);
-      const double gridpoint_bytes = (4 * 3 + 3 * 3) * sizeof(double) + 1;
+      // Nodal mixed discretization adds every zone's gradients, volume and
+      // strain increment (19 doubles), its plastic volumetric increment, and
+      // two sums per gridpoint.
+      const double zone_bytes =
+          sizeof(mesh.zone_gridpoint[0]) + 6 * sizeof(double) + (mc ? 1 : 0) + (nmd ? 160 : 0);
+      const double gridpoint_bytes = (4 * 3 + 3 * 3 + (nmd ? 2 : 0)) * sizeof(double) + 1;
       const double hot = zone_bytes + gridpoint_bytes * ng / nz;
       unsigned int yielding = 0, yielded = 0;
       for (unsigned char s : state)
@@ -176,14 +185,21 @@ int main(int argc, char** argv)
       if (first_cost[mode] == 0.0)
         first_cost[mode] = cost;
       const double stages = seconds_zones + seconds_gridpoints;
+      if (!nmd)
+        plain_cost[mc] = cost;
       std::printf("%-6s %4u %8u %8u %5u %8.2f %10.2f %10.2f %4.0f/%-4.0f %8.1f %7.1f %8.0f %8.0f "
                   "%8.2f %8.2f",
-                  mc ? "MC" : "elast", n, nz, ng, repeats, seconds, 1e-6 * updates / best,
-                  1e-6 * ng * steps / best_gridpoints, 100 * seconds_zones / stages,
-                  100 * seconds_gridpoints / stages, hot, 100 * gridpoint_bytes * ng / nz / hot,
-                  rss / nz, peak / nz, cost / first_cost[mode], 1e-6 * updates / best_cpu);
+                  nmd ? (mc ? "NMD-MC" : "NMD-el") : (mc ? "MC" : "elast"), n, nz, ng, repeats,
+                  seconds, 1e-6 * updates / best, 1e-6 * ng * steps / best_gridpoints,
+                  100 * seconds_zones / stages, 100 * seconds_gridpoints / stages, hot,
+                  100 * gridpoint_bytes * ng / nz / hot, rss / nz, peak / nz,
+                  cost / first_cost[mode], 1e-6 * updates / best_cpu);
       if (mc)
         std::printf(" %7.1f %7.1f", 100.0 * yielding / nz, 100.0 * yielded / nz);
+      else
+        std::printf(" %7s %7s", "", "");
+      if (nmd && plain_cost[mc] > 0.0)
+        std::printf("  cost vs plain %.2f", cost / plain_cost[mc]);
       std::printf("\n");
       std::fflush(stdout);
       if (!std::isfinite(ratio))
