@@ -1,3 +1,4 @@
+#include <talus/zone/lanes.h>
 #include <talus/zone/tet10_kernel.h>
 #include <talus/zone/tet10_mesh.h>
 
@@ -6,10 +7,6 @@
 #include <cstdint>
 #include <cstring>
 
-#if defined(__AVX2__)
-#include <immintrin.h>
-#endif
-
 namespace talus
 {
 
@@ -17,57 +14,16 @@ namespace
 {
 // W zones at once, one lane per zone, as in the 4-node kernel (see there
 // why explicit vector types and the hardware's width).
-#if defined(__AVX512F__)
-constexpr unsigned int W = 8;
-#else
-constexpr unsigned int W = 4;
-#endif
+constexpr unsigned int W = lane_count;
 static_assert(Tet10Scratch::max_lanes % W == 0, "scratch holds whole groups");
-typedef double Lanes __attribute__((vector_size(W * sizeof(double))));
-typedef std::int64_t LaneBits __attribute__((vector_size(W * sizeof(double))));
-
-inline Lanes load(const double* p)
-{
-  Lanes v;
-  std::memcpy(&v, p, sizeof v);
-  return v;
-}
-
-inline void store(double* p, const Lanes& v)
-{
-  std::memcpy(p, &v, sizeof v);
-}
-
-inline Lanes abs(const Lanes& v)
-{
-  const LaneBits magnitude = LaneBits{} + INT64_MAX;
-  return (Lanes)((LaneBits)v & magnitude);
-}
-
-inline Lanes gather(const double* base, const LaneBits& index)
-{
-#if defined(__AVX512F__)
-  return (Lanes)_mm512_mask_i64gather_pd(_mm512_setzero_pd(), 0xff, (__m512i)index, base,
-                                         sizeof(double));
-#elif defined(__AVX2__)
-  return (Lanes)_mm256_mask_i64gather_pd(_mm256_setzero_pd(), base, (__m256i)index,
-                                         _mm256_castsi256_pd(_mm256_set1_epi64x(-1)),
-                                         sizeof(double));
-#else
-  Lanes v;
-  for (unsigned int l = 0; l < W; ++l)
-    v[l] = base[index[l]];
-  return v;
-#endif
-}
 
 /// Zones [k0, k0 + W) of a batch: their ten gridpoints lane by lane; lanes
 /// past the batch's end repeat its last zone and write nothing.
 struct Group
 {
   unsigned int gridpoint[10][W];
-  LaneBits node[10]; ///< 3 gridpoint: offset of each node in a gridpoint field
-  LaneBits point;    ///< 24 (zone - k0): offset of each zone's first Gauss point
+  LaneMask node[10]; ///< 3 gridpoint: offset of each node in a gridpoint field
+  LaneMask point;    ///< 24 (zone - k0): offset of each zone's first Gauss point
   unsigned int count;
 
   Group(const TetMesh& mesh, unsigned int first, unsigned int k0, unsigned int n)
@@ -90,7 +46,7 @@ struct Group
   {
     for (int a = 0; a < 10; ++a)
       for (int d = 0; d < 3; ++d)
-        out[a][d] = gather(field + d, node[a]);
+        out[a][d] = gather_lanes(field + d, node[a]);
   }
 
   /// The 24 stress (or strain) numbers of each zone (6 per Gauss point).
@@ -98,7 +54,7 @@ struct Group
   {
     for (int q = 0; q < 4; ++q)
       for (int c = 0; c < 6; ++c)
-        out[q][c] = gather(values + 6 * q + c, point);
+        out[q][c] = gather_lanes(values + 6 * q + c, point);
   }
   void store_points(const Lanes (&in)[4][6], double* values) const
   {
@@ -179,8 +135,9 @@ inline void strain_at(const Lanes (&p)[10][3], const Lanes (&mid)[10][3], const 
   const Lanes det = invert(J, Jinv);
   for (int k = 0; k < 3; ++k)
     for (int d = 0; d < 3; ++d)
-      store(geometry + (10 * q + 3 * k + d) * W, Jinv[k][d]);
-  store(geometry + (10 * q + 9) * W, det * (1.0 / 24.0)); // weight 1/24 of the unit tetrahedron
+      store_lanes(geometry + (10 * q + 3 * k + d) * W, Jinv[k][d]);
+  store_lanes(geometry + (10 * q + 9) * W,
+              det * (1.0 / 24.0)); // weight 1/24 of the unit tetrahedron
   // Velocity gradient on the mid-step geometry: L = (dv/dxi) (dxi/dx).
   Lanes Jm[3][3], Jm_inv[3][3], Vxi[3][3];
   reference_gradient<q>(mid, Jm);
@@ -220,8 +177,8 @@ inline void forces_at(const double* geometry, const Lanes (&sg)[6], Lanes (&fz)[
   Lanes Jinv[3][3];
   for (int k = 0; k < 3; ++k)
     for (int d = 0; d < 3; ++d)
-      Jinv[k][d] = load(geometry + (10 * q + 3 * k + d) * W);
-  const Lanes w = load(geometry + (10 * q + 9) * W);
+      Jinv[k][d] = load_lanes(geometry + (10 * q + 3 * k + d) * W);
+  const Lanes w = load_lanes(geometry + (10 * q + 9) * W);
   const Lanes s[3][3] = {{sg[0], sg[3], sg[5]}, {sg[3], sg[1], sg[4]}, {sg[5], sg[4], sg[2]}};
   Lanes Q[3][4];
   for (int i = 0; i < 3; ++i)
@@ -297,7 +254,7 @@ void tet10_nodal_forces(const TetMesh& mesh, unsigned int first, unsigned int n,
       Lanes size[10][3];
       for (int a = 0; a < 10; ++a)
         for (int d = 0; d < 3; ++d)
-          size[a][d] = abs(fz[a][d]);
+          size[a][d] = lane_abs(fz[a][d]);
       for (unsigned int l = 0; l < group.count; ++l)
         for (int a = 0; a < 10; ++a)
         {

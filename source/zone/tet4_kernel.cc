@@ -1,12 +1,9 @@
+#include <talus/zone/lanes.h>
 #include <talus/zone/tet4_kernel.h>
 
 #include <algorithm>
 #include <cstdint>
 #include <cstring>
-
-#if defined(__AVX2__)
-#include <immintrin.h>
-#endif
 
 namespace talus
 {
@@ -21,55 +18,8 @@ namespace
 // would no longer be bitwise those of one zone at a time. Loops over lanes
 // written for the auto-vectoriser were not vectorised by GCC 12, hence the
 // explicit types.
-#if defined(__AVX512F__)
-constexpr unsigned int W = 8;
-#else
-constexpr unsigned int W = 4;
-#endif
+constexpr unsigned int W = lane_count;
 static_assert(Tet4Scratch::max_lanes % W == 0, "scratch holds whole groups");
-typedef double Lanes __attribute__((vector_size(W * sizeof(double))));
-typedef std::int64_t LaneBits __attribute__((vector_size(W * sizeof(double))));
-
-inline Lanes load(const double* p)
-{
-  Lanes v;
-  std::memcpy(&v, p, sizeof v);
-  return v;
-}
-
-inline void store(double* p, const Lanes& v)
-{
-  std::memcpy(p, &v, sizeof v);
-}
-
-/// |v| lane by lane: the sign bit cleared.
-inline Lanes abs(const Lanes& v)
-{
-  const LaneBits magnitude = LaneBits{} + INT64_MAX;
-  return (Lanes)((LaneBits)v & magnitude);
-}
-
-/// base[index[l]] lane by lane: one gather instruction where there is one
-/// (the element-wise fallback goes through memory, which stalls the
-/// vector load that follows).
-inline Lanes gather(const double* base, const LaneBits& index)
-{
-#if defined(__AVX512F__)
-  // The masked forms: the plain ones leave GCC 12 warning of an
-  // uninitialised source.
-  return (Lanes)_mm512_mask_i64gather_pd(_mm512_setzero_pd(), 0xff, (__m512i)index, base,
-                                         sizeof(double));
-#elif defined(__AVX2__)
-  return (Lanes)_mm256_mask_i64gather_pd(_mm256_setzero_pd(), base, (__m256i)index,
-                                         _mm256_castsi256_pd(_mm256_set1_epi64x(-1)),
-                                         sizeof(double));
-#else
-  Lanes v;
-  for (unsigned int l = 0; l < W; ++l)
-    v[l] = base[index[l]];
-  return v;
-#endif
-}
 
 /// The zones [k0, k0 + W) of a batch as one group: their gridpoints, lane
 /// by lane; lanes past the batch's end repeat its last zone, so that every
@@ -77,8 +27,8 @@ inline Lanes gather(const double* base, const LaneBits& index)
 struct Group
 {
   unsigned int gridpoint[4][W];
-  LaneBits corner[4]; ///< 3 gridpoint: the offset of each corner in a gridpoint field
-  LaneBits zone;      ///< 6 (zone - k0): the offset of each zone in a zone field
+  LaneMask corner[4]; ///< 3 gridpoint: the offset of each corner in a gridpoint field
+  LaneMask zone;      ///< 6 (zone - k0): the offset of each zone in a zone field
   unsigned int count; ///< lanes that are real zones
 
   Group(const TetMesh& mesh, unsigned int first, unsigned int k0, unsigned int n)
@@ -104,18 +54,18 @@ struct Group
           __builtin_shufflevector(zones_0_3, zones_4_7, 1, 5, 9, 13, 17, 21, 25, 29),
           __builtin_shufflevector(zones_0_3, zones_4_7, 2, 6, 10, 14, 18, 22, 26, 30),
           __builtin_shufflevector(zones_0_3, zones_4_7, 3, 7, 11, 15, 19, 23, 27, 31)};
-      zone = LaneBits{0, 6, 12, 18, 24, 30, 36, 42};
+      zone = LaneMask{0, 6, 12, 18, 24, 30, 36, 42};
 #else
       const Corners by_corner[4] = {__builtin_shufflevector(zones_0_3, zones_0_3, 0, 4, 8, 12),
                                     __builtin_shufflevector(zones_0_3, zones_0_3, 1, 5, 9, 13),
                                     __builtin_shufflevector(zones_0_3, zones_0_3, 2, 6, 10, 14),
                                     __builtin_shufflevector(zones_0_3, zones_0_3, 3, 7, 11, 15)};
-      zone = LaneBits{0, 6, 12, 18};
+      zone = LaneMask{0, 6, 12, 18};
 #endif
       for (int a = 0; a < 4; ++a)
       {
         std::memcpy(gridpoint[a], &by_corner[a], sizeof by_corner[a]);
-        corner[a] = __builtin_convertvector(by_corner[a], LaneBits) * 3;
+        corner[a] = __builtin_convertvector(by_corner[a], LaneMask) * 3;
       }
       return;
     }
@@ -139,7 +89,7 @@ struct Group
   {
     for (int a = 0; a < 4; ++a)
       for (int d = 0; d < 3; ++d)
-        out[a][d] = gather(field + d, corner[a]);
+        out[a][d] = gather_lanes(field + d, corner[a]);
   }
 
   /// Six stress (or strain) components of the group's zones, from the zone
@@ -147,7 +97,7 @@ struct Group
   void load_six(const double* zone_values, Lanes (&out)[6]) const
   {
     for (int c = 0; c < 6; ++c)
-      out[c] = gather(zone_values + c, zone);
+      out[c] = gather_lanes(zone_values + c, zone);
   }
   void store_six(const Lanes (&in)[6], double* zone_values) const
   {
@@ -209,11 +159,11 @@ void tet4_strain_increments(const TetMesh& mesh, unsigned int first, unsigned in
     group.gather_corners(v, vel);
     // Current geometry: gradients and volume for the nodal forces.
     Lanes gr[4][3];
-    store(s.volume.data() + k0, shape_gradients(p, gr) / 6.0);
+    store_lanes(s.volume.data() + k0, shape_gradients(p, gr) / 6.0);
     double* gr_out = s.gradient.data() + 12 * k0; // 12 rows of W lanes
     for (int a = 0; a < 4; ++a)
       for (int d = 0; d < 3; ++d)
-        store(gr_out + (3 * a + d) * W, gr[a][d]);
+        store_lanes(gr_out + (3 * a + d) * W, gr[a][d]);
     // The motion of the last step, x - v dt -> x, measured on the geometry
     // halfway through it: a rigid rotation then gives an exactly
     // antisymmetric velocity gradient, so no strain, for any step size.
@@ -266,12 +216,12 @@ void tet4_nodal_forces(const TetMesh& mesh, unsigned int first, unsigned int n,
     Lanes sg[6];
     group.load_six(stress + 6 * (first + k0), sg);
     const double* gr = s.gradient.data() + 12 * k0;
-    const Lanes V = load(s.volume.data() + k0);
+    const Lanes V = load_lanes(s.volume.data() + k0);
     Lanes fz[4][3];
     for (int a = 0; a < 4; ++a)
     {
-      const Lanes gx = load(gr + (3 * a) * W), gy = load(gr + (3 * a + 1) * W),
-                  gz = load(gr + (3 * a + 2) * W);
+      const Lanes gx = load_lanes(gr + (3 * a) * W), gy = load_lanes(gr + (3 * a + 1) * W),
+                  gz = load_lanes(gr + (3 * a + 2) * W);
       fz[a][0] = V * (sg[0] * gx + sg[3] * gy + sg[5] * gz);
       fz[a][1] = V * (sg[3] * gx + sg[1] * gy + sg[4] * gz);
       fz[a][2] = V * (sg[5] * gx + sg[4] * gy + sg[2] * gz);
@@ -290,7 +240,7 @@ void tet4_nodal_forces(const TetMesh& mesh, unsigned int first, unsigned int n,
       Lanes size[4][3];
       for (int a = 0; a < 4; ++a)
         for (int d = 0; d < 3; ++d)
-          size[a][d] = abs(fz[a][d]);
+          size[a][d] = lane_abs(fz[a][d]);
       for (unsigned int l = 0; l < group.count; ++l)
         for (int a = 0; a < 4; ++a)
         {

@@ -78,6 +78,27 @@ inline Lanes lane_sqrt(const Lanes& v)
 #endif
 }
 
+/// base[index[l]] lane by lane: one gather instruction where there is one
+/// (an element-wise fallback goes through memory, which stalls the vector
+/// load that follows). The masked forms: the plain ones make GCC 12 warn of
+/// an uninitialised source.
+inline Lanes gather_lanes(const double* base, const LaneMask& index)
+{
+#if defined(__AVX512F__)
+  return (Lanes)_mm512_mask_i64gather_pd(_mm512_setzero_pd(), 0xff, (__m512i)index, base,
+                                         sizeof(double));
+#elif defined(__AVX2__)
+  return (Lanes)_mm256_mask_i64gather_pd(_mm256_setzero_pd(), base, (__m256i)index,
+                                         _mm256_castsi256_pd(_mm256_set1_epi64x(-1)),
+                                         sizeof(double));
+#else
+  Lanes v;
+  for (unsigned int l = 0; l < lane_count; ++l)
+    v[l] = base[index[l]];
+  return v;
+#endif
+}
+
 /// True when any lane of the mask is set.
 inline bool any(const LaneMask& m)
 {
