@@ -13,6 +13,8 @@
 #include <array>
 #include <limits>
 #include <memory>
+#include <string>
+#include <utility>
 #include <vector>
 
 namespace talus
@@ -133,6 +135,21 @@ public:
   /// without initial stress, held at rest).
   ImplicitElasticProblem implicit_problem() const;
 
+  /// Adds the zones' terms to an energy account: work of gravity and of
+  /// boundaries, kinetic energy at the last whole step, damping, and (a
+  /// pass over the zones) elastic strain energy and plastic dissipation.
+  void add_energy(EnergyAccount& e) const;
+  /// The same without the pass over the zones: works, kinetic and initial
+  /// energy only (for the divergence watch).
+  void add_work(EnergyAccount& e) const;
+  /// Throws DivergenceError if a gridpoint force is not finite (before
+  /// anything moves), naming the zone; `step` and `dt` for the message.
+  void check_finite_forces(unsigned long step, double dt) const;
+  /// Largest kinetic energy of one gridpoint (J) and the message of a
+  /// divergence there: the zone, and the likely cause.
+  double largest_gridpoint_energy() const;
+  std::string divergence_site(double dt) const;
+
   /// Holds every component of gridpoint g at velocity `v` (m/s) from now on.
   void hold_gridpoint(unsigned int g, const Vec3& v);
 
@@ -153,6 +170,11 @@ private:
   void zone_forces();
   void nodal_mixed_zone_forces(const double* x, const double* v, double* f, double strain_dt);
   void move_gridpoints();
+  /// Elastic strain energy of the zones (J) and of those of plastic
+  /// materials alone, with the current volumes.
+  std::pair<double, double> elastic_energy(const double* x) const;
+  /// The zone around gridpoint g with the smallest volume, and that volume.
+  std::pair<unsigned int, double> smallest_zone_at(unsigned int g, const double* x) const;
 
   const TetMesh& mesh_;
   std::vector<ZoneMaterial> materials_;
@@ -195,6 +217,14 @@ private:
   double dt_ = 0.0, time_ = 0.0, ratio_ = 1.0;
   double seconds_zones_ = 0.0, seconds_gridpoints_ = 0.0;
   unsigned long step_ = 0;
+  // Energy account (J), see EnergyAccount.
+  double gravity_work_ = 0.0, boundary_work_ = 0.0, damping_work_ = 0.0;
+  double kinetic_whole_step_ = 0.0;
+  std::vector<double> gauss_volume_; ///< m^3, a batch of 10-node zones' Gauss points (plastic)
+  double plastic_stress_work_ = 0.0; ///< sum of V sigma : d(eps) over zones of plastic materials
+  double initial_elastic_ = 0.0, initial_plastic_elastic_ = 0.0; ///< and held kinetic
+  std::vector<double> pressure_force_; ///< 3 per gridpoint, N (only with face pressures)
+  EnergyGrowthWatch growth_watch_;     ///< standalone runs (step())
 };
 
 } // namespace talus
