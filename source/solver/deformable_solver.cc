@@ -67,6 +67,43 @@ double tet_volume(const double* x, const std::array<unsigned int, 4>& t)
   const auto P = [&](unsigned int g) { return Vec3(x[3 * g], x[3 * g + 1], x[3 * g + 2]); };
   return (P(t[1]) - P(t[0])).dot((P(t[2]) - P(t[0])).cross(P(t[3]) - P(t[0]))) / 6.0;
 }
+
+/// The volume each Gauss point of 10-node zone z stands for in the current
+/// geometry `x` (m^3): w_q det J(xi_q) with w_q = 1/24, J = sum_n x_n (x)
+/// grad_xi N_n (N_i = l_i (2 l_i - 1) at vertices, 4 l_i l_j at the
+/// midpoint of edge i-j; l_0 = 1 - xi - eta - zeta). The midpoints move
+/// with the zone, so under large strain its edges curve and the corners'
+/// volume is not the zone's.
+void tet10_gauss_volumes(const TetMesh& mesh, unsigned int z, const double* x, double* volume)
+{
+  static constexpr unsigned int edge[6][2] = {{0, 1}, {1, 2}, {2, 0}, {0, 3}, {1, 3}, {2, 3}};
+  unsigned int node[10];
+  for (int i = 0; i < 4; ++i)
+    node[i] = mesh.zone_gridpoint[z][i];
+  for (int e = 0; e < 6; ++e)
+    node[4 + e] = mesh.zone_edge_gridpoint[z][e];
+  for (int q = 0; q < 4; ++q)
+  {
+    double l[4];
+    for (int m = 0; m < 4; ++m)
+      l[m] = m == q ? tet10_gauss_b : tet10_gauss_a;
+    // dN/dl_m of every node, then dN/dxi_k = dN/dl_k - dN/dl_0 (k = 1..3).
+    double dl[10][4] = {};
+    for (int i = 0; i < 4; ++i)
+      dl[i][i] = 4.0 * l[i] - 1.0;
+    for (int e = 0; e < 6; ++e)
+    {
+      dl[4 + e][edge[e][0]] = 4.0 * l[edge[e][1]];
+      dl[4 + e][edge[e][1]] = 4.0 * l[edge[e][0]];
+    }
+    Eigen::Matrix3d J = Eigen::Matrix3d::Zero();
+    for (int n = 0; n < 10; ++n)
+      for (int k = 0; k < 3; ++k)
+        for (int d = 0; d < 3; ++d)
+          J(d, k) += x[3 * node[n] + d] * (dl[n][k + 1] - dl[n][0]);
+    volume[q] = J.determinant() / 24.0;
+  }
+}
 } // namespace
 
 /// Gridpoint state, 3 numbers per gridpoint in each vector.
@@ -414,14 +451,13 @@ void DeformableSolver::zone_forces()
         batch.stress = stress_.data() + 24 * std::size_t(first);
         batch.state = state_.data() + 4 * std::size_t(first);
         // Plastic materials: the stress work of the step as for 4-node
-        // zones, each Gauss point with a quarter of its zone's volume.
+        // zones, each Gauss point with the volume it stands for.
         const bool plastic = mat.model != ZoneModel::elastic;
         if (plastic)
         {
           gauss_volume_.resize(4 * n);
           for (unsigned int k = 0; k < n; ++k)
-            std::fill_n(gauss_volume_.begin() + 4 * k, 4,
-                        0.25 * tet_volume(x.data(), mesh_.zone_gridpoint[first + k]));
+            tet10_gauss_volumes(mesh_, first + k, x.data(), &gauss_volume_[4 * k]);
           plastic_stress_work_ +=
               0.5 * stress_power(4 * n, batch.strain_increment, batch.stress, gauss_volume_.data());
         }
@@ -694,16 +730,20 @@ void DeformableSolver::add_energy(EnergyAccount& e) const
 std::pair<double, double> DeformableSolver::elastic_energy(const double* x) const
 {
   // V / 2 sigma : C^-1 : sigma = V / 2 (p^2 / K + s : s / (2 G)), per
-  // stress point: a 10-node zone has four Gauss points of a quarter of its
-  // volume each (of its corners: the small-strain volume), and each
-  // tetrahedron of a hexahedral zone fills it once of two overlays.
-  const unsigned int points = static_cast<unsigned int>(stress_.size() / (6 * mesh_.n_zones()));
+  // stress point: a 10-node zone's Gauss points each with the volume it
+  // stands for, and each tetrahedron of a hexahedral zone, which fills the
+  // hexahedron once of two overlays, with half its volume.
+  const unsigned int points = mesh_.quadratic() ? 4 : 1;
   double all = 0.0, plastic = 0.0;
   for (unsigned int z = 0; z < mesh_.n_zones(); ++z)
   {
     const ZoneMaterial& mat = materials_[material_of_zone_[z]];
-    const double share = (mat.element == ZoneElement::hex_mixed ? 0.5 : 1.0) / points;
-    const double volume = share * tet_volume(x, mesh_.zone_gridpoint[z]);
+    double volume[4];
+    if (mesh_.quadratic())
+      tet10_gauss_volumes(mesh_, z, x, volume);
+    else
+      volume[0] = (mat.element == ZoneElement::hex_mixed ? 0.5 : 1.0) *
+                  tet_volume(x, mesh_.zone_gridpoint[z]);
     double e = 0.0;
     for (unsigned int q = 0; q < points; ++q)
     {
@@ -711,7 +751,7 @@ std::pair<double, double> DeformableSolver::elastic_energy(const double* x) cons
       const double p = (s[0] + s[1] + s[2]) / 3.0;
       const double ss = (s[0] - p) * (s[0] - p) + (s[1] - p) * (s[1] - p) +
                         (s[2] - p) * (s[2] - p) + 2.0 * (s[3] * s[3] + s[4] * s[4] + s[5] * s[5]);
-      e += 0.5 * volume * (p * p / mat.bulk_modulus + ss / (2.0 * mat.shear_modulus));
+      e += 0.5 * volume[q] * (p * p / mat.bulk_modulus + ss / (2.0 * mat.shear_modulus));
     }
     all += e;
     if (mat.model != ZoneModel::elastic)
