@@ -251,6 +251,12 @@ void solve_deformable(talus::Scene& scene, talus::BlockModel& model, const std::
   for (const ReactionReport& r : scene.reactions)
     for (const char* q : {" reaction x (N)", " reaction y (N)", " reaction z (N)"})
       columns.push_back(r.name + q);
+  // The energy account (see EnergyAccount), last so that the columns
+  // before keep their places.
+  for (const char* q : {"kinetic energy (J)", "work of gravity (J)", "work of boundaries (J)",
+                        "zone elastic energy (J)", "plastic dissipation (J)",
+                        "damping dissipation (J)", "energy balance error (J)"})
+    columns.push_back(q);
   Checkpoint checkpoint(scene, model, nullptr, &solver, restart_from);
   HistoryFile history(prefix + "_history.csv", columns);
   ProgressLine progress(scene.solver.steps);
@@ -307,6 +313,10 @@ void solve_deformable(talus::Scene& scene, talus::BlockModel& model, const std::
         const Vec3 f = -solver.support_force(r.region);
         row.insert(row.end(), {f[0], f[1], f[2]});
       }
+      EnergyAccount e;
+      solver.add_energy(e);
+      row.insert(row.end(), {e.kinetic, e.gravity_work, e.boundary_work, e.zone_elastic, e.plastic,
+                             e.damping, e.error()});
       history.record(row);
     }
     progress.update(n, solver.time());
@@ -326,6 +336,13 @@ void solve_deformable(talus::Scene& scene, talus::BlockModel& model, const std::
   std::printf("Steps:        %lu (time %.6g s)\n", solver.steps_done(), solver.time());
   std::printf("Unbalanced force ratio: %.3g\n", solver.unbalanced_ratio());
   std::printf("Largest displacement: %.6g m\n", largest_displacement());
+  {
+    EnergyAccount e;
+    solver.add_energy(e);
+    std::printf("Energy balance error: %.2g of the largest energy term (%.6g J; history has "
+                "every term)\n",
+                e.scale() > 0.0 ? std::abs(e.error()) / e.scale() : 0.0, e.scale());
+  }
   unsigned int yielding = 0; // zones with a yielding stress point
   const unsigned int per_zone = solver.stress_points_per_zone();
   for (unsigned int z = 0; z < mesh.n_zones(); ++z)

@@ -651,11 +651,13 @@ void DeformableSolver::move_gridpoints()
       {
         // This motion spans [time_, time_ + dt_]: moved while it ends by
         // the condition's end time (half a step of slack for round-off).
+        const double v_before = v[i];
         v[i] = time_ + 0.5 * dt_ < held_until_[i] ? held_velocity_[i] : 0.0;
-        // The support supplies minus the force on the component.
-        const double reach = h * v[i];
+        // The support supplies minus the force on the component, and
+        // whatever kinetic energy a change of the held velocity takes.
+        const double reach = 0.5 * h * (v_before + v[i]);
         gravity_work += weight * reach;
-        boundary_work += (load - f[i]) * reach;
+        boundary_work += (load - f[i]) * reach + 0.5 * m[i] * (v[i] * v[i] - v_before * v_before);
         kinetic += 0.5 * m[i] * v[i] * v[i] - 0.5 * (f[i] - weight - load) * v[i] * dt_;
         continue;
       }
