@@ -133,10 +133,6 @@ MeshPermutation order_for_locality(TetMesh& mesh, MeshOrder order)
       cell = std::max(cell, std::cbrt(5.0 * volume / (last - first)));
       shift = 0.25;
     }
-    // Slabs: the axes slowest first, the longest first (the smallest slab
-    // of zones to keep in cache), ties as the brick generator (z, y, x).
-    int axis[3] = {2, 1, 0};
-    std::stable_sort(axis, axis + 3, [&](int a, int b) { return hi[a] - lo[a] > hi[b] - lo[b]; });
     for (std::size_t u = begin; u < end; ++u)
     {
       std::uint32_t c[3];
@@ -144,9 +140,10 @@ MeshPermutation order_for_locality(TetMesh& mesh, MeshOrder order)
         c[d] = cell > 0.0 ? static_cast<std::uint32_t>(std::min<double>(
                                 cells, std::floor((centroid[3 * u + d] - lo[d]) / cell + shift)))
                           : 0u;
-      key[u] = order == MeshOrder::hilbert ? hilbert_index(c[0], c[1], c[2])
-                                           : (std::uint64_t(c[axis[0]]) << 42) |
-                                                 (std::uint64_t(c[axis[1]]) << 21) | c[axis[2]];
+      // Slabs: z slowest, x fastest, as the brick generator.
+      key[u] = order == MeshOrder::hilbert
+                   ? hilbert_index(c[0], c[1], c[2])
+                   : (std::uint64_t(c[2]) << 42) | (std::uint64_t(c[1]) << 21) | c[0];
     }
   }
   std::vector<unsigned int> unit_order(nu);

@@ -16,9 +16,11 @@ enum class MeshOrder
   /// gmsh file's elements), gridpoints in first use by those zones.
   generator,
   /// Slabs (the default): zones by the cells of a lattice of the zone size,
-  /// lexicographic with the block's longest axis slowest, so that the zones
-  /// sweep the block in rows, rows in slabs; gridpoints in first use by the
-  /// zones so sorted. Keeps the brick generator's order.
+  /// lexicographic (z slowest, x fastest), so that the zones sweep the
+  /// block in rows along x, rows in slabs of one z; gridpoints in first use
+  /// by the zones so sorted. Keeps the brick generator's order (zones and
+  /// gridpoints) and puts any other mesh (refined blocks, gmsh files) in
+  /// the same kind of order.
   slabs,
   /// Zones along the 3D Hilbert curve through their centroids, gridpoints
   /// in first use. More compact than slabs, but the explicit cycle ran
