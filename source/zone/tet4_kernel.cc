@@ -206,6 +206,65 @@ void tet4_strain_increments(const TetMesh& mesh, unsigned int first, unsigned in
   }
 }
 
+namespace
+{
+/// The value as rounded so far: the compiler may not fuse the operation
+/// that made it with the one that uses it (a multiply-add rounds once), so
+/// a sum of stored products here is rounded as one of products read back
+/// from memory.
+inline Lanes rounded(Lanes value)
+{
+  asm("" : "+v"(value));
+  return value;
+}
+} // namespace
+
+void tet4_volumetric_increments(const TetMesh& mesh, unsigned int first, unsigned int n,
+                                const double* x, const double* v, double dt, double* volumetric,
+                                double* volume)
+{
+  // The arithmetic of tet4_strain_increments restricted to what the
+  // volumetric part needs (the diagonal of L), operation for operation.
+  for (unsigned int k0 = 0; k0 < n; k0 += W)
+  {
+    const Group group(mesh, first, k0, n);
+    Lanes p[4][3], vel[4][3];
+    group.gather_corners(x, p);
+    group.gather_corners(v, vel);
+    Lanes gr[4][3];
+    store_lanes(volume + k0, shape_gradients(p, gr) / 6.0);
+    Lanes mid[4][3];
+    for (int a = 0; a < 4; ++a)
+      for (int d = 0; d < 3; ++d)
+        mid[a][d] = p[a][d] - 0.5 * dt * vel[a][d];
+    Lanes gm[4][3];
+    shape_gradients(mid, gm);
+    Lanes L[3] = {};
+    for (int a = 0; a < 4; ++a)
+      for (int i = 0; i < 3; ++i)
+        L[i] += vel[a][i] * gm[a][i];
+    const Lanes sum = rounded(L[0] * dt) + rounded(L[1] * dt) + rounded(L[2] * dt);
+    store_lanes(volumetric + k0, sum / 3.0);
+  }
+}
+
+void tet4_geometry(const TetMesh& mesh, unsigned int first, unsigned int n, const double* x,
+                   Tet4Scratch& s)
+{
+  for (unsigned int k0 = 0; k0 < n; k0 += W)
+  {
+    const Group group(mesh, first, k0, n);
+    Lanes p[4][3];
+    group.gather_corners(x, p);
+    Lanes gr[4][3];
+    store_lanes(s.volume.data() + k0, shape_gradients(p, gr) / 6.0);
+    double* gr_out = s.gradient.data() + 12 * k0;
+    for (int a = 0; a < 4; ++a)
+      for (int d = 0; d < 3; ++d)
+        store_lanes(gr_out + (3 * a + d) * W, gr[a][d]);
+  }
+}
+
 void tet4_nodal_forces(const TetMesh& mesh, unsigned int first, unsigned int n,
                        const double* stress, const Tet4Scratch& s, double* force,
                        double* force_size)

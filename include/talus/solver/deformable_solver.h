@@ -187,9 +187,14 @@ private:
   unsigned int points_per_zone_ = 1; ///< stress points per zone
   // Nodal mixed discretization only (empty otherwise).
   bool nodal_mixed_ = false;
-  Tet4Scratch full_scratch_;               ///< every zone's gradients and strain
-  std::vector<double> nodal_sum_;          ///< 2 per gridpoint: weighted sum, volume
-  std::vector<double> plastic_volumetric_; ///< per zone, this step
+  std::vector<double> volume_sum_;       ///< per gridpoint: zone volumes around it, m^3
+  std::vector<double> strain_average_;   ///< per gridpoint: volumetric strain increment
+  std::vector<double> plastic_average_;  ///< per gridpoint: plastic pressure, Pa
+  std::vector<double> batch_volumetric_; ///< per zone of a batch: e, or plastic e^p
+  /// Zones whose plastic volumetric strain increment e^p is not zero this
+  /// step, in order, with their e^p.
+  std::vector<unsigned int> yielded_zone_;
+  std::vector<double> yielded_volumetric_;
   Damper damper_{Damping::none, 0.0, 0.5, 1.0};
   std::vector<double> last_force_; ///< 3 per gridpoint, N (combined damping only)
   double dt_ = 0.0, time_ = 0.0, ratio_ = 1.0;
