@@ -327,9 +327,8 @@ double DeformableSolver::stable_time_step(const std::vector<double>& joint_stiff
   return stable_time_step_of(true_mass_, k);
 }
 
-void DeformableSolver::zone_forces()
+void DeformableSolver::external_forces(const double* x, double* f)
 {
-  LocalArray x(petsc_->position), v(petsc_->velocity), f(petsc_->force);
   const unsigned int ng = mesh_.n_gridpoints();
   for (unsigned int i = 0; i < 3 * ng; ++i)
   {
@@ -340,7 +339,7 @@ void DeformableSolver::zone_forces()
   // of the face's gridpoints.
   for (std::size_t k = 0; k < pressed_faces_.size(); ++k)
   {
-    const Vec3 load = face_load(k, x.data());
+    const Vec3 load = face_load(k, x);
     for (int a = 0; a < 3; ++a)
     {
       const unsigned int g = pressed_faces_[k][a];
@@ -352,6 +351,12 @@ void DeformableSolver::zone_forces()
       }
     }
   }
+}
+
+void DeformableSolver::zone_forces()
+{
+  LocalArray x(petsc_->position), v(petsc_->velocity), f(petsc_->force);
+  external_forces(x.data(), f.data());
   // The velocities are those of the last motion (x - v dt -> x); before the
   // first motion there is none, so no strain.
   const double strain_dt = step_ == 0 ? 0.0 : dt_;
@@ -427,11 +432,11 @@ void DeformableSolver::nodal_mixed_zone_forces(const double* x, const double* v,
   //   1. every mixed zone's volumetric strain increment and volume, summed
   //      at its gridpoints (eq. 69);
   //   2. strain increments again, the volumetric part replaced by the mean
-  //      of the gridpoint averages (eqs. 70-71), the zone model, and the
-  //      nodal forces; or, when a mixed zone may yield, its plastic
-  //      pressure summed at its gridpoints (eqs. 73-75) instead of forces;
-  //   3. then only: the plastic pressure of each zone that yielded traded
-  //      for the mean of its gridpoints' (eq. 76), and the nodal forces.
+  //      of the gridpoint averages (eqs. 70-71), the zone model, the plastic
+  //      pressure of zones that yielded summed at their gridpoints (eqs.
+  //      73-75), and the nodal forces;
+  //   3. when a zone yielded: its plastic pressure traded for the mean of
+  //      its gridpoints' (eq. 76), and the nodal forces (again).
   // Every sum is added up in zone order, as in one pass over all zones.
   const unsigned int ng = mesh_.n_gridpoints();
   const auto material_of_run = [&](std::size_t r) -> const ZoneMaterial&
@@ -463,6 +468,11 @@ void DeformableSolver::nodal_mixed_zone_forces(const double* x, const double* v,
       }
   divide_by_volume(ng, strain_average_.data(), volume_sum_.data());
 
+  // Nodal forces in the second sweep unless a mixed zone may yield; if one
+  // may, but none did at the last step, they are taken there all the same
+  // and taken again, all of them in order, only if one did yield after all
+  // (the sums are the same either way).
+  const bool forces_now = !plastic_pass || !last_step_yielded_;
   if (plastic_pass)
   {
     plastic_average_.assign(ng, 0.0);
@@ -511,7 +521,7 @@ void DeformableSolver::nodal_mixed_zone_forces(const double* x, const double* v,
         add_volume_weighted(mesh_, first, n, batch_volumetric_.data(), scratch_.volume.data(),
                             plastic_average_.data(), nullptr);
       }
-      if (!plastic_pass)
+      if (forces_now)
       {
         if (hex) // each overlay's forces weighted 1/2
           hex_mixed_overlay_weight(n, scratch_.volume.data());
@@ -521,6 +531,13 @@ void DeformableSolver::nodal_mixed_zone_forces(const double* x, const double* v,
   }
   if (!plastic_pass)
     return;
+  const bool yielded = !yielded_zone_.empty();
+  const bool forces_done = forces_now && !yielded;
+  last_step_yielded_ = yielded;
+  if (forces_done)
+    return;
+  if (forces_now) // with stresses that the plastic correction changes
+    external_forces(x, f);
 
   // Eqs. 74-76: each zone that yielded trades its own plastic pressure for
   // the mean of its gridpoints' averages; then the nodal forces.

@@ -151,6 +151,9 @@ private:
   static double stable_time_step_of(const std::vector<double>& mass,
                                     const std::vector<double>& stiffness);
   void zone_forces();
+  /// Gravity and face loads into f (N, 3 per gridpoint), and their sizes
+  /// into force_size_: where the zone forces are added.
+  void external_forces(const double* x, double* f);
   void nodal_mixed_zone_forces(const double* x, const double* v, double* f, double strain_dt);
   void move_gridpoints();
 
@@ -195,6 +198,9 @@ private:
   /// step, in order, with their e^p.
   std::vector<unsigned int> yielded_zone_;
   std::vector<double> yielded_volumetric_;
+  /// Whether a mixed zone yielded with a volumetric part at the last step
+  /// (then the forces wait for the third sweep; only speed depends on it).
+  bool last_step_yielded_ = false;
   Damper damper_{Damping::none, 0.0, 0.5, 1.0};
   std::vector<double> last_force_; ///< 3 per gridpoint, N (combined damping only)
   double dt_ = 0.0, time_ = 0.0, ratio_ = 1.0;
