@@ -243,7 +243,11 @@ namespace
 /// from memory.
 inline Lanes rounded(Lanes value)
 {
-  asm("" : "+v"(value));
+#if defined(__AVX__)
+  asm("" : "+v"(value)); // kept in its register
+#else
+  asm("" : "+m"(value)); // no register holds a whole Lanes: through memory
+#endif
   return value;
 }
 } // namespace
