@@ -184,12 +184,13 @@ int main(int argc, char** argv)
         state = solver.plastic_state();
       }
       const double updates = double(nz) * steps; // per run
-      // Nodal mixed discretization adds every zone's gradients, volume and
-      // strain increment (19 doubles), its plastic volumetric increment, and
-      // two sums per gridpoint.
-      const double zone_bytes =
-          sizeof(mesh.zone_gridpoint[0]) + 6 * sizeof(double) + (mc ? 1 : 0) + (nmd ? 160 : 0);
-      const double gridpoint_bytes = (4 * 3 + 3 * 3 + (nmd ? 2 : 0)) * sizeof(double) + 1;
+      // Nodal mixed discretization keeps nothing per zone beyond a batch;
+      // it adds per gridpoint the zone volumes around it and the average
+      // volumetric strain increment, and with Mohr-Coulomb the average
+      // plastic pressure.
+      const double zone_bytes = sizeof(mesh.zone_gridpoint[0]) + 6 * sizeof(double) + (mc ? 1 : 0);
+      const double gridpoint_bytes =
+          (4 * 3 + 3 * 3 + (nmd ? (mc ? 3 : 2) : 0)) * sizeof(double) + 1;
       const double hot = zone_bytes + gridpoint_bytes * ng / nz;
       unsigned int yielding = 0, yielded = 0;
       for (unsigned char s : state)

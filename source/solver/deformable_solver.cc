@@ -2,6 +2,7 @@
 #include <talus/io/checkpoint.h>
 #include <talus/solver/deformable_solver.h>
 #include <talus/zone/hex_mixed.h>
+#include <talus/zone/nodal_mixed.h>
 #include <talus/zone/zone_models.h>
 
 #include <deal.II/lac/petsc_vector.h>
@@ -396,9 +397,8 @@ double DeformableSolver::stable_time_step(const std::vector<double>& joint_stiff
   return stable_time_step_of(true_mass_, k);
 }
 
-void DeformableSolver::zone_forces()
+void DeformableSolver::external_forces(const double* x, double* f)
 {
-  LocalArray x(petsc_->position), v(petsc_->velocity), f(petsc_->force);
   const unsigned int ng = mesh_.n_gridpoints();
   for (unsigned int i = 0; i < 3 * ng; ++i)
   {
@@ -411,7 +411,7 @@ void DeformableSolver::zone_forces()
     std::fill(pressure_force_.begin(), pressure_force_.end(), 0.0);
   for (std::size_t k = 0; k < pressed_faces_.size(); ++k)
   {
-    const Vec3 load = face_load(k, x.data());
+    const Vec3 load = face_load(k, x);
     for (int a = 0; a < 3; ++a)
     {
       const unsigned int g = pressed_faces_[k][a];
@@ -424,6 +424,12 @@ void DeformableSolver::zone_forces()
       }
     }
   }
+}
+
+void DeformableSolver::zone_forces()
+{
+  LocalArray x(petsc_->position), v(petsc_->velocity), f(petsc_->force);
+  external_forces(x.data(), f.data());
   // The velocities are those of the last motion (x - v dt -> x); before the
   // first motion there is none, so no strain.
   const double strain_dt = step_ == 0 ? 0.0 : dt_;
@@ -521,110 +527,161 @@ void DeformableSolver::nodal_mixed_zone_forces(const double* x, const double* v,
                                                double strain_dt)
 {
   // Nodal mixed discretization (eqs. 68-76) for the zones whose material
-  // asks for it: every zone's strain first, then the volumetric part
-  // averaged at the gridpoints and back over each zone's four, the model,
-  // and the same averaging for the plastic volumetric stress.
-  const unsigned int nz = mesh_.n_zones(), ng = mesh_.n_gridpoints();
-  full_scratch_.resize(nz);
-  tet4_strain_increments(mesh_, 0, nz, x, v, strain_dt, stress_.data(), full_scratch_);
-  double* de = full_scratch_.strain_increment.data();
-  const double* volume = full_scratch_.volume.data();
-  const auto mixed = [&](unsigned int z) { return materials_[material_of_zone_[z]].nodal_mixed; };
-  // Eq. 69: volume-weighted nodal averages of the zones' volumetric strain
-  // increment (e = trace / 3, eq. 68).
-  nodal_sum_.assign(2 * ng, 0.0);
-  for (unsigned int z = 0; z < nz; ++z)
-    if (mixed(z))
-    {
-      const double e = (de[6 * z] + de[6 * z + 1] + de[6 * z + 2]) / 3.0;
-      for (unsigned int g : mesh_.zone_gridpoint[z])
-      {
-        nodal_sum_[2 * g] += e * volume[z];
-        nodal_sum_[2 * g + 1] += volume[z];
-      }
-    }
-  // Eqs. 70-71: the zone keeps its deviatoric part and takes the mean of
-  // its gridpoints' averages as its volumetric part.
-  for (unsigned int z = 0; z < nz; ++z)
-    if (mixed(z))
-    {
-      double mean = 0.0;
-      for (unsigned int g : mesh_.zone_gridpoint[z])
-        mean += 0.25 * nodal_sum_[2 * g] / nodal_sum_[2 * g + 1];
-      const double shift = mean - (de[6 * z] + de[6 * z + 1] + de[6 * z + 2]) / 3.0;
-      for (int c = 0; c < 3; ++c)
-        de[6 * z + c] += shift;
-    }
-  // Hexahedral zones average over their hexahedra instead (eqs. 60-63).
-  const auto hex_run = [&](std::size_t r)
-  { return materials_[material_of_zone_[batch_start_[r]]].element == ZoneElement::hex_mixed; };
+  // asks for it, in sweeps over the zones in order, a batch at a time, so
+  // that nothing per zone outlives its batch:
+  //   1. every mixed zone's volumetric strain increment and volume, summed
+  //      at its gridpoints (eq. 69);
+  //   2. strain increments again, the volumetric part replaced by the mean
+  //      of the gridpoint averages (eqs. 70-71), the zone model, the plastic
+  //      pressure of zones that yielded summed at their gridpoints (eqs.
+  //      73-75), and the nodal forces;
+  //   3. when a zone yielded: its plastic pressure traded for the mean of
+  //      its gridpoints' (eq. 76), and the nodal forces (again).
+  // Every sum is added up in zone order, as in one pass over all zones.
+  const unsigned int ng = mesh_.n_gridpoints();
+  const auto material_of_run = [&](std::size_t r) -> const ZoneMaterial&
+  { return materials_[material_of_zone_[batch_start_[r]]]; };
+  bool plastic_pass = false;
+  for (const ZoneMaterial& m : materials_)
+    plastic_pass |= m.nodal_mixed && m.model != ZoneModel::elastic;
+  scratch_.resize(zone_batch);
+  batch_volumetric_.resize(zone_batch + Tet4Scratch::max_lanes);
+  const auto chunk_of = [&](const ZoneMaterial& m)
+  {
+    // Hexahedral zones: calls of whole hexahedra.
+    return m.element == ZoneElement::hex_mixed
+               ? zone_batch / TetMesh::tets_per_hex * TetMesh::tets_per_hex
+               : zone_batch;
+  };
+
+  volume_sum_.assign(ng, 0.0);
+  strain_average_.assign(ng, 0.0);
   for (std::size_t r = 0; r + 1 < batch_start_.size(); ++r)
-    if (hex_run(r))
-      hex_mixed_average_strain(batch_start_[r + 1] - batch_start_[r], de + 6 * batch_start_[r],
-                               volume + batch_start_[r]);
-  // The zone models, one material run at a time, with their plastic
-  // volumetric strain increments.
-  plastic_volumetric_.assign(nz, 0.0);
-  bool any_plastic = false;
+    if (material_of_run(r).nodal_mixed)
+      for (unsigned int first = batch_start_[r]; first < batch_start_[r + 1]; first += zone_batch)
+      {
+        const unsigned int n = std::min(zone_batch, batch_start_[r + 1] - first);
+        tet4_volumetric_increments(mesh_, first, n, x, v, strain_dt, batch_volumetric_.data(),
+                                   scratch_.volume.data());
+        add_volume_weighted(mesh_, first, n, batch_volumetric_.data(), scratch_.volume.data(),
+                            strain_average_.data(), volume_sum_.data());
+      }
+  divide_by_volume(ng, strain_average_.data(), volume_sum_.data());
+
+  // Nodal forces in the second sweep unless a mixed zone may yield; if one
+  // may, but none did at the last step, they are taken there all the same
+  // and taken again, all of them in order, only if one did yield after all
+  // (the sums are the same either way).
+  const bool forces_now = !plastic_pass || !last_step_yielded_;
+  if (plastic_pass)
+  {
+    plastic_average_.assign(ng, 0.0);
+    yielded_zone_.clear();
+    yielded_volumetric_.clear();
+  }
   for (std::size_t r = 0; r + 1 < batch_start_.size(); ++r)
   {
-    const unsigned int first = batch_start_[r];
-    StressBatch batch;
-    batch.size = batch_start_[r + 1] - first;
-    batch.strain_increment = de + 6 * first;
-    batch.stress = stress_.data() + 6 * first;
-    batch.state = state_.data() + first;
-    batch.plastic_volumetric = plastic_volumetric_.data() + first;
-    const bool plastic = materials_[material_of_zone_[first]].model != ZoneModel::elastic;
-    any_plastic |= plastic;
-    if (plastic) // the stress work of the step, as in zone_forces()
-      plastic_stress_work_ +=
-          0.5 * (hex_run(r) ? 0.5 : 1.0) *
-          stress_power(batch.size, batch.strain_increment, batch.stress, volume + first);
-    apply_zone_model(materials_[material_of_zone_[first]], batch);
+    const ZoneMaterial& mat = material_of_run(r);
+    const bool hex = mat.element == ZoneElement::hex_mixed;
+    const unsigned int chunk = chunk_of(mat);
+    for (unsigned int first = batch_start_[r]; first < batch_start_[r + 1]; first += chunk)
+    {
+      const unsigned int n = std::min(chunk, batch_start_[r + 1] - first);
+      tet4_strain_increments(mesh_, first, n, x, v, strain_dt, stress_.data(), scratch_);
+      if (mat.nodal_mixed)
+        replace_volumetric_strain(mesh_, first, n, strain_average_.data(),
+                                  scratch_.strain_increment.data());
+      if (hex) // eqs. 60-63
+        hex_mixed_average_strain(n, scratch_.strain_increment.data(), scratch_.volume.data());
+      StressBatch batch;
+      batch.size = n;
+      batch.strain_increment = scratch_.strain_increment.data();
+      batch.stress = stress_.data() + 6 * first;
+      batch.state = state_.data() + first;
+      const bool collect = plastic_pass && mat.nodal_mixed;
+      if (collect)
+      {
+        std::fill(batch_volumetric_.begin(), batch_volumetric_.begin() + n, 0.0);
+        batch.plastic_volumetric = batch_volumetric_.data();
+      }
+      // The stress work of plastic materials, as in zone_forces(); the
+      // plastic pressure traded in sweep 3 adds its share there.
+      const bool plastic = mat.model != ZoneModel::elastic;
+      const double overlay = hex ? 0.5 : 1.0;
+      if (plastic)
+        plastic_stress_work_ += 0.5 * overlay *
+                                stress_power(n, batch.strain_increment, batch.stress,
+                                             scratch_.volume.data());
+      apply_zone_model(mat, batch);
+      if (hex) // eqs. 64-67
+        hex_mixed_average_mean_stress(n, stress_.data() + 6 * first, scratch_.volume.data());
+      if (plastic)
+        plastic_stress_work_ += 0.5 * overlay *
+                                stress_power(n, batch.strain_increment, batch.stress,
+                                             scratch_.volume.data());
+      if (collect)
+      {
+        // Eq. 73: the plastic pressure K e^p (e^p the trace of the plastic
+        // strain increment, which lowers the mean stress by K e^p).
+        for (unsigned int k = 0; k < n; ++k)
+          if (batch_volumetric_[k] != 0.0)
+          {
+            yielded_zone_.push_back(first + k);
+            yielded_volumetric_.push_back(batch_volumetric_[k]);
+            batch_volumetric_[k] *= mat.bulk_modulus;
+          }
+        add_volume_weighted(mesh_, first, n, batch_volumetric_.data(), scratch_.volume.data(),
+                            plastic_average_.data(), nullptr);
+      }
+      if (forces_now)
+      {
+        if (hex) // each overlay's forces weighted 1/2
+          hex_mixed_overlay_weight(n, scratch_.volume.data());
+        tet4_nodal_forces(mesh_, first, n, stress_.data(), scratch_, f, force_size_.data());
+      }
+    }
   }
-  // Eqs. 73-76: the plastic pressure K e^p (e^p the trace of the plastic
-  // strain increment, which lowers the mean stress by K e^p) averaged the
-  // same way; each zone trades its own for the mean of its gridpoints'.
-  nodal_sum_.assign(2 * ng, 0.0);
-  for (unsigned int z = 0; z < nz; ++z)
-    if (mixed(z))
-    {
-      const double sp = materials_[material_of_zone_[z]].bulk_modulus * plastic_volumetric_[z];
-      for (unsigned int g : mesh_.zone_gridpoint[z])
-      {
-        nodal_sum_[2 * g] += sp * volume[z];
-        nodal_sum_[2 * g + 1] += volume[z];
-      }
-    }
-  for (unsigned int z = 0; z < nz; ++z)
-    if (mixed(z) && plastic_volumetric_[z] != 0.0)
-    {
-      double mean = 0.0;
-      for (unsigned int g : mesh_.zone_gridpoint[z])
-        mean += 0.25 * nodal_sum_[2 * g] / nodal_sum_[2 * g + 1];
-      const double sp = materials_[material_of_zone_[z]].bulk_modulus * plastic_volumetric_[z];
-      for (int c = 0; c < 3; ++c)
-        stress_[6 * z + c] += sp - mean;
-    }
+  if (!plastic_pass)
+    return;
+  const bool yielded = !yielded_zone_.empty();
+  const bool forces_done = forces_now && !yielded;
+  last_step_yielded_ = yielded;
+  if (forces_done)
+    return;
+  if (forces_now) // with stresses that the plastic correction changes
+    external_forces(x, f);
+
+  // Eqs. 74-76: each zone that yielded trades its own plastic pressure for
+  // the mean of its gridpoints' averages; then the nodal forces.
+  if (!yielded_zone_.empty())
+    divide_by_volume(ng, plastic_average_.data(), volume_sum_.data());
+  std::size_t next = 0;
   for (std::size_t r = 0; r + 1 < batch_start_.size(); ++r)
-    if (hex_run(r)) // eqs. 64-67
-      hex_mixed_average_mean_stress(batch_start_[r + 1] - batch_start_[r],
-                                    stress_.data() + 6 * batch_start_[r], volume + batch_start_[r]);
-  if (any_plastic)
-    for (std::size_t r = 0; r + 1 < batch_start_.size(); ++r)
-      if (materials_[material_of_zone_[batch_start_[r]]].model != ZoneModel::elastic)
+  {
+    const ZoneMaterial& mat = material_of_run(r);
+    const unsigned int chunk = chunk_of(mat);
+    for (unsigned int first = batch_start_[r]; first < batch_start_[r + 1]; first += chunk)
+    {
+      const unsigned int n = std::min(chunk, batch_start_[r + 1] - first);
+      for (; next < yielded_zone_.size() && yielded_zone_[next] < first + n; ++next)
       {
-        const unsigned int first = batch_start_[r];
-        plastic_stress_work_ += 0.5 * (hex_run(r) ? 0.5 : 1.0) *
-                                stress_power(batch_start_[r + 1] - first, de + 6 * first,
-                                             stress_.data() + 6 * first, volume + first);
+        const unsigned int z = yielded_zone_[next];
+        const double shift =
+            multiply_add(materials_[material_of_zone_[z]].bulk_modulus, yielded_volumetric_[next],
+                         -corner_mean(mesh_, z, plastic_average_.data()));
+        for (int c = 0; c < 3; ++c)
+          stress_[6 * z + c] += shift;
+        // Its share of the stress work, V shift tr(d eps) / 2: the zone's
+        // volumetric increment is the mean of its gridpoints' (eq. 71).
+        plastic_stress_work_ += 0.5 * tet_volume(x, mesh_.zone_gridpoint[z]) * shift * 3.0 *
+                                corner_mean(mesh_, z, strain_average_.data());
       }
-  for (std::size_t r = 0; r + 1 < batch_start_.size(); ++r)
-    if (hex_run(r)) // each overlay's forces weighted 1/2
-      hex_mixed_overlay_weight(batch_start_[r + 1] - batch_start_[r],
-                               full_scratch_.volume.data() + batch_start_[r]);
-  tet4_nodal_forces(mesh_, 0, nz, stress_.data(), full_scratch_, f, force_size_.data());
+      tet4_geometry(mesh_, first, n, x, scratch_);
+      if (mat.element == ZoneElement::hex_mixed)
+        hex_mixed_overlay_weight(n, scratch_.volume.data());
+      tet4_nodal_forces(mesh_, first, n, stress_.data(), scratch_, f, force_size_.data());
+    }
+  }
 }
 
 void DeformableSolver::move_gridpoints()

@@ -168,6 +168,9 @@ private:
   static double stable_time_step_of(const std::vector<double>& mass,
                                     const std::vector<double>& stiffness);
   void zone_forces();
+  /// Gravity and face loads into f (N, 3 per gridpoint), and their sizes
+  /// into force_size_: where the zone forces are added.
+  void external_forces(const double* x, double* f);
   void nodal_mixed_zone_forces(const double* x, const double* v, double* f, double strain_dt);
   void move_gridpoints();
   /// Elastic strain energy of the zones (J) and of those of plastic
@@ -209,9 +212,17 @@ private:
   unsigned int points_per_zone_ = 1; ///< stress points per zone
   // Nodal mixed discretization only (empty otherwise).
   bool nodal_mixed_ = false;
-  Tet4Scratch full_scratch_;               ///< every zone's gradients and strain
-  std::vector<double> nodal_sum_;          ///< 2 per gridpoint: weighted sum, volume
-  std::vector<double> plastic_volumetric_; ///< per zone, this step
+  std::vector<double> volume_sum_;       ///< per gridpoint: zone volumes around it, m^3
+  std::vector<double> strain_average_;   ///< per gridpoint: volumetric strain increment
+  std::vector<double> plastic_average_;  ///< per gridpoint: plastic pressure, Pa
+  std::vector<double> batch_volumetric_; ///< per zone of a batch: e, or plastic e^p
+  /// Zones whose plastic volumetric strain increment e^p is not zero this
+  /// step, in order, with their e^p.
+  std::vector<unsigned int> yielded_zone_;
+  std::vector<double> yielded_volumetric_;
+  /// Whether a mixed zone yielded with a volumetric part at the last step
+  /// (then the forces wait for the third sweep; only speed depends on it).
+  bool last_step_yielded_ = false;
   Damper damper_{Damping::none, 0.0, 0.5, 1.0};
   std::vector<double> last_force_; ///< 3 per gridpoint, N (combined damping only)
   double dt_ = 0.0, time_ = 0.0, ratio_ = 1.0;
