@@ -24,8 +24,10 @@ static_assert(Tet4Scratch::max_lanes % W == 0, "scratch holds whole groups");
 /// Groups ahead whose zone stresses are prefetched. The stresses are read
 /// by gathers, which the hardware prefetcher does not follow: on a mesh
 /// larger than the caches each group otherwise waits for memory (at
-/// 5 million zones that cost a third of the cycle's time). Eight groups
-/// (64 zones, 3 KB of stress with AVX-512) measured best of 4, 8 and 16.
+/// 5 million zones a fifth of this kernel's samples sat on the first
+/// stress gather). Eight groups (64 zones, 3 KB of stress with AVX-512)
+/// measured best of 4, 8 and 16; the cycle gained 2-7 % (median of
+/// interleaved runs, n = 20 and 100, elastic and Mohr-Coulomb).
 constexpr unsigned int prefetch_groups = 8;
 
 /// The zones [k0, k0 + W) of a batch as one group: their gridpoints, lane
