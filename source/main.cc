@@ -54,9 +54,11 @@ void restore_run(talus::Checkpoint& checkpoint)
 
 /// Writes the zones of deformable blocks at their current state as frame
 /// `frame` of the zone series.
+/// After a divergence (`with_stress` false) the stresses may hold the
+/// non-finite values found, so only the gridpoints' state is written.
 void write_zone_frame(const talus::Scene& scene, const talus::TetMesh& mesh,
                       const talus::DeformableSolver& solver, talus::ZoneWriter& writer,
-                      talus::PvdSeries& series, unsigned int frame)
+                      talus::PvdSeries& series, unsigned int frame, bool with_stress = true)
 {
   using namespace talus;
   char file[64];
@@ -83,6 +85,8 @@ void write_zone_frame(const talus::Scene& scene, const talus::TetMesh& mesh,
     principal_stresses(&stress[6 * c], &cells[1].values[3 * c]);
     cells[2].values.push_back(state[c]);
   }
+  if (!with_stress)
+    cells.clear();
   writer.write(scene.output.directory + "/" + vtu, x,
                {{"displacement", 3, solver.displacements()}, {"velocity", 3, solver.velocities()}},
                cells, solver.time());
@@ -247,6 +251,12 @@ void solve_deformable(talus::Scene& scene, talus::BlockModel& model, const std::
   for (const ReactionReport& r : scene.reactions)
     for (const char* q : {" reaction x (N)", " reaction y (N)", " reaction z (N)"})
       columns.push_back(r.name + q);
+  // The energy account (see EnergyAccount), last so that the columns
+  // before keep their places.
+  for (const char* q : {"kinetic energy (J)", "work of gravity (J)", "work of boundaries (J)",
+                        "zone elastic energy (J)", "plastic dissipation (J)",
+                        "damping dissipation (J)", "energy balance error (J)"})
+    columns.push_back(q);
   Checkpoint checkpoint(scene, model, nullptr, &solver, restart_from);
   HistoryFile history(prefix + "_history.csv", columns);
   ProgressLine progress(scene.solver.steps);
@@ -281,7 +291,17 @@ void solve_deformable(talus::Scene& scene, talus::BlockModel& model, const std::
     output();
   while (solver.steps_done() < scene.solver.steps)
   {
-    solver.step();
+    try
+    {
+      solver.step();
+    }
+    catch (const DivergenceError&)
+    {
+      // The last good state: nothing moved after the fault was found.
+      if (scene.output.write_vtu)
+        write_zone_frame(scene, mesh, solver, zone_writer, series, frame++, false);
+      throw;
+    }
     const unsigned long n = solver.steps_done();
     if (n % scene.solver.history_interval == 0)
     {
@@ -293,6 +313,10 @@ void solve_deformable(talus::Scene& scene, talus::BlockModel& model, const std::
         const Vec3 f = -solver.support_force(r.region);
         row.insert(row.end(), {f[0], f[1], f[2]});
       }
+      EnergyAccount e;
+      solver.add_energy(e);
+      row.insert(row.end(), {e.kinetic, e.gravity_work, e.boundary_work, e.zone_elastic, e.plastic,
+                             e.damping, e.error()});
       history.record(row);
     }
     progress.update(n, solver.time());
@@ -312,6 +336,13 @@ void solve_deformable(talus::Scene& scene, talus::BlockModel& model, const std::
   std::printf("Steps:        %lu (time %.6g s)\n", solver.steps_done(), solver.time());
   std::printf("Unbalanced force ratio: %.3g\n", solver.unbalanced_ratio());
   std::printf("Largest displacement: %.6g m\n", largest_displacement());
+  {
+    EnergyAccount e;
+    solver.add_energy(e);
+    std::printf("Energy balance error: %.2g of the largest energy term (%.6g J; history has "
+                "every term)\n",
+                e.scale() > 0.0 ? std::abs(e.error()) / e.scale() : 0.0, e.scale());
+  }
   unsigned int yielding = 0; // zones with a yielding stress point
   const unsigned int per_zone = solver.stress_points_per_zone();
   for (unsigned int z = 0; z < mesh.n_zones(); ++z)
@@ -379,7 +410,11 @@ void solve(talus::Scene& scene, talus::BlockModel& model, talus::PvdSeries& seri
                                    "work of gravity (J)",
                                    "joint elastic energy (J)",
                                    "friction dissipation (J)",
-                                   "damping dissipation (J)"};
+                                   "damping dissipation (J)",
+                                   "work of boundaries (J)",
+                                   "zone elastic energy (J)",
+                                   "plastic dissipation (J)",
+                                   "energy balance error (J)"};
   for (unsigned int b : scene.solver.history_blocks)
     for (const char* q : {"ux", "uy", "uz", "vx", "vy", "vz"})
       columns.push_back("block " + std::to_string(b) + " " + q + (q[0] == 'u' ? " (m)" : " (m/s)"));
@@ -398,6 +433,7 @@ void solve(talus::Scene& scene, talus::BlockModel& model, talus::PvdSeries& seri
   checkpoint.add(frame);
   checkpoint.add(zone_frame);
   restore_run(checkpoint);
+  bool diverged = false; // then forces and stresses may not be finite: motion only
   const auto output = [&](unsigned long step, double time)
   {
     progress.update(step, time);
@@ -417,6 +453,12 @@ void solve(talus::Scene& scene, talus::BlockModel& model, talus::PvdSeries& seri
       }
     write_blocks_vtu(scene.output.directory + "/" + vtu, model, fields);
     series.add(time, vtu);
+    if (diverged)
+    {
+      if (zones)
+        write_zone_frame(scene, mesh, *zones, *zone_writer, zone_series, zone_frame++, false);
+      return;
+    }
     std::snprintf(name, sizeof name, "_contacts_%05u.vtu", frame - 1);
     const std::string contacts_vtu = scene.output.base_name + name;
     write_contacts_vtu(scene.output.directory + "/" + contacts_vtu, solver.contacts());
@@ -427,14 +469,11 @@ void solve(talus::Scene& scene, talus::BlockModel& model, talus::PvdSeries& seri
   const auto record = [&](unsigned long step, double time)
   {
     progress.update(step, time);
-    std::vector<double> row{double(step),
-                            time,
-                            solver.unbalanced_ratio(),
-                            solver.kinetic_energy(),
-                            solver.gravity_work(),
-                            solver.joint_energy(),
-                            solver.friction_dissipation(),
-                            solver.damping_dissipation()};
+    const EnergyAccount e = solver.energy_account();
+    std::vector<double> row{double(step),   time,           solver.unbalanced_ratio(),
+                            e.kinetic,      e.gravity_work, e.joint_elastic,
+                            e.friction,     e.damping,      e.boundary_work,
+                            e.zone_elastic, e.plastic,      e.error()};
     for (unsigned int b : scene.solver.history_blocks)
       for (const Vec3* q : {&solver.displacement[b], &solver.velocity[b]})
         for (int d = 0; d < 3; ++d)
@@ -443,8 +482,19 @@ void solve(talus::Scene& scene, talus::BlockModel& model, talus::PvdSeries& seri
       points.add_values(row, *zones);
     history.record(row);
   };
-  const SolverReport r =
-      solver.run(output, record, [&](unsigned long step) { checkpoint.after_step(step); });
+  SolverReport r;
+  try
+  {
+    r = solver.run(output, record, [&](unsigned long step) { checkpoint.after_step(step); });
+  }
+  catch (const DivergenceError&)
+  {
+    // The last good state: nothing moved after the fault was found.
+    diverged = true;
+    output(solver.steps_done(), solver.time());
+    progress.finish();
+    throw;
+  }
   progress.finish();
   std::printf("Steps:        %lu (time %.6g s)\n", r.steps, r.time);
   std::printf("Contacts:     %u with %u sub-contacts\n", r.contacts, r.subcontacts);
@@ -565,6 +615,15 @@ int main(int argc, char** argv)
   {
     std::fflush(stdout); // the summary so far, then the message
     std::fprintf(stderr, "talus: error: %s\n", e.what());
+  }
+  catch (const talus::DivergenceError& e)
+  {
+    std::fflush(stdout); // the summary so far, then the message
+    std::fprintf(stderr,
+                 "talus: error in %s: %s (the state of the last good step is written to the "
+                 "output folder)\n",
+                 argv[1], e.what());
+    return 3;
   }
   catch (const talus::GeometryError& e)
   {

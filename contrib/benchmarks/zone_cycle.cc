@@ -37,12 +37,16 @@
 //
 // One core; run from a Release build:
 //   cmake --build build --target benchmark_zone_cycle
-//   build/contrib/benchmarks/benchmark_zone_cycle [steps] [n ...] [elastic|mc]
+//   build/contrib/benchmarks/benchmark_zone_cycle [steps] [n ...] [modes]
+//     [generator|hilbert]
 // Defaults: 30 steps, n = 20 40 60 80 100, four modes: elastic, mc,
 // nmd-elastic, nmd-mc (the last two with nodal mixed discretization; their
 // rows end with the cost per zone-update over the plain run of the same
-// size and model). Name one mode to profile it alone. peakB/z (VmHWM over the run so
-// far) is the meshing peak only while the sizes increase.
+// size and model). Name modes to run only those (one, to profile it).
+// "generator" or "hilbert" puts zones and gridpoints in that order instead
+// of the mesher's default (slabs, mesh_order.h), to measure what the order
+// costs. peakB/z (VmHWM over the run so far) is the meshing peak only while
+// the sizes increase.
 
 #include <talus/base/parallel_environment.h>
 #include <talus/solver/deformable_solver.h>
@@ -89,10 +93,22 @@ int main(int argc, char** argv)
   // Modes: elastic, Mohr-Coulomb, and both with nodal mixed discretization.
   const char* mode_name[4] = {"elastic", "mc", "nmd-elastic", "nmd-mc"};
   bool run_model[4] = {true, true, true, true};
+  bool mode_named = false;
+  MeshOrder order = MeshOrder::slabs;
   for (int i = 2; i < argc; ++i)
-    if (std::isalpha(static_cast<unsigned char>(argv[i][0])))
+    if (std::strcmp(argv[i], "generator") == 0)
+      order = MeshOrder::generator;
+    else if (std::strcmp(argv[i], "hilbert") == 0)
+      order = MeshOrder::hilbert;
+    else if (std::isalpha(static_cast<unsigned char>(argv[i][0])))
+    {
+      // The modes named, and only those.
+      if (!mode_named)
+        std::fill(run_model, run_model + 4, false);
+      mode_named = true;
       for (int m = 0; m < 4; ++m)
-        run_model[m] = std::strcmp(argv[i], mode_name[m]) == 0;
+        run_model[m] |= std::strcmp(argv[i], mode_name[m]) == 0;
+    }
     else
       sizes.push_back(static_cast<unsigned int>(std::strtoul(argv[i], nullptr, 10)));
   if (sizes.empty())
@@ -128,7 +144,7 @@ int main(int argc, char** argv)
     BlockModel blocks;
     blocks.add_block(ConvexPolyhedron::box(Vec3::Zero(), Vec3::Constant(side)), 0);
     MeshReport report;
-    const TetMesh mesh = mesh_blocks(blocks, {0}, side / n, report);
+    const TetMesh mesh = mesh_blocks(blocks, {0}, side / n, report, ZoneElement::tet4, order);
     const unsigned int nz = mesh.n_zones(), ng = mesh.n_gridpoints();
     const unsigned int repeats = std::max(1u, static_cast<unsigned int>(budget / (nz * steps)));
     const std::vector<unsigned int> material_of_zone(nz, 0);
@@ -168,12 +184,13 @@ int main(int argc, char** argv)
         state = solver.plastic_state();
       }
       const double updates = double(nz) * steps; // per run
-      // Nodal mixed discretization adds every zone's gradients, volume and
-      // strain increment (19 doubles), its plastic volumetric increment, and
-      // two sums per gridpoint.
-      const double zone_bytes =
-          sizeof(mesh.zone_gridpoint[0]) + 6 * sizeof(double) + (mc ? 1 : 0) + (nmd ? 160 : 0);
-      const double gridpoint_bytes = (4 * 3 + 3 * 3 + (nmd ? 2 : 0)) * sizeof(double) + 1;
+      // Nodal mixed discretization keeps nothing per zone beyond a batch;
+      // it adds per gridpoint the zone volumes around it and the average
+      // volumetric strain increment, and with Mohr-Coulomb the average
+      // plastic pressure.
+      const double zone_bytes = sizeof(mesh.zone_gridpoint[0]) + 6 * sizeof(double) + (mc ? 1 : 0);
+      const double gridpoint_bytes =
+          (4 * 3 + 3 * 3 + (nmd ? (mc ? 3 : 2) : 0)) * sizeof(double) + 1;
       const double hot = zone_bytes + gridpoint_bytes * ng / nz;
       unsigned int yielding = 0, yielded = 0;
       for (unsigned char s : state)
@@ -206,5 +223,8 @@ int main(int argc, char** argv)
         std::printf("  (unbalanced ratio not finite: the run went wrong)\n");
     }
   }
-  std::printf("steps per run: %lu\n", steps);
+  std::printf("steps per run: %lu; mesh order: %s\n", steps,
+              order == MeshOrder::generator ? "generator"
+              : order == MeshOrder::hilbert ? "hilbert"
+                                            : "slabs");
 }

@@ -353,6 +353,18 @@ void Damper::load_state(CheckpointReader& in)
   in.get(force_power_);
 }
 
+void EnergyGrowthWatch::save_state(CheckpointWriter& out) const
+{
+  out.put(last_);
+  out.put(growing_);
+}
+
+void EnergyGrowthWatch::load_state(CheckpointReader& in)
+{
+  in.get(last_);
+  in.get(growing_);
+}
+
 void CellSpace::save_state(CheckpointWriter& out) const
 {
   out.put(std::vector<Vec3>{bounds_.lo, bounds_.hi});
@@ -487,6 +499,12 @@ void RigidSolver::save_state(CheckpointWriter& out) const
   out.put(gravity_work_);
   out.put(friction_work_);
   out.put(damping_work_);
+  out.put(boundary_work_);
+  out.put(kinetic_whole_step_);
+  out.put(moved_beyond_tolerance_);
+  out.put(initial_stored_);
+  out.put(energy_floor_);
+  growth_watch_.save_state(out);
   out.put(step_);
   out.put(last_output_);
 }
@@ -524,6 +542,12 @@ void RigidSolver::load_state(CheckpointReader& in)
   in.get(gravity_work_);
   in.get(friction_work_);
   in.get(damping_work_);
+  in.get(boundary_work_);
+  in.get(kinetic_whole_step_);
+  in.get(moved_beyond_tolerance_);
+  in.get(initial_stored_);
+  in.get(energy_floor_);
+  growth_watch_.load_state(in);
   in.get(step_);
   in.get(last_output_);
   resumed_ = true;

@@ -255,6 +255,10 @@ void declare_load(ParameterFile& prm, const std::string& section)
               "Components of the velocity that are prescribed; the others stay free.");
   prm.declare("Hold rotation", "false", P::Bool(), "true or false",
               "The blocks do not rotate (like the platen of a shear box).");
+  prm.declare("Initial velocity", "0, 0, 0", vec3_pattern(), vec3_allowed,
+              "Velocity of the rigid blocks at the start (m/s; components not held).");
+  prm.declare("Initial spin", "0, 0, 0", vec3_pattern(), vec3_allowed,
+              "Angular velocity of the rigid blocks about their centroids at the start (rad/s).");
   prm.leave();
 }
 
@@ -272,6 +276,8 @@ void parse_load(ParameterFile& prm, const std::string& section, Scene& scene)
   for (int d = 0; d < 3; ++d)
     load.held[d] = held.find("xyz"[d]) != std::string::npos;
   load.hold_rotation = prm.get_bool("Hold rotation");
+  load.initial_velocity = prm.get_vec3("Initial velocity");
+  load.initial_spin = prm.get_vec3("Initial spin");
   scene.solver.loads.push_back(load);
   scene.load_groups.push_back(group);
   prm.leave();
@@ -311,6 +317,12 @@ void declare_deformable(ParameterFile& prm)
               "c of the Mohr-Coulomb zones (Pa).");
   prm.declare("Tensile strength", "0", P::Double(), "a number >= 0 (Pa)",
               "Tension cut-off of the Mohr-Coulomb zones (Pa).");
+  prm.declare("Stiffness ratio groups", "", P::List(P::Anything()),
+              "group names separated by commas (some of 'Groups')",
+              "Deformable blocks of these groups have their Young's modulus times 'Stiffness "
+              "ratio' (very soft rock beside stiff rock).");
+  prm.declare("Stiffness ratio", "1", P::Double(), "a number > 0",
+              "Young's modulus of the 'Stiffness ratio groups' over 'Young's modulus'.");
   prm.leave();
   prm.enter("Initial stress");
   prm.declare("Stress", "0, 0, 0, 0, 0, 0", P::List(P::Double(), 6, 6, ","),
@@ -401,6 +413,17 @@ void parse_deformable(ParameterFile& prm, Scene& scene)
   d.material.tensile_strength = prm.get_double("Tensile strength");
   if (!(d.material.tensile_strength >= 0.0))
     throw prm.error("Tensile strength", "must not be negative", "a number >= 0 (Pa)");
+  for (const std::string& g :
+       dealii::Utilities::split_string_list(prm.get("Stiffness ratio groups")))
+  {
+    if (std::find(d.groups.begin(), d.groups.end(), g) == d.groups.end())
+      throw prm.error("Stiffness ratio groups", "names '" + g + "', which is not in 'Groups'",
+                      "names of deformable groups");
+    d.scaled_groups.push_back(g);
+  }
+  d.stiffness_ratio = prm.get_double("Stiffness ratio");
+  if (!(d.stiffness_ratio > 0.0))
+    throw prm.error("Stiffness ratio", "must be positive", "a number > 0");
   prm.leave();
 
   prm.enter("Initial stress");

@@ -1,5 +1,6 @@
 #include <talus/joint/coulomb_slip.h>
 
+#include <algorithm>
 #include <cmath>
 
 namespace talus
@@ -15,6 +16,7 @@ double coulomb_slip(const JointProperties& joint, SubContactBatch& s)
   for (unsigned int i = 0; i < s.size; ++i)
   {
     const double area = s.area[i];
+    const double shear_compliance = area > 0.0 ? 1.0 / (ks * area) : 0.0; // for the energy
     double* fs = s.shear_force + 3 * i;
     const double* dus = s.du_shear + 3 * i;
     const bool has_failed = s.state[i] & failed;
@@ -42,8 +44,8 @@ double coulomb_slip(const JointProperties& joint, SubContactBatch& s)
 
     // Elastic shear increment (eqs. 25, 27); the total shear displacement
     // before it gives the direction that dilation is measured against.
-    const double f_old[3] = {fs[0], fs[1], fs[2]};
     double* us = s.shear_displacement + 3 * i;
+    const double f_old[3] = {fs[0], fs[1], fs[2]};
     const double us_old[3] = {us[0], us[1], us[2]};
     for (int d = 0; d < 3; ++d)
     {
@@ -85,9 +87,20 @@ double coulomb_slip(const JointProperties& joint, SubContactBatch& s)
         for (int d = 0; d < 3; ++d)
           fs[d] *= scale;
       }
-      // Work of the friction force against the slip (always dissipated).
-      dissipated += 0.5 * std::abs((f_old[0] + fs[0]) * dus[0] + (f_old[1] + fs[1]) * dus[1] +
-                                   (f_old[2] + fs[2]) * dus[2]);
+      // Dissipated: the work done on the joint over the shear increment less
+      // what its shear spring stored of it, never more than the larger of
+      // the old force and the strength times the increment (a force carried
+      // over to a smaller sub-contact at an update is not slip).
+      const double work = -0.5 * ((f_old[0] + fs[0]) * dus[0] + (f_old[1] + fs[1]) * dus[1] +
+                                  (f_old[2] + fs[2]) * dus[2]);
+      const double stored = 0.5 *
+                            (fs[0] * fs[0] + fs[1] * fs[1] + fs[2] * fs[2] -
+                             (f_old[0] * f_old[0] + f_old[1] * f_old[1] + f_old[2] * f_old[2])) *
+                            shear_compliance;
+      const double dus_mag = std::sqrt(dus[0] * dus[0] + dus[1] * dus[1] + dus[2] * dus[2]);
+      const double f_old_mag =
+          std::sqrt(f_old[0] * f_old[0] + f_old[1] * f_old[1] + f_old[2] * f_old[2]);
+      dissipated += std::clamp(work - stored, 0.0, std::max(strength, f_old_mag) * dus_mag);
     }
     s.normal_force[i] = fn;
     s.state[i] = state;

@@ -39,9 +39,22 @@ BlockSystem build_block_system(const Scene& scene, BlockModel& model)
   {
     s.mesh = mesh_deformable_blocks(scene, model, s.deformable_blocks, s.mesh_report);
     s.vertex_gridpoint = use_zone_surfaces(model, s.mesh);
+    // A second material for the 'Stiffness ratio groups' (E scaled).
+    std::vector<ZoneMaterial> materials{scene.deformable.material};
+    std::vector<unsigned int> material_of_zone(s.mesh.n_zones(), 0);
+    if (!scene.deformable.scaled_groups.empty())
+    {
+      ZoneMaterial scaled = scene.deformable.material;
+      scaled.bulk_modulus *= scene.deformable.stiffness_ratio;
+      scaled.shear_modulus *= scene.deformable.stiffness_ratio;
+      materials.push_back(scaled);
+      for (unsigned int z = 0; z < s.mesh.n_zones(); ++z)
+        for (const std::string& g : scene.deformable.scaled_groups)
+          if (model.group_names[model.group[s.mesh.zone_block[z]]] == g)
+            material_of_zone[z] = 1;
+    }
     s.zones = std::make_unique<DeformableSolver>(
-        s.mesh, std::vector<ZoneMaterial>{scene.deformable.material},
-        std::vector<unsigned int>(s.mesh.n_zones(), 0), scene.solver, scene.gridpoint_conditions,
+        s.mesh, materials, material_of_zone, scene.solver, scene.gridpoint_conditions,
         scene.face_pressures, scene.has_initial_stress ? &scene.initial_stress : nullptr);
   }
   SolverSettings settings = scene.solver;

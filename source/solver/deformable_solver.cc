@@ -2,6 +2,7 @@
 #include <talus/io/checkpoint.h>
 #include <talus/solver/deformable_solver.h>
 #include <talus/zone/hex_mixed.h>
+#include <talus/zone/nodal_mixed.h>
 #include <talus/zone/zone_models.h>
 
 #include <deal.II/lac/petsc_vector.h>
@@ -10,9 +11,11 @@
 #include <petscvec.h>
 
 #include <algorithm>
+#include <array>
 #include <chrono>
 #include <cmath>
 #include <limits>
+#include <tuple>
 
 namespace talus
 {
@@ -43,6 +46,65 @@ private:
 };
 
 constexpr unsigned int zone_batch = 1024; ///< zones per kernel call (fits in cache)
+
+/// Sum over n zones of V sigma : d(eps) (J); tensors as six numbers xx, yy,
+/// zz, xy, yz, zx with tensor shear components.
+double stress_power(unsigned int n, const double* strain, const double* stress,
+                    const double* volume)
+{
+  double w = 0.0;
+  for (unsigned int z = 0; z < n; ++z)
+  {
+    const double* e = strain + 6 * z;
+    const double* s = stress + 6 * z;
+    w += volume[z] * (s[0] * e[0] + s[1] * e[1] + s[2] * e[2] +
+                      2.0 * (s[3] * e[3] + s[4] * e[4] + s[5] * e[5]));
+  }
+  return w;
+}
+
+double tet_volume(const double* x, const std::array<unsigned int, 4>& t)
+{
+  const auto P = [&](unsigned int g) { return Vec3(x[3 * g], x[3 * g + 1], x[3 * g + 2]); };
+  return (P(t[1]) - P(t[0])).dot((P(t[2]) - P(t[0])).cross(P(t[3]) - P(t[0]))) / 6.0;
+}
+
+/// The volume each Gauss point of 10-node zone z stands for in the current
+/// geometry `x` (m^3): w_q det J(xi_q) with w_q = 1/24, J = sum_n x_n (x)
+/// grad_xi N_n (N_i = l_i (2 l_i - 1) at vertices, 4 l_i l_j at the
+/// midpoint of edge i-j; l_0 = 1 - xi - eta - zeta). The midpoints move
+/// with the zone, so under large strain its edges curve and the corners'
+/// volume is not the zone's.
+void tet10_gauss_volumes(const TetMesh& mesh, unsigned int z, const double* x, double* volume)
+{
+  static constexpr unsigned int edge[6][2] = {{0, 1}, {1, 2}, {2, 0}, {0, 3}, {1, 3}, {2, 3}};
+  unsigned int node[10];
+  for (int i = 0; i < 4; ++i)
+    node[i] = mesh.zone_gridpoint[z][i];
+  for (int e = 0; e < 6; ++e)
+    node[4 + e] = mesh.zone_edge_gridpoint[z][e];
+  for (int q = 0; q < 4; ++q)
+  {
+    double l[4];
+    for (int m = 0; m < 4; ++m)
+      l[m] = m == q ? tet10_gauss_b : tet10_gauss_a;
+    // dN/dl_m of every node, then dN/dxi_k = dN/dl_k - dN/dl_0 (k = 1..3).
+    double dl[10][4] = {};
+    for (int i = 0; i < 4; ++i)
+      dl[i][i] = 4.0 * l[i] - 1.0;
+    for (int e = 0; e < 6; ++e)
+    {
+      dl[4 + e][edge[e][0]] = 4.0 * l[edge[e][1]];
+      dl[4 + e][edge[e][1]] = 4.0 * l[edge[e][0]];
+    }
+    Eigen::Matrix3d J = Eigen::Matrix3d::Zero();
+    for (int n = 0; n < 10; ++n)
+      for (int k = 0; k < 3; ++k)
+        for (int d = 0; d < 3; ++d)
+          J(d, k) += x[3 * node[n] + d] * (dl[n][k + 1] - dl[n][0]);
+    volume[q] = J.determinant() / 24.0;
+  }
+}
 } // namespace
 
 /// Gridpoint state, 3 numbers per gridpoint in each vector.
@@ -281,11 +343,11 @@ DeformableSolver::DeformableSolver(const TetMesh& mesh, std::vector<ZoneMaterial
         // and a third at each midpoint, which the sub-triangles give when
         // a corner one puts half its load on each of its two midpoints and
         // the middle one a third on each (2 A/8 + A/12 = A/3).
-        std::array<double, 3> share{1.0 / 3.0, 1.0 / 3.0, 1.0 / 3.0};
+        std::array<double, 3> share{{1.0 / 3.0, 1.0 / 3.0, 1.0 / 3.0}};
         for (int k = 0; k < 3 && mesh_.quadratic(); ++k)
           if (is_vertex[face[k]])
           {
-            share = {0.5, 0.5, 0.5};
+            share = {{0.5, 0.5, 0.5}};
             share[k] = 0.0;
           }
         for (double& w : share)
@@ -299,6 +361,15 @@ DeformableSolver::DeformableSolver(const TetMesh& mesh, std::vector<ZoneMaterial
   for (const auto& face : mesh_.second_overlay_face_gridpoint)
     press(face, 0.5);
   force_size_.assign(3 * ng, 0.0);
+  if (!pressed_faces_.empty())
+    pressure_force_.assign(3 * ng, 0.0);
+  std::tie(initial_elastic_, initial_plastic_elastic_) = elastic_energy(mesh_.position.data());
+  {
+    // Held velocities are there from the start: energy at the start.
+    LocalArray m(petsc_->inertial_mass);
+    for (unsigned int i = 0; i < 3 * ng; ++i)
+      initial_elastic_ += 0.5 * m[i] * held_velocity_[i] * held_velocity_[i];
+  }
   damper_ = Damper(s_.dynamic ? Damping::none : s_.damping, s_.local_damping,
                    s_.global_damping_ratio, dt_);
   if (!s_.dynamic && s_.damping == Damping::combined)
@@ -326,9 +397,8 @@ double DeformableSolver::stable_time_step(const std::vector<double>& joint_stiff
   return stable_time_step_of(true_mass_, k);
 }
 
-void DeformableSolver::zone_forces()
+void DeformableSolver::external_forces(const double* x, double* f)
 {
-  LocalArray x(petsc_->position), v(petsc_->velocity), f(petsc_->force);
   const unsigned int ng = mesh_.n_gridpoints();
   for (unsigned int i = 0; i < 3 * ng; ++i)
   {
@@ -336,10 +406,12 @@ void DeformableSolver::zone_forces()
     force_size_[i] = std::abs(gravity_force_[i]);
   }
   // Pressure on boundary faces, in the current geometry: -p n A / 3 on each
-  // of the face's gridpoints.
+  // of the face's gridpoints, kept apart too for the energy account.
+  if (!pressure_force_.empty())
+    std::fill(pressure_force_.begin(), pressure_force_.end(), 0.0);
   for (std::size_t k = 0; k < pressed_faces_.size(); ++k)
   {
-    const Vec3 load = face_load(k, x.data());
+    const Vec3 load = face_load(k, x);
     for (int a = 0; a < 3; ++a)
     {
       const unsigned int g = pressed_faces_[k][a];
@@ -348,9 +420,16 @@ void DeformableSolver::zone_forces()
       {
         f[3 * g + d] += share[d];
         force_size_[3 * g + d] += std::abs(share[d]);
+        pressure_force_[3 * g + d] += share[d];
       }
     }
   }
+}
+
+void DeformableSolver::zone_forces()
+{
+  LocalArray x(petsc_->position), v(petsc_->velocity), f(petsc_->force);
+  external_forces(x.data(), f.data());
   // The velocities are those of the last motion (x - v dt -> x); before the
   // first motion there is none, so no strain.
   const double strain_dt = step_ == 0 ? 0.0 : dt_;
@@ -377,7 +456,21 @@ void DeformableSolver::zone_forces()
         batch.strain_increment = scratch10_.strain_increment.data();
         batch.stress = stress_.data() + 24 * std::size_t(first);
         batch.state = state_.data() + 4 * std::size_t(first);
+        // Plastic materials: the stress work of the step as for 4-node
+        // zones, each Gauss point with the volume it stands for.
+        const bool plastic = mat.model != ZoneModel::elastic;
+        if (plastic)
+        {
+          gauss_volume_.resize(4 * n);
+          for (unsigned int k = 0; k < n; ++k)
+            tet10_gauss_volumes(mesh_, first + k, x.data(), &gauss_volume_[4 * k]);
+          plastic_stress_work_ +=
+              0.5 * stress_power(4 * n, batch.strain_increment, batch.stress, gauss_volume_.data());
+        }
         apply_zone_model(mat, batch);
+        if (plastic)
+          plastic_stress_work_ +=
+              0.5 * stress_power(4 * n, batch.strain_increment, batch.stress, gauss_volume_.data());
         tet10_nodal_forces(mesh_, first, n, stress_.data(), scratch10_, f.data(),
                            force_size_.data());
       }
@@ -406,12 +499,25 @@ void DeformableSolver::zone_forces()
       batch.strain_increment = scratch_.strain_increment.data();
       batch.stress = stress_.data() + 6 * first;
       batch.state = state_.data() + first;
+      // Plastic materials: the stress work of the step, V (s_old + s_new) / 2
+      // : d(eps), from which the plastic dissipation follows (elastic ones
+      // store all of it, so theirs is not summed).
+      // Each of a hexahedron's two overlays fills it once: half weight.
+      const bool plastic = mat.model != ZoneModel::elastic;
+      const double overlay = hex ? 0.5 : 1.0;
+      if (plastic)
+        plastic_stress_work_ +=
+            0.5 * overlay *
+            stress_power(n, batch.strain_increment, batch.stress, scratch_.volume.data());
       apply_zone_model(mat, batch);
-      if (hex) // eqs. 64-67, and each overlay's forces weighted 1/2
-      {
+      if (hex) // eqs. 64-67
         hex_mixed_average_mean_stress(n, stress_.data() + 6 * first, scratch_.volume.data());
+      if (plastic)
+        plastic_stress_work_ +=
+            0.5 * overlay *
+            stress_power(n, batch.strain_increment, batch.stress, scratch_.volume.data());
+      if (hex) // each overlay's forces weighted 1/2
         hex_mixed_overlay_weight(n, scratch_.volume.data());
-      }
       tet4_nodal_forces(mesh_, first, n, stress_.data(), scratch_, f.data(), force_size_.data());
     }
   }
@@ -421,94 +527,161 @@ void DeformableSolver::nodal_mixed_zone_forces(const double* x, const double* v,
                                                double strain_dt)
 {
   // Nodal mixed discretization (eqs. 68-76) for the zones whose material
-  // asks for it: every zone's strain first, then the volumetric part
-  // averaged at the gridpoints and back over each zone's four, the model,
-  // and the same averaging for the plastic volumetric stress.
-  const unsigned int nz = mesh_.n_zones(), ng = mesh_.n_gridpoints();
-  full_scratch_.resize(nz);
-  tet4_strain_increments(mesh_, 0, nz, x, v, strain_dt, stress_.data(), full_scratch_);
-  double* de = full_scratch_.strain_increment.data();
-  const double* volume = full_scratch_.volume.data();
-  const auto mixed = [&](unsigned int z) { return materials_[material_of_zone_[z]].nodal_mixed; };
-  // Eq. 69: volume-weighted nodal averages of the zones' volumetric strain
-  // increment (e = trace / 3, eq. 68).
-  nodal_sum_.assign(2 * ng, 0.0);
-  for (unsigned int z = 0; z < nz; ++z)
-    if (mixed(z))
-    {
-      const double e = (de[6 * z] + de[6 * z + 1] + de[6 * z + 2]) / 3.0;
-      for (unsigned int g : mesh_.zone_gridpoint[z])
-      {
-        nodal_sum_[2 * g] += e * volume[z];
-        nodal_sum_[2 * g + 1] += volume[z];
-      }
-    }
-  // Eqs. 70-71: the zone keeps its deviatoric part and takes the mean of
-  // its gridpoints' averages as its volumetric part.
-  for (unsigned int z = 0; z < nz; ++z)
-    if (mixed(z))
-    {
-      double mean = 0.0;
-      for (unsigned int g : mesh_.zone_gridpoint[z])
-        mean += 0.25 * nodal_sum_[2 * g] / nodal_sum_[2 * g + 1];
-      const double shift = mean - (de[6 * z] + de[6 * z + 1] + de[6 * z + 2]) / 3.0;
-      for (int c = 0; c < 3; ++c)
-        de[6 * z + c] += shift;
-    }
-  // Hexahedral zones average over their hexahedra instead (eqs. 60-63).
-  const auto hex_run = [&](std::size_t r)
-  { return materials_[material_of_zone_[batch_start_[r]]].element == ZoneElement::hex_mixed; };
+  // asks for it, in sweeps over the zones in order, a batch at a time, so
+  // that nothing per zone outlives its batch:
+  //   1. every mixed zone's volumetric strain increment and volume, summed
+  //      at its gridpoints (eq. 69);
+  //   2. strain increments again, the volumetric part replaced by the mean
+  //      of the gridpoint averages (eqs. 70-71), the zone model, the plastic
+  //      pressure of zones that yielded summed at their gridpoints (eqs.
+  //      73-75), and the nodal forces;
+  //   3. when a zone yielded: its plastic pressure traded for the mean of
+  //      its gridpoints' (eq. 76), and the nodal forces (again).
+  // Every sum is added up in zone order, as in one pass over all zones.
+  const unsigned int ng = mesh_.n_gridpoints();
+  const auto material_of_run = [&](std::size_t r) -> const ZoneMaterial&
+  { return materials_[material_of_zone_[batch_start_[r]]]; };
+  bool plastic_pass = false;
+  for (const ZoneMaterial& m : materials_)
+    plastic_pass |= m.nodal_mixed && m.model != ZoneModel::elastic;
+  scratch_.resize(zone_batch);
+  batch_volumetric_.resize(zone_batch + Tet4Scratch::max_lanes);
+  const auto chunk_of = [&](const ZoneMaterial& m)
+  {
+    // Hexahedral zones: calls of whole hexahedra.
+    return m.element == ZoneElement::hex_mixed
+               ? zone_batch / TetMesh::tets_per_hex * TetMesh::tets_per_hex
+               : zone_batch;
+  };
+
+  volume_sum_.assign(ng, 0.0);
+  strain_average_.assign(ng, 0.0);
   for (std::size_t r = 0; r + 1 < batch_start_.size(); ++r)
-    if (hex_run(r))
-      hex_mixed_average_strain(batch_start_[r + 1] - batch_start_[r], de + 6 * batch_start_[r],
-                               volume + batch_start_[r]);
-  // The zone models, one material run at a time, with their plastic
-  // volumetric strain increments.
-  plastic_volumetric_.assign(nz, 0.0);
+    if (material_of_run(r).nodal_mixed)
+      for (unsigned int first = batch_start_[r]; first < batch_start_[r + 1]; first += zone_batch)
+      {
+        const unsigned int n = std::min(zone_batch, batch_start_[r + 1] - first);
+        tet4_volumetric_increments(mesh_, first, n, x, v, strain_dt, batch_volumetric_.data(),
+                                   scratch_.volume.data());
+        add_volume_weighted(mesh_, first, n, batch_volumetric_.data(), scratch_.volume.data(),
+                            strain_average_.data(), volume_sum_.data());
+      }
+  divide_by_volume(ng, strain_average_.data(), volume_sum_.data());
+
+  // Nodal forces in the second sweep unless a mixed zone may yield; if one
+  // may, but none did at the last step, they are taken there all the same
+  // and taken again, all of them in order, only if one did yield after all
+  // (the sums are the same either way).
+  const bool forces_now = !plastic_pass || !last_step_yielded_;
+  if (plastic_pass)
+  {
+    plastic_average_.assign(ng, 0.0);
+    yielded_zone_.clear();
+    yielded_volumetric_.clear();
+  }
   for (std::size_t r = 0; r + 1 < batch_start_.size(); ++r)
   {
-    const unsigned int first = batch_start_[r];
-    StressBatch batch;
-    batch.size = batch_start_[r + 1] - first;
-    batch.strain_increment = de + 6 * first;
-    batch.stress = stress_.data() + 6 * first;
-    batch.state = state_.data() + first;
-    batch.plastic_volumetric = plastic_volumetric_.data() + first;
-    apply_zone_model(materials_[material_of_zone_[first]], batch);
-  }
-  // Eqs. 73-76: the plastic pressure K e^p (e^p the trace of the plastic
-  // strain increment, which lowers the mean stress by K e^p) averaged the
-  // same way; each zone trades its own for the mean of its gridpoints'.
-  nodal_sum_.assign(2 * ng, 0.0);
-  for (unsigned int z = 0; z < nz; ++z)
-    if (mixed(z))
+    const ZoneMaterial& mat = material_of_run(r);
+    const bool hex = mat.element == ZoneElement::hex_mixed;
+    const unsigned int chunk = chunk_of(mat);
+    for (unsigned int first = batch_start_[r]; first < batch_start_[r + 1]; first += chunk)
     {
-      const double sp = materials_[material_of_zone_[z]].bulk_modulus * plastic_volumetric_[z];
-      for (unsigned int g : mesh_.zone_gridpoint[z])
+      const unsigned int n = std::min(chunk, batch_start_[r + 1] - first);
+      tet4_strain_increments(mesh_, first, n, x, v, strain_dt, stress_.data(), scratch_);
+      if (mat.nodal_mixed)
+        replace_volumetric_strain(mesh_, first, n, strain_average_.data(),
+                                  scratch_.strain_increment.data());
+      if (hex) // eqs. 60-63
+        hex_mixed_average_strain(n, scratch_.strain_increment.data(), scratch_.volume.data());
+      StressBatch batch;
+      batch.size = n;
+      batch.strain_increment = scratch_.strain_increment.data();
+      batch.stress = stress_.data() + 6 * first;
+      batch.state = state_.data() + first;
+      const bool collect = plastic_pass && mat.nodal_mixed;
+      if (collect)
       {
-        nodal_sum_[2 * g] += sp * volume[z];
-        nodal_sum_[2 * g + 1] += volume[z];
+        std::fill(batch_volumetric_.begin(), batch_volumetric_.begin() + n, 0.0);
+        batch.plastic_volumetric = batch_volumetric_.data();
+      }
+      // The stress work of plastic materials, as in zone_forces(); the
+      // plastic pressure traded in sweep 3 adds its share there.
+      const bool plastic = mat.model != ZoneModel::elastic;
+      const double overlay = hex ? 0.5 : 1.0;
+      if (plastic)
+        plastic_stress_work_ += 0.5 * overlay *
+                                stress_power(n, batch.strain_increment, batch.stress,
+                                             scratch_.volume.data());
+      apply_zone_model(mat, batch);
+      if (hex) // eqs. 64-67
+        hex_mixed_average_mean_stress(n, stress_.data() + 6 * first, scratch_.volume.data());
+      if (plastic)
+        plastic_stress_work_ += 0.5 * overlay *
+                                stress_power(n, batch.strain_increment, batch.stress,
+                                             scratch_.volume.data());
+      if (collect)
+      {
+        // Eq. 73: the plastic pressure K e^p (e^p the trace of the plastic
+        // strain increment, which lowers the mean stress by K e^p).
+        for (unsigned int k = 0; k < n; ++k)
+          if (batch_volumetric_[k] != 0.0)
+          {
+            yielded_zone_.push_back(first + k);
+            yielded_volumetric_.push_back(batch_volumetric_[k]);
+            batch_volumetric_[k] *= mat.bulk_modulus;
+          }
+        add_volume_weighted(mesh_, first, n, batch_volumetric_.data(), scratch_.volume.data(),
+                            plastic_average_.data(), nullptr);
+      }
+      if (forces_now)
+      {
+        if (hex) // each overlay's forces weighted 1/2
+          hex_mixed_overlay_weight(n, scratch_.volume.data());
+        tet4_nodal_forces(mesh_, first, n, stress_.data(), scratch_, f, force_size_.data());
       }
     }
-  for (unsigned int z = 0; z < nz; ++z)
-    if (mixed(z) && plastic_volumetric_[z] != 0.0)
-    {
-      double mean = 0.0;
-      for (unsigned int g : mesh_.zone_gridpoint[z])
-        mean += 0.25 * nodal_sum_[2 * g] / nodal_sum_[2 * g + 1];
-      const double sp = materials_[material_of_zone_[z]].bulk_modulus * plastic_volumetric_[z];
-      for (int c = 0; c < 3; ++c)
-        stress_[6 * z + c] += sp - mean;
-    }
+  }
+  if (!plastic_pass)
+    return;
+  const bool yielded = !yielded_zone_.empty();
+  const bool forces_done = forces_now && !yielded;
+  last_step_yielded_ = yielded;
+  if (forces_done)
+    return;
+  if (forces_now) // with stresses that the plastic correction changes
+    external_forces(x, f);
+
+  // Eqs. 74-76: each zone that yielded trades its own plastic pressure for
+  // the mean of its gridpoints' averages; then the nodal forces.
+  if (!yielded_zone_.empty())
+    divide_by_volume(ng, plastic_average_.data(), volume_sum_.data());
+  std::size_t next = 0;
   for (std::size_t r = 0; r + 1 < batch_start_.size(); ++r)
-    if (hex_run(r)) // eqs. 64-67, and each overlay's forces weighted 1/2
+  {
+    const ZoneMaterial& mat = material_of_run(r);
+    const unsigned int chunk = chunk_of(mat);
+    for (unsigned int first = batch_start_[r]; first < batch_start_[r + 1]; first += chunk)
     {
-      hex_mixed_average_mean_stress(batch_start_[r + 1] - batch_start_[r],
-                                    stress_.data() + 6 * batch_start_[r], volume + batch_start_[r]);
-      hex_mixed_overlay_weight(batch_start_[r + 1] - batch_start_[r],
-                               full_scratch_.volume.data() + batch_start_[r]);
+      const unsigned int n = std::min(chunk, batch_start_[r + 1] - first);
+      for (; next < yielded_zone_.size() && yielded_zone_[next] < first + n; ++next)
+      {
+        const unsigned int z = yielded_zone_[next];
+        const double shift =
+            multiply_add(materials_[material_of_zone_[z]].bulk_modulus, yielded_volumetric_[next],
+                         -corner_mean(mesh_, z, plastic_average_.data()));
+        for (int c = 0; c < 3; ++c)
+          stress_[6 * z + c] += shift;
+        // Its share of the stress work, V shift tr(d eps) / 2: the zone's
+        // volumetric increment is the mean of its gridpoints' (eq. 71).
+        plastic_stress_work_ += 0.5 * tet_volume(x, mesh_.zone_gridpoint[z]) * shift * 3.0 *
+                                corner_mean(mesh_, z, strain_average_.data());
+      }
+      tet4_geometry(mesh_, first, n, x, scratch_);
+      if (mat.element == ZoneElement::hex_mixed)
+        hex_mixed_overlay_weight(n, scratch_.volume.data());
+      tet4_nodal_forces(mesh_, first, n, stress_.data(), scratch_, f, force_size_.data());
     }
-  tet4_nodal_forces(mesh_, 0, nz, stress_.data(), full_scratch_, f, force_size_.data());
+  }
 }
 
 void DeformableSolver::move_gridpoints()
@@ -520,25 +693,43 @@ void DeformableSolver::move_gridpoints()
   double largest = 0.0, size_sum = 0.0;
   unsigned int n_free = 0;
   const unsigned int ng = mesh_.n_gridpoints();
+  // Energy account (see EnergyAccount): each force works over h (v- + v+) / 2.
+  double gravity_work = 0.0, boundary_work = 0.0, damping_work = 0.0, kinetic = 0.0;
+  const bool pressed = !pressure_force_.empty();
   for (unsigned int g = 0; g < ng; ++g)
   {
     double f2 = 0.0, size2 = 0.0;
     for (int d = 0; d < 3; ++d)
     {
       const unsigned int i = 3 * g + d;
+      const double weight = true_mass_[g] * s_.gravity[d];
+      const double load = gravity_force_[i] - weight + (pressed ? pressure_force_[i] : 0.0);
       if (held_[g] & (1u << d))
       {
         // This motion spans [time_, time_ + dt_]: moved while it ends by
         // the condition's end time (half a step of slack for round-off).
+        const double v_before = v[i];
         v[i] = time_ + 0.5 * dt_ < held_until_[i] ? held_velocity_[i] : 0.0;
+        // The support supplies minus the force on the component, and
+        // whatever kinetic energy a change of the held velocity takes.
+        const double reach = 0.5 * h * (v_before + v[i]);
+        gravity_work += weight * reach;
+        boundary_work += (load - f[i]) * reach + 0.5 * m[i] * (v[i] * v[i] - v_before * v_before);
+        kinetic += 0.5 * m[i] * v[i] * v[i] - 0.5 * (f[i] - weight - load) * v[i] * dt_;
         continue;
       }
       f2 += f[i] * f[i];
       size2 += force_size_[i] * force_size_[i];
       // Eq. 57 with the static damping chosen (eqs. 77-79, 83).
-      damper_.kick(v[i], f[i], combined ? last_force_[i] : 0.0, m[i], h);
+      const double v_before = v[i];
+      const double fd = damper_.kick(v[i], f[i], combined ? last_force_[i] : 0.0, m[i], h);
       if (combined)
         last_force_[i] = f[i];
+      const double reach = 0.5 * h * (v_before + v[i]);
+      gravity_work += weight * reach;
+      boundary_work += load * reach;
+      damping_work += fd * reach;
+      kinetic += 0.5 * m[i] * v[i] * v[i] - 0.5 * (f[i] - weight - load) * v[i] * dt_;
     }
     if (held_[g] != 7u)
     {
@@ -550,12 +741,160 @@ void DeformableSolver::move_gridpoints()
       x[3 * g + d] += v[3 * g + d] * dt_;
   }
   ratio_ = n_free > 0 && size_sum > 0.0 ? largest / (size_sum / n_free) : 0.0;
+  gravity_work_ += gravity_work;
+  boundary_work_ += boundary_work;
+  damping_work_ += damping_work;
+  kinetic_whole_step_ = kinetic;
 }
 
 void DeformableSolver::step()
 {
   compute_forces();
+  check_finite_forces(step_ + 1, dt_);
   move();
+  if (s_.dynamic) // statics: scaled masses, gridpoints held at velocities set later
+  {
+    EnergyAccount e;
+    add_work(e);
+    if (growth_watch_.diverging(step_, e.kinetic,
+                                std::abs(e.initial_stored) + std::abs(e.gravity_work) +
+                                    std::abs(e.boundary_work),
+                                1e-6))
+      throw DivergenceError("the run diverged at step " + std::to_string(step_) +
+                            ": the kinetic energy, " + number(e.kinetic) +
+                            " J, has grown far beyond its sources; " + divergence_site(dt_));
+  }
+}
+
+void DeformableSolver::add_work(EnergyAccount& e) const
+{
+  e.gravity_work += gravity_work_;
+  e.boundary_work += boundary_work_;
+  e.damping += damping_work_;
+  e.kinetic += kinetic_whole_step_;
+  e.initial_stored += initial_elastic_;
+}
+
+void DeformableSolver::add_energy(EnergyAccount& e) const
+{
+  add_work(e);
+  LocalArray x(petsc_->position);
+  const auto [elastic, plastic_elastic] = elastic_energy(x.data());
+  e.zone_elastic += elastic;
+  // Plastic dissipation: the stress work of plastic zones less the change
+  // of their elastic energy.
+  e.plastic += plastic_stress_work_ - (plastic_elastic - initial_plastic_elastic_);
+}
+
+std::pair<double, double> DeformableSolver::elastic_energy(const double* x) const
+{
+  // V / 2 sigma : C^-1 : sigma = V / 2 (p^2 / K + s : s / (2 G)), per
+  // stress point: a 10-node zone's Gauss points each with the volume it
+  // stands for, and each tetrahedron of a hexahedral zone, which fills the
+  // hexahedron once of two overlays, with half its volume.
+  const unsigned int points = mesh_.quadratic() ? 4 : 1;
+  double all = 0.0, plastic = 0.0;
+  for (unsigned int z = 0; z < mesh_.n_zones(); ++z)
+  {
+    const ZoneMaterial& mat = materials_[material_of_zone_[z]];
+    double volume[4];
+    if (mesh_.quadratic())
+      tet10_gauss_volumes(mesh_, z, x, volume);
+    else
+      volume[0] = (mat.element == ZoneElement::hex_mixed ? 0.5 : 1.0) *
+                  tet_volume(x, mesh_.zone_gridpoint[z]);
+    double e = 0.0;
+    for (unsigned int q = 0; q < points; ++q)
+    {
+      const double* s = &stress_[6 * (points * z + q)];
+      const double p = (s[0] + s[1] + s[2]) / 3.0;
+      const double ss = (s[0] - p) * (s[0] - p) + (s[1] - p) * (s[1] - p) +
+                        (s[2] - p) * (s[2] - p) + 2.0 * (s[3] * s[3] + s[4] * s[4] + s[5] * s[5]);
+      e += 0.5 * volume[q] * (p * p / mat.bulk_modulus + ss / (2.0 * mat.shear_modulus));
+    }
+    all += e;
+    if (mat.model != ZoneModel::elastic)
+      plastic += e;
+  }
+  return {all, plastic};
+}
+
+std::pair<unsigned int, double> DeformableSolver::smallest_zone_at(unsigned int g,
+                                                                   const double* x) const
+{
+  // A pass over the zones, only when a run has failed.
+  unsigned int best = 0;
+  double smallest = 1e300;
+  for (unsigned int z = 0; z < mesh_.n_zones(); ++z)
+    for (unsigned int a : mesh_.zone_gridpoint[z])
+      if (a == g && tet_volume(x, mesh_.zone_gridpoint[z]) < smallest)
+      {
+        smallest = tet_volume(x, mesh_.zone_gridpoint[z]);
+        best = z;
+      }
+  return {best, smallest};
+}
+
+void DeformableSolver::check_finite_forces(unsigned long step, double dt) const
+{
+  LocalArray f(petsc_->force);
+  const unsigned int n = 3 * mesh_.n_gridpoints();
+  double sum = 0.0;
+  for (unsigned int i = 0; i < n; ++i)
+    sum += f[i];
+  if (std::isfinite(sum))
+    return;
+  unsigned int g = 0;
+  while (g + 1 < n / 3 && std::isfinite(f[3 * g]) && std::isfinite(f[3 * g + 1]) &&
+         std::isfinite(f[3 * g + 2]))
+    ++g;
+  LocalArray x(petsc_->position);
+  const auto [zone, volume] = smallest_zone_at(g, x.data());
+  throw DivergenceError(
+      "the run diverged at step " + std::to_string(step) + ": the force on gridpoint " +
+      std::to_string(g) + " (zone " + std::to_string(zone) + ") is not finite; likely cause: " +
+      (volume <= 0.0
+           ? "zone " + std::to_string(zone) + " is inverted (volume " + number(volume) + " m^3)"
+           : "the time step " + number(dt) + " s against the stable step of the zones, " +
+                 number(stable_time_step()) + " s (eq. 84)"));
+}
+
+double DeformableSolver::largest_gridpoint_energy() const
+{
+  LocalArray v(petsc_->velocity), m(petsc_->inertial_mass);
+  double largest = 0.0;
+  for (unsigned int i = 0; i < 3 * mesh_.n_gridpoints(); i += 3)
+    largest =
+        std::max(largest, 0.5 * m[i] * (v[i] * v[i] + v[i + 1] * v[i + 1] + v[i + 2] * v[i + 2]));
+  return largest;
+}
+
+std::string DeformableSolver::divergence_site(double dt) const
+{
+  LocalArray v(petsc_->velocity), m(petsc_->inertial_mass), x(petsc_->position);
+  unsigned int worst = 0;
+  double largest = -1.0;
+  for (unsigned int g = 0; g < mesh_.n_gridpoints(); ++g)
+  {
+    const unsigned int i = 3 * g;
+    const double e = 0.5 * m[i] * (v[i] * v[i] + v[i + 1] * v[i + 1] + v[i + 2] * v[i + 2]);
+    if (e > largest)
+    {
+      largest = e;
+      worst = g;
+    }
+  }
+  const auto [zone, volume] = smallest_zone_at(worst, x.data());
+  std::string cause;
+  if (volume <= 0.0)
+    cause = "zone " + std::to_string(zone) + " is inverted (volume " + number(volume) + " m^3)";
+  else
+    cause = "the time step " + number(dt) +
+            " s is too large for the zones or the joints on them: "
+            "eq. 84 with the joint stiffness gives at most " +
+            number(stable_time_step()) + " s";
+  return "gridpoint " + std::to_string(worst) + " of zone " + std::to_string(zone) +
+         " moves fastest; likely cause: " + cause;
 }
 
 void DeformableSolver::compute_forces()
@@ -718,12 +1057,20 @@ void DeformableSolver::save_state(CheckpointWriter& out) const
   out.put(time_);
   out.put(ratio_);
   out.put(step_);
+  out.put(gravity_work_);
+  out.put(boundary_work_);
+  out.put(damping_work_);
+  out.put(kinetic_whole_step_);
+  out.put(plastic_stress_work_);
+  out.put(initial_elastic_);
+  out.put(initial_plastic_elastic_);
+  growth_watch_.save_state(out);
 }
 
 void DeformableSolver::load_state(CheckpointReader& in)
 {
   in.tag("zones");
-  const std::size_t ng = mesh_.n_gridpoints(), nz = mesh_.n_zones();
+  const std::size_t ng = mesh_.n_gridpoints();
   std::vector<double> values;
   for (auto* vec : {&petsc_->position, &petsc_->velocity, &petsc_->force, &petsc_->inertial_mass})
   {
@@ -731,8 +1078,8 @@ void DeformableSolver::load_state(CheckpointReader& in)
     LocalArray a(*vec);
     std::copy(values.begin(), values.end(), a.data());
   }
-  in.get(stress_, 6 * nz, "zone stresses");
-  in.get(state_, nz, "zone plastic states");
+  in.get(stress_, stress_.size(), "zone stresses");
+  in.get(state_, state_.size(), "zone plastic states");
   in.get(held_, ng, "gridpoint conditions");
   in.get(held_velocity_, 3 * ng, "gridpoint velocities held");
   in.get(last_force_, last_force_.size(), "gridpoint forces of the last step");
@@ -741,6 +1088,14 @@ void DeformableSolver::load_state(CheckpointReader& in)
   in.get(time_);
   in.get(ratio_);
   in.get(step_);
+  in.get(gravity_work_);
+  in.get(boundary_work_);
+  in.get(damping_work_);
+  in.get(kinetic_whole_step_);
+  in.get(plastic_stress_work_);
+  in.get(initial_elastic_);
+  in.get(initial_plastic_elastic_);
+  growth_watch_.load_state(in);
 }
 
 } // namespace talus

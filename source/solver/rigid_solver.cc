@@ -21,10 +21,6 @@ double seconds_since(std::chrono::steady_clock::time_point t)
 {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - t).count();
 }
-double sign(double x)
-{
-  return (x > 0.0) - (x < 0.0);
-}
 } // namespace
 
 RigidSolver::RigidSolver(BlockModel& blocks, double density, const SolverSettings& settings,
@@ -107,6 +103,11 @@ RigidSolver::RigidSolver(BlockModel& blocks, double density, const SolverSetting
             }
         if (load.hold_rotation)
           prescribed[b] |= 8u;
+        for (int d = 0; d < 3; ++d)
+          if (!(prescribed[b] & (1u << d)) && load.initial_velocity[d] != 0.0)
+            velocity[b][d] = load.initial_velocity[d];
+        if (!(prescribed[b] & 8u))
+          spin[b] = load.initial_spin;
       }
   }
   // Density scaling for statics: no block lighter (in inertia) than the mean.
@@ -126,9 +127,10 @@ RigidSolver::RigidSolver(BlockModel& blocks, double density, const SolverSetting
     // A step beyond eq. 87 without its safety fraction cannot be stable.
     const double limit = stable_time_step() / s_.time_step_fraction;
     if (s_.time_step > limit)
-      throw InputError(s_.source + ": entry 'Time step' in subsection 'Solver': " + number(s_.time_step) +
-                       " s is larger than the stable step of the blocks, " + number(limit) +
-                       " s (eq. 87 with frac = 1); allowed: at most that, or 0 for the automatic step");
+      throw InputError(
+          s_.source + ": entry 'Time step' in subsection 'Solver': " + number(s_.time_step) +
+          " s is larger than the stable step of the blocks, " + number(limit) +
+          " s (eq. 87 with frac = 1); allowed: at most that, or 0 for the automatic step");
   }
   if (zones_ != nullptr)
   {
@@ -172,6 +174,20 @@ RigidSolver::RigidSolver(BlockModel& blocks, double density, const SolverSetting
   first.initial_stress = s_.initial_stress;
   first.kn = s_.joint.normal_stiffness;
   contacts_.update(m_, first);
+
+  // Energy at the start: the blocks' initial motion (with the masses the
+  // cycle moves) and the joints' initial stress; the zones add theirs.
+  double weight_size = 0.0;
+  for (unsigned int b = 0; b < nb; ++b)
+    if (!fixed[b] && !is_deformable_[b])
+    {
+      initial_stored_ += 0.5 * inertial_mass[b] * velocity[b].squaredNorm() +
+                         0.5 * inertia[b] * spin[b].squaredNorm();
+      weight_size += mass[b] * s_.gravity.norm() * (all.hi - all.lo).norm();
+    }
+  initial_stored_ += joint_energy();
+  kinetic_whole_step_ = initial_stored_ - joint_energy();
+  energy_floor_ = 1e-9 * weight_size + 1e-6; // J
 }
 
 double RigidSolver::stable_time_step() const
@@ -360,7 +376,7 @@ void RigidSolver::move_blocks()
   const double h = step_ == 0 ? 0.5 * dt_ : dt_;
   const auto kick = [&](double& v, double f, double f_before, double m)
   { return damper_.kick(v, f, f_before, m, h); };
-  double max_unbalanced = 0.0, sum_weight = 0.0;
+  double max_unbalanced = 0.0, sum_weight = 0.0, kinetic = 0.0;
   unsigned int n_free = 0;
   for (unsigned int b = 0; b < m_.n_blocks(); ++b)
   {
@@ -370,13 +386,14 @@ void RigidSolver::move_blocks()
       moment[b].setZero();
       continue;
     }
-    const Vec3 f =
-        force[b] + mass[b] * s_.gravity + applied_force[b] + applied_force_rate[b] * time_;
+    const Vec3 applied = applied_force[b] + applied_force_rate[b] * time_;
+    const Vec3 f = force[b] + mass[b] * s_.gravity + applied;
     max_unbalanced = std::max(max_unbalanced, f.norm());
     sum_weight += mass[b] * s_.gravity.norm();
     ++n_free;
     // Eq. 49 for translation, damped for statics.
     Vec3 damping_force = Vec3::Zero();
+    const Vec3 velocity_before = velocity[b];
     for (int d = 0; d < 3; ++d)
       if (!(prescribed[b] & (1u << d)))
         damping_force[d] = kick(velocity[b][d], f[d], last_force_[b][d], inertial_mass[b]);
@@ -411,9 +428,28 @@ void RigidSolver::move_blocks()
     // their shape through any number of turns.
     const Vec3 dx = velocity[b] * dt_;
     const Vec3 dtheta = spin[b] * dt_;
-    gravity_work_ += mass[b] * s_.gravity.dot(dx);
-    damping_work_ +=
-        damping_force.dot(dx) + damping_moment.dot(0.5 * (spin_before + spin[b]) * dt_);
+    // Energy account (see EnergyAccount): each force works over the mean of
+    // the half steps on either side of it, h (v- + v+) / 2; a held
+    // component's support supplies minus the force on it.
+    const Vec3 reach = 0.5 * h * (velocity_before + velocity[b]);
+    const Vec3 turn = 0.5 * h * (spin_before + spin[b]);
+    gravity_work_ += mass[b] * s_.gravity.dot(reach);
+    boundary_work_ += applied.dot(reach);
+    for (int d = 0; d < 3; ++d)
+      if (prescribed[b] & (1u << d))
+        boundary_work_ -= f[d] * reach[d];
+    damping_work_ += damping_force.dot(reach) + damping_moment.dot(turn);
+    // Kinetic energy at the half step less half the contact forces' work
+    // over it: the term that makes the account exact for linear joints.
+    kinetic += 0.5 * inertial_mass[b] * velocity[b].squaredNorm() - 0.5 * force[b].dot(dx) -
+               0.5 * moment[b].dot(dtheta);
+    if (s_.principal_inertia)
+    {
+      const Vec3 w = axes[b].transpose() * spin[b];
+      kinetic += 0.5 * w.cwiseProduct(principal_moments[b]).dot(w);
+    }
+    else
+      kinetic += 0.5 * inertia[b] * spin[b].squaredNorm();
     const double angle = dtheta.norm();
     const Eigen::Matrix3d R = angle > 0.0
                                   ? Eigen::AngleAxisd(angle, dtheta / angle).toRotationMatrix()
@@ -435,10 +471,12 @@ void RigidSolver::move_blocks()
     rotation[b] += dtheta;
     moved[b] += max_du; // eq. 1
     path[b] += max_du;
+    moved_beyond_tolerance_ |= moved[b] > s_.contact.tolerance;
     force[b].setZero();
     moment[b].setZero();
   }
   ratio_ = n_free > 0 && sum_weight > 0.0 ? max_unbalanced / (sum_weight / n_free) : 0.0;
+  kinetic_whole_step_ = kinetic;
 }
 
 void RigidSolver::step()
@@ -446,12 +484,20 @@ void RigidSolver::step()
   if (zones_ != nullptr)
     zones_->compute_forces(); // zone forces first; contacts add to them
   auto t0 = std::chrono::steady_clock::now();
-  if (step_ > 0 && step_ % s_.contact.update_period == 0)
+  // Eq. 1 between updates too: a block that moved more than the tolerance
+  // may meet a new neighbour, whose contact must carry force from the step
+  // it forms (else a fast block is deep in the other when its sub-contacts
+  // come, and the overlap is energy from nowhere).
+  const bool periodic = step_ > 0 && step_ % s_.contact.update_period == 0;
+  if (periodic || moved_beyond_tolerance_)
   {
+    const unsigned int before = contacts_.n_contacts();
     detect_contacts(false);
+    moved_beyond_tolerance_ = false;
     timing_.seconds_detection += seconds_since(t0);
     t0 = std::chrono::steady_clock::now();
-    contacts_.update(m_, s_.contact, &path);
+    if (periodic || contacts_.n_contacts() > before)
+      contacts_.update(m_, s_.contact, &path);
     timing_.seconds_planes += seconds_since(t0);
     t0 = std::chrono::steady_clock::now();
   }
@@ -468,6 +514,7 @@ void RigidSolver::step()
     contact_forces();
   timing_.seconds_forces += seconds_since(t0);
   t0 = std::chrono::steady_clock::now();
+  check_finite_forces();
   move_blocks();
   if (zones_ != nullptr)
   {
@@ -486,6 +533,7 @@ void RigidSolver::step()
       velocity[b] = (m_.centroid[b] - centre_before[k]) / dt_;
       moved[b] += moved_by[b]; // eq. 1
       path[b] += moved_by[b];
+      moved_beyond_tolerance_ |= moved[b] > s_.contact.tolerance;
     }
   }
   if ((step_ + 1) % Damper::servo_period == 0)
@@ -493,6 +541,7 @@ void RigidSolver::step()
   timing_.seconds_motion += seconds_since(t0);
   time_ += dt_;
   ++step_;
+  watch_energy_growth();
 }
 
 double RigidSolver::unbalanced_ratio() const
@@ -533,6 +582,102 @@ double RigidSolver::joint_energy() const
          0.5 * fs2 / (s_.joint.shear_stiffness * a);
   }
   return e;
+}
+
+EnergyAccount RigidSolver::energy_account() const
+{
+  EnergyAccount e;
+  e.gravity_work = gravity_work_;
+  e.boundary_work = boundary_work_;
+  e.kinetic = kinetic_whole_step_;
+  e.joint_elastic = joint_energy();
+  e.friction = friction_work_;
+  e.damping = damping_work_;
+  e.initial_stored = initial_stored_;
+  if (zones_ != nullptr)
+    zones_->add_energy(e);
+  return e;
+}
+
+void RigidSolver::check_finite_forces() const
+{
+  // One sum over the free blocks: a NaN or infinity anywhere makes it so.
+  double sum = 0.0;
+  for (unsigned int b = 0; b < m_.n_blocks(); ++b)
+    if (!fixed[b] && !is_deformable_[b])
+      sum += force[b].sum() + moment[b].sum();
+  if (!std::isfinite(sum))
+    for (unsigned int b = 0; b < m_.n_blocks(); ++b)
+      if (!fixed[b] && !is_deformable_[b] &&
+          !(force[b].allFinite() && moment[b].allFinite() && velocity[b].allFinite()))
+        throw DivergenceError("the run diverged at step " + std::to_string(step_ + 1) +
+                              ": the contact force on block " + std::to_string(b) +
+                              " is not finite; " + likely_cause(b));
+  if (zones_ != nullptr)
+    zones_->check_finite_forces(step_ + 1, dt_);
+}
+
+void RigidSolver::watch_energy_growth()
+{
+  double kinetic = kinetic_whole_step_,
+         sources = std::abs(initial_stored_) + std::abs(gravity_work_) + std::abs(boundary_work_);
+  if (zones_ != nullptr)
+  {
+    EnergyAccount z;
+    zones_->add_work(z);
+    kinetic += z.kinetic;
+    sources += std::abs(z.initial_stored) + std::abs(z.gravity_work) + std::abs(z.boundary_work);
+  }
+  if (!growth_watch_.diverging(step_, kinetic, sources, energy_floor_))
+    return;
+  // Name the rigid block, or the zone, that moves with the most energy.
+  unsigned int worst = 0;
+  double largest = -1.0;
+  for (unsigned int b = 0; b < m_.n_blocks(); ++b)
+    if (!fixed[b] && !is_deformable_[b] &&
+        0.5 * inertial_mass[b] * velocity[b].squaredNorm() > largest)
+    {
+      largest = 0.5 * inertial_mass[b] * velocity[b].squaredNorm();
+      worst = b;
+    }
+  const std::string growth = "the kinetic energy, " + number(kinetic) +
+                             " J, has grown far beyond its sources (the work of gravity and "
+                             "boundaries and the energy at the start come to " +
+                             number(sources) + " J); ";
+  if (zones_ != nullptr && zones_->largest_gridpoint_energy() > largest)
+    throw DivergenceError("the run diverged at step " + std::to_string(step_) + ": " + growth +
+                          zones_->divergence_site(dt_));
+  throw DivergenceError("the run diverged at step " + std::to_string(step_) + ": " + growth +
+                        "block " + std::to_string(worst) + " moves fastest; " +
+                        likely_cause(worst));
+}
+
+std::string RigidSolver::likely_cause(unsigned int b) const
+{
+  // Eq. 87 for this block alone, with its largest face.
+  double area = 0.0;
+  const ConvexPolyhedron p = m_.polyhedron(b);
+  for (unsigned int f = 0; f < p.n_faces(); ++f)
+  {
+    Vec3 twice = Vec3::Zero();
+    for (unsigned int k = 0; k < p.face_size(f); ++k)
+      twice +=
+          p.vertex(p.face_vertex(f, k)).cross(p.vertex(p.face_vertex(f, (k + 1) % p.face_size(f))));
+    area = std::max(area, 0.5 * twice.norm());
+  }
+  const double k = std::max(s_.joint.normal_stiffness, s_.joint.shear_stiffness);
+  const double limit = 2.0 * std::sqrt(inertial_mass[b] / (k * area));
+  const std::string numbers =
+      "the time step " + number(dt_) + " s against 2 sqrt(m / (k A)) = " + number(limit) +
+      " s for this block (eq. 87 with frac = 1; m = " + number(inertial_mass[b]) +
+      " kg, k = " + number(k) + " Pa/m, largest face A = " + number(area) + " m^2)";
+  // A block held by several joints is stiffer than eq. 87's one joint.
+  if (dt_ > 0.5 * limit)
+    return "likely cause: the time step is too large for the joint stiffness: " + numbers +
+           ", and a block between joints needs less; lower 'Time step' or 'Time step fraction'";
+  return "likely cause: a contact that gives energy (a deep overlap, or a contact geometry that "
+         "jumps between steps), since " +
+         numbers + " is stable";
 }
 
 SolverReport RigidSolver::report() const

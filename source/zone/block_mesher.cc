@@ -252,7 +252,7 @@ void append_tetrahedra(TetMesh& mesh, const dealii::Triangulation<3>& tria, unsi
   }
 }
 
-TetMesh read_gmsh_block(const std::string& path, unsigned int block)
+TetMesh read_gmsh_block(const std::string& path, unsigned int block, MeshOrder order)
 {
   std::ifstream in(path);
   if (!in)
@@ -286,6 +286,7 @@ TetMesh read_gmsh_block(const std::string& path, unsigned int block)
   TetMesh mesh;
   append_tetrahedra(mesh, tria, block);
   check_one_closed_body(mesh, path);
+  order_for_locality(mesh, order);
   return mesh;
 }
 
@@ -330,7 +331,7 @@ MeshReport measure_mesh(const TetMesh& mesh)
 }
 
 TetMesh mesh_blocks(const BlockModel& m, const std::vector<unsigned int>& which, double edge_length,
-                    MeshReport& report, ZoneElement element)
+                    MeshReport& report, ZoneElement element, MeshOrder order)
 {
   if (!(edge_length > 0.0))
     throw InputError("zone edge length must be positive");
@@ -357,6 +358,7 @@ TetMesh mesh_blocks(const BlockModel& m, const std::vector<unsigned int>& which,
     mesh_one_block(m, b, edge_length, one);
     append_tetrahedra(mesh, one, b);
   }
+  order_for_locality(mesh, order);
   report = measure_mesh(mesh);
   return mesh;
 }

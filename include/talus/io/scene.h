@@ -47,6 +47,9 @@ struct DeformableSpec
   std::string mesh_file;               ///< gmsh file of the body's zones (empty: mesh the block)
   std::shared_ptr<const TetMesh> mesh; ///< the zones read from mesh_file (block 0)
   bool implicit_check = false;         ///< compare a static run with the implicit elastic solve
+  /// Blocks of these groups take `material` with E times stiffness_ratio.
+  std::vector<std::string> scaled_groups;
+  double stiffness_ratio = 1.0;
 };
 
 /// A 'Boundary N' of held gridpoints whose reaction (the force the

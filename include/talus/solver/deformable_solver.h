@@ -13,6 +13,8 @@
 #include <array>
 #include <limits>
 #include <memory>
+#include <string>
+#include <utility>
 #include <vector>
 
 namespace talus
@@ -133,6 +135,21 @@ public:
   /// without initial stress, held at rest).
   ImplicitElasticProblem implicit_problem() const;
 
+  /// Adds the zones' terms to an energy account: work of gravity and of
+  /// boundaries, kinetic energy at the last whole step, damping, and (a
+  /// pass over the zones) elastic strain energy and plastic dissipation.
+  void add_energy(EnergyAccount& e) const;
+  /// The same without the pass over the zones: works, kinetic and initial
+  /// energy only (for the divergence watch).
+  void add_work(EnergyAccount& e) const;
+  /// Throws DivergenceError if a gridpoint force is not finite (before
+  /// anything moves), naming the zone; `step` and `dt` for the message.
+  void check_finite_forces(unsigned long step, double dt) const;
+  /// Largest kinetic energy of one gridpoint (J) and the message of a
+  /// divergence there: the zone, and the likely cause.
+  double largest_gridpoint_energy() const;
+  std::string divergence_site(double dt) const;
+
   /// Holds every component of gridpoint g at velocity `v` (m/s) from now on.
   void hold_gridpoint(unsigned int g, const Vec3& v);
 
@@ -151,8 +168,16 @@ private:
   static double stable_time_step_of(const std::vector<double>& mass,
                                     const std::vector<double>& stiffness);
   void zone_forces();
+  /// Gravity and face loads into f (N, 3 per gridpoint), and their sizes
+  /// into force_size_: where the zone forces are added.
+  void external_forces(const double* x, double* f);
   void nodal_mixed_zone_forces(const double* x, const double* v, double* f, double strain_dt);
   void move_gridpoints();
+  /// Elastic strain energy of the zones (J) and of those of plastic
+  /// materials alone, with the current volumes.
+  std::pair<double, double> elastic_energy(const double* x) const;
+  /// The zone around gridpoint g with the smallest volume, and that volume.
+  std::pair<unsigned int, double> smallest_zone_at(unsigned int g, const double* x) const;
 
   const TetMesh& mesh_;
   std::vector<ZoneMaterial> materials_;
@@ -187,14 +212,30 @@ private:
   unsigned int points_per_zone_ = 1; ///< stress points per zone
   // Nodal mixed discretization only (empty otherwise).
   bool nodal_mixed_ = false;
-  Tet4Scratch full_scratch_;               ///< every zone's gradients and strain
-  std::vector<double> nodal_sum_;          ///< 2 per gridpoint: weighted sum, volume
-  std::vector<double> plastic_volumetric_; ///< per zone, this step
+  std::vector<double> volume_sum_;       ///< per gridpoint: zone volumes around it, m^3
+  std::vector<double> strain_average_;   ///< per gridpoint: volumetric strain increment
+  std::vector<double> plastic_average_;  ///< per gridpoint: plastic pressure, Pa
+  std::vector<double> batch_volumetric_; ///< per zone of a batch: e, or plastic e^p
+  /// Zones whose plastic volumetric strain increment e^p is not zero this
+  /// step, in order, with their e^p.
+  std::vector<unsigned int> yielded_zone_;
+  std::vector<double> yielded_volumetric_;
+  /// Whether a mixed zone yielded with a volumetric part at the last step
+  /// (then the forces wait for the third sweep; only speed depends on it).
+  bool last_step_yielded_ = false;
   Damper damper_{Damping::none, 0.0, 0.5, 1.0};
   std::vector<double> last_force_; ///< 3 per gridpoint, N (combined damping only)
   double dt_ = 0.0, time_ = 0.0, ratio_ = 1.0;
   double seconds_zones_ = 0.0, seconds_gridpoints_ = 0.0;
   unsigned long step_ = 0;
+  // Energy account (J), see EnergyAccount.
+  double gravity_work_ = 0.0, boundary_work_ = 0.0, damping_work_ = 0.0;
+  double kinetic_whole_step_ = 0.0;
+  std::vector<double> gauss_volume_; ///< m^3, a batch of 10-node zones' Gauss points (plastic)
+  double plastic_stress_work_ = 0.0; ///< sum of V sigma : d(eps) over zones of plastic materials
+  double initial_elastic_ = 0.0, initial_plastic_elastic_ = 0.0; ///< and held kinetic
+  std::vector<double> pressure_force_; ///< 3 per gridpoint, N (only with face pressures)
+  EnergyGrowthWatch growth_watch_;     ///< standalone runs (step())
 };
 
 } // namespace talus

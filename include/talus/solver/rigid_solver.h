@@ -6,6 +6,7 @@
 #include <talus/model/block_model.h>
 #include <talus/model/initial_stress.h>
 #include <talus/solver/damper.h>
+#include <talus/solver/energy_account.h>
 
 #include <Eigen/Core>
 
@@ -27,9 +28,11 @@ struct BlockLoad
   Vec3 force = Vec3::Zero();      ///< N, per block
   Vec3 force_rate = Vec3::Zero(); ///< N/s, per block
   bool prescribe_velocity = false;
-  Vec3 velocity = Vec3::Zero();      ///< m/s
-  bool held[3] = {true, true, true}; ///< which components of the velocity are held
-  bool hold_rotation = false;        ///< the blocks do not rotate (a stiff platen)
+  Vec3 velocity = Vec3::Zero();         ///< m/s
+  bool held[3] = {true, true, true};    ///< which components of the velocity are held
+  bool hold_rotation = false;           ///< the blocks do not rotate (a stiff platen)
+  Vec3 initial_velocity = Vec3::Zero(); ///< m/s at t = 0 (free components)
+  Vec3 initial_spin = Vec3::Zero();     ///< rad/s at t = 0 about the centroid
 };
 
 struct SolverSettings
@@ -113,6 +116,9 @@ public:
   double joint_energy() const;
   double friction_dissipation() const { return friction_work_; }
   double damping_dissipation() const { return damping_work_; }
+  /// Every term of the energy balance of blocks and zones, and its error.
+  /// Costs a pass over the sub-contacts (and zones): call it for histories.
+  EnergyAccount energy_account() const;
 
   // Block state (per block).
   std::vector<double> mass;            ///< kg, gravitational
@@ -146,6 +152,14 @@ private:
   void detect_contacts(bool everything);
   void contact_forces();
   void move_blocks();
+  /// Throws DivergenceError, before anything moves, if a force or moment
+  /// on a free block (or a gridpoint) is not finite.
+  void check_finite_forces() const;
+  /// Every EnergyGrowthWatch::period steps: throws DivergenceError if the
+  /// kinetic energy grows geometrically with no source.
+  void watch_energy_growth();
+  /// The likely cause of a divergence at block b, for the message.
+  std::string likely_cause(unsigned int b) const;
 
   BlockModel& m_;
   SolverSettings s_;
@@ -167,6 +181,12 @@ private:
   double* gp_f_ = nullptr;
   double dt_ = 0.0, time_ = 0.0, ratio_ = 1.0;
   double gravity_work_ = 0.0, friction_work_ = 0.0, damping_work_ = 0.0;
+  double boundary_work_ = 0.0;          ///< J: applied forces and prescribed velocities
+  double kinetic_whole_step_ = 0.0;     ///< J: kinetic term of the account (see EnergyAccount)
+  bool moved_beyond_tolerance_ = false; ///< a block moved more than CTOL since detection (eq. 1)
+  double initial_stored_ = 0.0;         ///< J: kinetic and joint energy at the start
+  double energy_floor_ = 0.0;           ///< J: below this, growth is not judged
+  EnergyGrowthWatch growth_watch_;
   unsigned long step_ = 0;
   unsigned long last_output_ = 0; ///< step of the last output in run()
   bool resumed_ = false;          ///< state loaded from a checkpoint

@@ -1,6 +1,7 @@
 #pragma once
 
 #include <talus/model/block_model.h>
+#include <talus/zone/mesh_order.h>
 #include <talus/zone/tet_mesh.h>
 #include <talus/zone/zone_material.h>
 
@@ -33,8 +34,9 @@ void append_tetrahedra(TetMesh& mesh, const dealii::Triangulation<3, 3>& tria, u
 /// Reads a gmsh .msh file (format 2.2 or 4.1) of linear tetrahedra as the
 /// zones of block `block`; the file's nodes become the block's gridpoints.
 /// Throws InputError naming the file when it cannot be read or holds
-/// other cells.
-TetMesh read_gmsh_block(const std::string& path, unsigned int block);
+/// other cells. Zones and gridpoints are then put in `order`.
+TetMesh read_gmsh_block(const std::string& path, unsigned int block,
+                        MeshOrder order = MeshOrder::slabs);
 
 /// Counts and sizes of a mesh (throws if a zone has no volume).
 MeshReport measure_mesh(const TetMesh& mesh);
@@ -52,9 +54,12 @@ MeshReport measure_mesh(const TetMesh& mesh);
 /// becomes hexahedral zones of two overlays of five tetrahedra
 /// (append_hex_mixed_brick); any other block throws InputError naming the
 /// entry 'Element'. tet10 is not built yet (InputError).
+///
+/// Last, zones and gridpoints are put in `order` (by default slabs,
+/// renumbered block by block for memory locality, mesh_order.h).
 TetMesh mesh_blocks(const BlockModel& blocks, const std::vector<unsigned int>& which,
-                    double edge_length, MeshReport& report,
-                    ZoneElement element = ZoneElement::tet4);
+                    double edge_length, MeshReport& report, ZoneElement element = ZoneElement::tet4,
+                    MeshOrder order = MeshOrder::slabs);
 
 /// The number of zones mesh_blocks would make, found without meshing (as a
 /// double: a bad edge length can ask for more than any integer holds), so

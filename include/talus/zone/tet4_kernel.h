@@ -35,6 +35,22 @@ void tet4_strain_increments(const TetMesh& mesh, unsigned int first, unsigned in
                             const double* x, const double* v, double dt, double* stress,
                             Tet4Scratch& scratch);
 
+/// For the first sweep of nodal mixed discretization (eqs. 68-69), zones
+/// [first, first + n): each zone's volume (m^3, into `volume`) and
+/// volumetric strain increment e = tr(D dt) / 3 (into `volumetric`), both
+/// rounded exactly as tet4_strain_increments's volume and the mean of its
+/// three normal strain increments; the stress is not touched. Both arrays
+/// hold n values rounded up to whole groups of Tet4Scratch::max_lanes.
+void tet4_volumetric_increments(const TetMesh& mesh, unsigned int first, unsigned int n,
+                                const double* x, const double* v, double dt, double* volumetric,
+                                double* volume);
+
+/// The shape-function gradients and volume of zones [first, first + n)
+/// alone, into scratch (bitwise those of tet4_strain_increments): for
+/// nodal forces in a later sweep than the strain increments.
+void tet4_geometry(const TetMesh& mesh, unsigned int first, unsigned int n, const double* x,
+                   Tet4Scratch& scratch);
+
 /// Pass 2: nodal forces of the zones' stresses, f_n = -V sigma grad N_n
 /// (eq. 55 for a constant-stress tetrahedron), added to `force` (3 per
 /// gridpoint, N); their magnitudes are added to `force_size` (for the

@@ -1,0 +1,62 @@
+#pragma once
+
+#include <talus/zone/tet_mesh.h>
+
+#include <cmath>
+
+namespace talus
+{
+
+// Nodal mixed discretization of 4-node zones (eqs. 68-76): a zone's
+// volumetric strain increment, and its plastic pressure, are replaced by
+// the mean over its four gridpoints of volume-weighted gridpoint averages.
+// The functions below work on one batch of zones [first, first + n) of one
+// material; per-zone arrays of the batch start at zone `first`, gridpoint
+// arrays hold one number per gridpoint. Zones are taken in order, so each
+// gridpoint sum is added up in the same order whatever the batch size.
+
+/// a b + c, rounded once where the hardware multiplies and adds in one
+/// instruction (as GCC contracts a * b + c there) and twice elsewhere:
+/// spelled out so that the sums do not depend on how the compiler happens
+/// to contract a particular loop.
+inline double multiply_add(double a, double b, double c)
+{
+#if defined(__FP_FAST_FMA)
+  return std::fma(a, b, c);
+#else
+  return a * b + c;
+#endif
+}
+
+/// Eq. 69 (and eq. 75): adds value V to `weighted_sum` and, when
+/// `volume_sum` is given, V to it at each gridpoint of every zone of the
+/// batch (V the zone's volume, m^3). A zone with value 0 changes no sum
+/// and may be left out.
+void add_volume_weighted(const TetMesh& mesh, unsigned int first, unsigned int n,
+                         const double* value, const double* volume, double* weighted_sum,
+                         double* volume_sum);
+
+/// The gridpoint averages, weighted_sum / volume_sum, in place, for the
+/// `n_gridpoints` gridpoints (those with no volume are left alone).
+void divide_by_volume(unsigned int n_gridpoints, double* weighted_sum, const double* volume_sum);
+
+/// Mean of the gridpoint averages at the four gridpoints of zone z. Each
+/// quarter is exact, so this is the sum of a quarter of each average,
+/// in corner order, whether the quarter is taken before or after the
+/// division.
+inline double corner_mean(const TetMesh& mesh, unsigned int z, const double* average)
+{
+  double mean = 0.0;
+  for (unsigned int g : mesh.zone_gridpoint[z])
+    mean += 0.25 * average[g];
+  return mean;
+}
+
+/// Eqs. 70-71: each zone of the batch keeps the deviatoric part of its
+/// strain increment (6 per zone, xx yy zz xy yz zx) and takes the mean of
+/// its gridpoints' averages of the volumetric increment as its volumetric
+/// part.
+void replace_volumetric_strain(const TetMesh& mesh, unsigned int first, unsigned int n,
+                               const double* gridpoint_average, double* strain_increment);
+
+} // namespace talus
