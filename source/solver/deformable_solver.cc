@@ -494,11 +494,7 @@ void DeformableSolver::zone_forces()
                              scratch_);
       if (hex) // eqs. 60-63
         hex_mixed_average_strain(n, scratch_.strain_increment.data(), scratch_.volume.data());
-      StressBatch batch;
-      batch.size = n;
-      batch.strain_increment = scratch_.strain_increment.data();
-      batch.stress = stress_.data() + 6 * first;
-      batch.state = state_.data() + first;
+      StressBatch batch = tet4_batch(first, n);
       // Plastic materials: the stress work of the step, V (s_old + s_new) / 2
       // : d(eps), from which the plastic dissipation follows (elastic ones
       // store all of it, so theirs is not summed).
@@ -521,6 +517,16 @@ void DeformableSolver::zone_forces()
       tet4_nodal_forces(mesh_, first, n, stress_.data(), scratch_, f.data(), force_size_.data());
     }
   }
+}
+
+StressBatch DeformableSolver::tet4_batch(unsigned int first, unsigned int n)
+{
+  StressBatch batch;
+  batch.size = n;
+  batch.strain_increment = scratch_.strain_increment.data();
+  batch.stress = stress_.data() + 6 * first;
+  batch.state = state_.data() + first;
+  return batch;
 }
 
 void DeformableSolver::nodal_mixed_zone_forces(const double* x, const double* v, double* f,
@@ -593,11 +599,7 @@ void DeformableSolver::nodal_mixed_zone_forces(const double* x, const double* v,
                                   scratch_.strain_increment.data());
       if (hex) // eqs. 60-63
         hex_mixed_average_strain(n, scratch_.strain_increment.data(), scratch_.volume.data());
-      StressBatch batch;
-      batch.size = n;
-      batch.strain_increment = scratch_.strain_increment.data();
-      batch.stress = stress_.data() + 6 * first;
-      batch.state = state_.data() + first;
+      StressBatch batch = tet4_batch(first, n);
       const bool collect = plastic_pass && mat.nodal_mixed;
       if (collect)
       {
@@ -609,16 +611,16 @@ void DeformableSolver::nodal_mixed_zone_forces(const double* x, const double* v,
       const bool plastic = mat.model != ZoneModel::elastic;
       const double overlay = hex ? 0.5 : 1.0;
       if (plastic)
-        plastic_stress_work_ += 0.5 * overlay *
-                                stress_power(n, batch.strain_increment, batch.stress,
-                                             scratch_.volume.data());
+        plastic_stress_work_ +=
+            0.5 * overlay *
+            stress_power(n, batch.strain_increment, batch.stress, scratch_.volume.data());
       apply_zone_model(mat, batch);
       if (hex) // eqs. 64-67
         hex_mixed_average_mean_stress(n, stress_.data() + 6 * first, scratch_.volume.data());
       if (plastic)
-        plastic_stress_work_ += 0.5 * overlay *
-                                stress_power(n, batch.strain_increment, batch.stress,
-                                             scratch_.volume.data());
+        plastic_stress_work_ +=
+            0.5 * overlay *
+            stress_power(n, batch.strain_increment, batch.stress, scratch_.volume.data());
       if (collect)
       {
         // Eq. 73: the plastic pressure K e^p (e^p the trace of the plastic

@@ -183,6 +183,21 @@ inline Lanes shape_gradients(const Lanes (&p)[4][3], Lanes (&gr)[4][3])
     gr[0][d] = -(gr[1][d] + gr[2][d] + gr[3][d]);
   return det;
 }
+
+/// Shape-function gradients gm on the geometry halfway through the last
+/// motion, x - v dt / 2 (x at p, v at vel, dt in s): there a rigid rotation
+/// gives an exactly antisymmetric velocity gradient, so no strain, for any
+/// step size. Shared by the strain pass and nodal mixed discretization's
+/// first sweep, which must round alike.
+inline void mid_step_gradients(const Lanes (&p)[4][3], const Lanes (&vel)[4][3], double dt,
+                               Lanes (&gm)[4][3])
+{
+  Lanes mid[4][3];
+  for (int a = 0; a < 4; ++a)
+    for (int d = 0; d < 3; ++d)
+      mid[a][d] = p[a][d] - 0.5 * dt * vel[a][d];
+  shape_gradients(mid, gm);
+}
 } // namespace
 
 void tet4_strain_increments(const TetMesh& mesh, unsigned int first, unsigned int n,
@@ -207,15 +222,9 @@ void tet4_strain_increments(const TetMesh& mesh, unsigned int first, unsigned in
     for (int a = 0; a < 4; ++a)
       for (int d = 0; d < 3; ++d)
         store_lanes(gr_out + (3 * a + d) * W, gr[a][d]);
-    // The motion of the last step, x - v dt -> x, measured on the geometry
-    // halfway through it: a rigid rotation then gives an exactly
-    // antisymmetric velocity gradient, so no strain, for any step size.
-    Lanes mid[4][3];
-    for (int a = 0; a < 4; ++a)
-      for (int d = 0; d < 3; ++d)
-        mid[a][d] = p[a][d] - 0.5 * dt * vel[a][d];
+    // The motion of the last step, x - v dt -> x, on the mid-step geometry.
     Lanes gm[4][3];
-    shape_gradients(mid, gm);
+    mid_step_gradients(p, vel, dt, gm);
     // Velocity gradient L_ij = sum_n v_n,i dN_n/dx_j.
     Lanes L[3][3] = {};
     for (int a = 0; a < 4; ++a)
@@ -280,12 +289,8 @@ void tet4_volumetric_increments(const TetMesh& mesh, unsigned int first, unsigne
     group.gather_corners(v, vel);
     Lanes gr[4][3];
     store_lanes(volume + k0, shape_gradients(p, gr) / 6.0);
-    Lanes mid[4][3];
-    for (int a = 0; a < 4; ++a)
-      for (int d = 0; d < 3; ++d)
-        mid[a][d] = p[a][d] - 0.5 * dt * vel[a][d];
     Lanes gm[4][3];
-    shape_gradients(mid, gm);
+    mid_step_gradients(p, vel, dt, gm);
     Lanes L[3] = {};
     for (int a = 0; a < 4; ++a)
       for (int i = 0; i < 3; ++i)

@@ -173,6 +173,9 @@ private:
   void external_forces(const double* x, double* f);
   void nodal_mixed_zone_forces(const double* x, const double* v, double* f, double strain_dt);
   void move_gridpoints();
+  /// The model's view of 4-node zones [first, first + n): their strain
+  /// increments in scratch_, their stresses and states.
+  StressBatch tet4_batch(unsigned int first, unsigned int n);
   /// Elastic strain energy of the zones (J) and of those of plastic
   /// materials alone, with the current volumes.
   std::pair<double, double> elastic_energy(const double* x) const;
