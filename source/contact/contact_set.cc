@@ -94,7 +94,7 @@ struct FacingSide
 };
 
 FacingSide facing_side(const BlockModel& m, unsigned int block, const Vec3& n, const Vec3& c,
-                       const Vec3& u, const Vec3& v, double band, double sign)
+                       const Vec3& u, const Vec3& v, double band, double sign, bool rigid)
 {
   // sign = +1 for block A (below the plane), -1 for B.
   FacingSide s;
@@ -123,6 +123,23 @@ FacingSide facing_side(const BlockModel& m, unsigned int block, const Vec3& n, c
       best_face = f;
     }
   }
+  // A rigid block's face nearly on the plane faces it whole, its far
+  // vertices open: the region then turns with the block. Taking only the
+  // vertices within the band made the region jump whenever a vertex of a
+  // tilted face crossed it, and the sub-contacts' areas (so their forces
+  // at the same overlap) jump with it, which creates or destroys energy
+  // (deep in an overlap, tens of percent of it). A deformable block's
+  // faces are its boundary triangles: its side stays the band's vertices.
+  if (rigid && !points.empty() && best > 0.99)
+  {
+    points.clear();
+    for (unsigned int k = m.face_loop_start[best_face]; k < m.face_loop_start[best_face + 1]; ++k)
+    {
+      const Vec3 r = m.vertex[m.face_vertex[k]] - c;
+      points.emplace_back(u.dot(r), v.dot(r));
+    }
+    s.hull = convex_hull(points, 1e-12 * band);
+  }
   if (s.hull.size() >= 3 && best > 0.99)
   {
     s.has_face = true;
@@ -149,7 +166,8 @@ double surface_height(const FacingSide& s, const Vec3& n, const Vec3& point)
 /// Returns whether `cp` was changed.
 bool separating_axis_start(const BlockModel& m, unsigned int a, unsigned int b, CommonPlane& cp)
 {
-  const auto gap_along = [&](const Vec3& n, double& top_a, double& bottom_b) {
+  const auto gap_along = [&](const Vec3& n, double& top_a, double& bottom_b)
+  {
     top_a = -1e300;
     bottom_b = 1e300;
     for (unsigned int v = m.vertex_start[a]; v < m.vertex_start[a + 1]; ++v)
@@ -162,7 +180,8 @@ bool separating_axis_start(const BlockModel& m, unsigned int a, unsigned int b, 
   double best = gap_along(cp.normal, top_a, bottom_b);
   Vec3 best_n = cp.normal;
   const Vec3 ab = m.centroid[b] - m.centroid[a];
-  const auto consider = [&](Vec3 n) {
+  const auto consider = [&](Vec3 n)
+  {
     const double length = n.norm();
     if (length < 1e-12)
       return;
@@ -181,7 +200,8 @@ bool separating_axis_start(const BlockModel& m, unsigned int a, unsigned int b, 
     consider(m.face_normal[f]);
   for (unsigned int f = m.face_start[b]; f < m.face_start[b + 1]; ++f)
     consider(m.face_normal[f]);
-  const auto edges = [&](unsigned int blk) {
+  const auto edges = [&](unsigned int blk)
+  {
     std::vector<Vec3> e;
     for (unsigned int f = m.face_start[blk]; f < m.face_start[blk + 1]; ++f)
       for (unsigned int k = m.face_loop_start[f]; k < m.face_loop_start[f + 1]; ++k)
@@ -409,8 +429,10 @@ void ContactSet::build_subcontacts(unsigned int c, const BlockModel& m,
   const Vec3 u = n.unitOrthogonal();
   const Vec3 v = n.cross(u);
   const double band = settings.tolerance;
-  const FacingSide sa = facing_side(m, a, n, ref, u, v, band, +1.0);
-  const FacingSide sb = facing_side(m, b, n, ref, u, v, band, -1.0);
+  const bool rigid_a = !(has_deformable() && (*is_deformable_)[a]);
+  const bool rigid_b = !(has_deformable() && (*is_deformable_)[b]);
+  const FacingSide sa = facing_side(m, a, n, ref, u, v, band, +1.0, rigid_a);
+  const FacingSide sb = facing_side(m, b, n, ref, u, v, band, -1.0, rigid_b);
 
   // The contact region on the plane: where the two facing sides overlap.
   std::vector<Point2> region;

@@ -1,9 +1,10 @@
 // Extreme scene: parameters/stability/rattling_block.prm (see the comment there).
-// Sub-contacts rebuilt every step as the contacts come and go carry their
-// shear forces over to sub-contacts of other areas, so the account of
-// the shear springs' energy and of friction does not close here (about
-// 40 % of the energy, reported, not asserted: a known limitation); what
-// must hold is no NaN and no kinetic energy beyond what the start gave.
+// Contacts made and lost every few steps, faces pressed far deeper than
+// the contact tolerance while they turn. The contact region of a rigid
+// face turns with the face (the face whole, its far vertices open), so
+// the sub-contacts' areas change smoothly and the balance closes; with
+// the region made of the vertices within the tolerance band it was off by
+// 13 % here.
 
 #include "stability.h"
 
@@ -12,5 +13,5 @@ int main(int argc, char** argv)
   talus::ParallelEnvironment env(argc, argv);
   StabilityRun r("rattling_block.prm");
   r.run();
-  r.report(-2e-2);
+  r.report(2e-2);
 }
