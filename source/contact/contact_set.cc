@@ -385,7 +385,7 @@ void ContactSet::update(const BlockModel& m, const ContactSettings& settings,
       }
     const std::size_t first = sc_position.size();
     build_subcontacts(c, m, settings, old_normal_[c]);
-    // Carry forces over from the nearest old sub-contact of this contact.
+    // Carry the shear over from the nearest old sub-contact of this contact.
     for (std::size_t i = first; i < sc_position.size(); ++i)
     {
       double best = 1e300;
@@ -405,6 +405,11 @@ void ContactSet::update(const BlockModel& m, const ContactSettings& settings,
         const Eigen::Quaterniond turn = Eigen::Quaterniond::FromTwoVectors(old_normal_[c], n);
         Vec3 fs = turn * Vec3(old_fs_[3 * match], old_fs_[3 * match + 1], old_fs_[3 * match + 2]);
         fs -= n * n.dot(fs);
+        // The shear stress is carried, not the force: the spring's energy
+        // |fs|^2 / (2 ks A) then follows the area, so sub-contacts rebuilt
+        // with other areas (or more of them) neither make nor lose energy
+        // and the contact's total shear force follows its area.
+        fs *= sc_area[i] / old_area[match];
         Vec3 us = turn * Vec3(old_us_[3 * match], old_us_[3 * match + 1], old_us_[3 * match + 2]);
         us -= n * n.dot(us);
         for (int d = 0; d < 3; ++d)

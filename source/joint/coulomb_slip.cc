@@ -35,6 +35,15 @@ double coulomb_slip(const JointProperties& joint, SubContactBatch& s)
       // Eq. 38: tensile failure or separation: no force at all.
       if (fn < t_max && !has_failed && joint.tensile_strength > 0.0)
         state |= failed;
+      // The shear spring's energy is lost with it, and so is the normal
+      // spring's when it held tension and broke (in compression it gave its
+      // energy back to the blocks as it opened).
+      if (area > 0.0)
+      {
+        const double held = std::min(s.normal_force[i], 0.0);
+        dissipated += 0.5 * held * held / (kn * area) +
+                      0.5 * (fs[0] * fs[0] + fs[1] * fs[1] + fs[2] * fs[2]) * shear_compliance;
+      }
       fn = 0.0;
       fs[0] = fs[1] = fs[2] = 0.0;
       s.normal_force[i] = 0.0;
@@ -87,20 +96,17 @@ double coulomb_slip(const JointProperties& joint, SubContactBatch& s)
         for (int d = 0; d < 3; ++d)
           fs[d] *= scale;
       }
-      // Dissipated: the work done on the joint over the shear increment less
-      // what its shear spring stored of it, never more than the larger of
-      // the old force and the strength times the increment (a force carried
-      // over to a smaller sub-contact at an update is not slip).
+      // Dissipated by the slip: the work done on the joint over the shear
+      // increment less what its shear spring stored of it. When the
+      // strength drops (the normal force falls) the spring gives up energy
+      // with no increment at all: slip too, so no bound by the increment.
       const double work = -0.5 * ((f_old[0] + fs[0]) * dus[0] + (f_old[1] + fs[1]) * dus[1] +
                                   (f_old[2] + fs[2]) * dus[2]);
       const double stored = 0.5 *
                             (fs[0] * fs[0] + fs[1] * fs[1] + fs[2] * fs[2] -
                              (f_old[0] * f_old[0] + f_old[1] * f_old[1] + f_old[2] * f_old[2])) *
                             shear_compliance;
-      const double dus_mag = std::sqrt(dus[0] * dus[0] + dus[1] * dus[1] + dus[2] * dus[2]);
-      const double f_old_mag =
-          std::sqrt(f_old[0] * f_old[0] + f_old[1] * f_old[1] + f_old[2] * f_old[2]);
-      dissipated += std::clamp(work - stored, 0.0, std::max(strength, f_old_mag) * dus_mag);
+      dissipated += std::max(work - stored, 0.0);
     }
     s.normal_force[i] = fn;
     s.state[i] = state;

@@ -1,7 +1,7 @@
 // Extreme scene: parameters/stability/near_incompressible.prm (see the comment there).
-// Zones on the updated geometry with the Jaumann stress rate are not
-// exactly hyperelastic; the balance is asserted within the tolerance of
-// the other scenes (about 1.7e-2 measured, all of it energy lost).
+// Measured 2.7e-5; it was 1.7e-2 while friction missed the energy a shear
+// spring gives up when its normal force falls (not the zones' large
+// strains, as first thought).
 
 #include "stability.h"
 
@@ -10,5 +10,5 @@ int main(int argc, char** argv)
   talus::ParallelEnvironment env(argc, argv);
   StabilityRun r("near_incompressible.prm");
   r.run();
-  r.report(2e-2);
+  r.report(1e-3);
 }

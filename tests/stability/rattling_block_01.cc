@@ -1,10 +1,10 @@
 // Extreme scene: parameters/stability/rattling_block.prm (see the comment there).
 // Contacts made and lost every few steps, faces pressed far deeper than
-// the contact tolerance while they turn. The contact region of a rigid
-// face turns with the face (the face whole, its far vertices open), so
-// the sub-contacts' areas change smoothly and the balance closes; with
-// the region made of the vertices within the tolerance band it was off by
-// 13 % here.
+// the contact tolerance while they turn. Three things close the balance
+// here (each, undone, leaves 1e-2 to 1.3e-1): the contact region of a rigid
+// face turns with the face (the face whole, its far vertices open); rebuilt
+// sub-contacts carry shear stress, not force; friction counts the energy a
+// shear spring gives up when its strength falls.
 
 #include "stability.h"
 
@@ -13,5 +13,5 @@ int main(int argc, char** argv)
   talus::ParallelEnvironment env(argc, argv);
   StabilityRun r("rattling_block.prm");
   r.run();
-  r.report(2e-2);
+  r.report(1e-3);
 }

@@ -41,7 +41,8 @@ struct ContactSettings
 /// Every contact between blocks (one common plane per pair) and their
 /// sub-contacts, in flat arrays. Contacts live in slots that are reused
 /// through a free list; sub-contacts are rebuilt in contact order at each
-/// update, carrying their forces over by key so nothing jumps.
+/// update, each taking the shear stress of the nearest old sub-contact of
+/// its contact, so that neither the shear force nor its energy jumps.
 class ContactSet
 {
 public:
