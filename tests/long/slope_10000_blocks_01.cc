@@ -11,10 +11,9 @@ int main(int argc, char** argv)
   talus::ParallelEnvironment env(argc, argv);
   StabilityRun r("slope_10000_blocks.prm");
   r.run(r.scene.solver.steps, 100);
-  // Sub-contacts rebuilt at the common-plane updates of a static run
-  // lose a little stored joint energy (about 2 % of the largest term over
-  // the run): no energy may be created beyond the tolerance.
-  r.report(2e-2, true);
+  // The balance closes to 1.5e-3 (it lost 1.9e-2 before rebuilt
+  // sub-contacts carried shear stress and friction counted all the slip).
+  r.report(2e-2);
   const double ratio = r.solver().unbalanced_ratio();
   std::printf("equilibrium: unbalanced ratio %.1e (target %.0e) %s\n", ratio,
               r.scene.solver.target_ratio, ratio < r.scene.solver.target_ratio ? "OK" : "WRONG");
