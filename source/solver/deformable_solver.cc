@@ -374,9 +374,18 @@ DeformableSolver::DeformableSolver(const TetMesh& mesh, std::vector<ZoneMaterial
                    s_.global_damping_ratio, dt_);
   if (!s_.dynamic && s_.damping == Damping::combined)
     last_force_.assign(3 * ng, 0.0);
+  if (nodal_mixed_)
+    plan_nodal_mixed();
 }
 
 DeformableSolver::~DeformableSolver() = default;
+
+void DeformableSolver::set_nodal_mixed_ring_limit(unsigned int batches)
+{
+  nmd_ring_limit_ = batches;
+  if (nodal_mixed_)
+    plan_nodal_mixed();
+}
 
 double DeformableSolver::stable_time_step_of(const std::vector<double>& mass,
                                              const std::vector<double>& stiffness)
@@ -529,52 +538,129 @@ StressBatch DeformableSolver::tet4_batch(unsigned int first, unsigned int n)
   return batch;
 }
 
+void DeformableSolver::plan_nodal_mixed()
+{
+  // The batches of the model stage, in order, and for each the last batch
+  // whose sums stage must be done first: the last batch of a mixed
+  // material that touches one of its gridpoints, where eq. 69's sums are
+  // complete; and for each batch the gridpoints whose sums it completes.
+  nmd_batches_.clear();
+  for (std::size_t r = 0; r + 1 < batch_start_.size(); ++r)
+  {
+    const ZoneMaterial& mat = materials_[material_of_zone_[batch_start_[r]]];
+    // Hexahedral zones: calls of whole hexahedra.
+    const unsigned int chunk = mat.element == ZoneElement::hex_mixed
+                                   ? zone_batch / TetMesh::tets_per_hex * TetMesh::tets_per_hex
+                                   : zone_batch;
+    for (unsigned int first = batch_start_[r]; first < batch_start_[r + 1]; first += chunk)
+      nmd_batches_.push_back(
+          {first, std::min(chunk, batch_start_[r + 1] - first), mat.nodal_mixed, 0});
+  }
+  const unsigned int nb = static_cast<unsigned int>(nmd_batches_.size());
+  const unsigned int none = std::numeric_limits<unsigned int>::max();
+  std::vector<unsigned int> last_batch(mesh_.n_gridpoints(), none);
+  for (unsigned int j = 0; j < nb; ++j)
+    if (nmd_batches_[j].mixed)
+      for (unsigned int z = nmd_batches_[j].first; z < nmd_batches_[j].first + nmd_batches_[j].n;
+           ++z)
+        for (unsigned int g : mesh_.zone_gridpoint[z])
+          last_batch[g] = j;
+  unsigned int lag = 0;
+  for (unsigned int b = 0; b < nb; ++b)
+  {
+    NodalMixedBatch& batch = nmd_batches_[b];
+    batch.ready_after = b;
+    if (batch.mixed)
+      for (unsigned int z = batch.first; z < batch.first + batch.n; ++z)
+        for (unsigned int g : mesh_.zone_gridpoint[z])
+          batch.ready_after = std::max(batch.ready_after, last_batch[g]);
+    lag = std::max(lag, batch.ready_after - b);
+  }
+  completed_start_.assign(nb + 1, 0);
+  for (unsigned int g = 0; g < mesh_.n_gridpoints(); ++g)
+    if (last_batch[g] != none)
+      ++completed_start_[last_batch[g] + 1];
+  for (unsigned int j = 0; j < nb; ++j)
+    completed_start_[j + 1] += completed_start_[j];
+  completed_gridpoint_.resize(completed_start_[nb]);
+  std::vector<unsigned int> fill(completed_start_.begin(), completed_start_.end() - 1);
+  for (unsigned int g = 0; g < mesh_.n_gridpoints(); ++g)
+    if (last_batch[g] != none)
+      completed_gridpoint_[fill[last_batch[g]]++] = g;
+  // Batches between their sums stage and their model stage: at most
+  // lag + 1 at once, one layer of zones in slab order. While their scratch
+  // fits in the second-level cache (a few hundred zones per layer), the
+  // sums stage is the strain pass itself and keeps its scratch for the
+  // model stage; a larger mesh takes the volumetric increments alone there
+  // and the strain pass again in the model stage, as keeping a whole layer
+  // of scratch costs more in cache traffic than the second pass does.
+  nmd_lag_ = lag;
+  nmd_ring_.assign(lag + 1 <= nmd_ring_limit_ ? lag + 1 : 0, Tet4Scratch());
+  for (Tet4Scratch& scratch : nmd_ring_)
+    scratch.resize(zone_batch);
+}
+
 void DeformableSolver::nodal_mixed_zone_forces(const double* x, const double* v, double* f,
                                                double strain_dt)
 {
   // Nodal mixed discretization (eqs. 68-76) for the zones whose material
-  // asks for it, in sweeps over the zones in order, a batch at a time, so
-  // that nothing per zone outlives its batch:
-  //   1. every mixed zone's volumetric strain increment and volume, summed
-  //      at its gridpoints (eq. 69);
-  //   2. strain increments again, the volumetric part replaced by the mean
-  //      of the gridpoint averages (eqs. 70-71), the zone model, the plastic
-  //      pressure of zones that yielded summed at their gridpoints (eqs.
-  //      73-75), and the nodal forces;
-  //   3. when a zone yielded: its plastic pressure traded for the mean of
-  //      its gridpoints' (eq. 76), and the nodal forces (again).
-  // Every sum is added up in zone order, as in one pass over all zones.
+  // asks for it. One pass over the zones in order, a batch at a time, in
+  // two stages that run a few batches apart:
+  //   sums stage: every mixed zone's volumetric strain increment and
+  //     volume, summed at its gridpoints (eq. 69); a gridpoint's sum is
+  //     made its average as soon as its last zone has been added;
+  //   model stage, once every gridpoint of the batch has its average: the
+  //     strain increments with the volumetric part replaced by the mean of
+  //     the gridpoint averages (eqs. 70-71), the zone model, the plastic
+  //     pressure of zones that yielded summed at their gridpoints (eqs.
+  //     73-75), and the nodal forces;
+  //   then, when a zone yielded, its plastic pressure traded for the mean
+  //     of its gridpoints' (eq. 76) and the nodal forces again.
+  // Short layers (see plan_nodal_mixed) keep the strain increments of the
+  // sums stage for the model stage; otherwise the model stage takes them
+  // again (bitwise the same numbers). Every sum is added up in zone order,
+  // as in one sweep over all zones, and the sums stage reads nothing that
+  // the model stage writes, so the results do not depend on the distance
+  // between the two stages, nor on the mode.
   const unsigned int ng = mesh_.n_gridpoints();
-  const auto material_of_run = [&](std::size_t r) -> const ZoneMaterial&
-  { return materials_[material_of_zone_[batch_start_[r]]]; };
   bool plastic_pass = false;
   for (const ZoneMaterial& m : materials_)
     plastic_pass |= m.nodal_mixed && m.model != ZoneModel::elastic;
-  scratch_.resize(zone_batch);
   batch_volumetric_.resize(zone_batch + Tet4Scratch::max_lanes);
-  const auto chunk_of = [&](const ZoneMaterial& m)
-  {
-    // Hexahedral zones: calls of whole hexahedra.
-    return m.element == ZoneElement::hex_mixed
-               ? zone_batch / TetMesh::tets_per_hex * TetMesh::tets_per_hex
-               : zone_batch;
-  };
-
+  scratch_.resize(zone_batch);
   volume_sum_.assign(ng, 0.0);
   strain_average_.assign(ng, 0.0);
-  for (std::size_t r = 0; r + 1 < batch_start_.size(); ++r)
-    if (material_of_run(r).nodal_mixed)
-      for (unsigned int first = batch_start_[r]; first < batch_start_[r + 1]; first += zone_batch)
+  const unsigned int ring = static_cast<unsigned int>(nmd_ring_.size());
+  const auto sums_stage = [&](unsigned int j)
+  {
+    const NodalMixedBatch& b = nmd_batches_[j];
+    if (ring > 0)
+    {
+      Tet4Scratch& scratch = nmd_ring_[j % ring];
+      tet4_strain_increments(mesh_, b.first, b.n, x, v, strain_dt, stress_.data(), scratch);
+      if (!b.mixed)
+        return;
+      for (unsigned int k = 0; k < b.n; ++k)
       {
-        const unsigned int n = std::min(zone_batch, batch_start_[r + 1] - first);
-        tet4_volumetric_increments(mesh_, first, n, x, v, strain_dt, batch_volumetric_.data(),
-                                   scratch_.volume.data());
-        add_volume_weighted(mesh_, first, n, batch_volumetric_.data(), scratch_.volume.data(),
-                            strain_average_.data(), volume_sum_.data());
+        const double* de = scratch.strain_increment.data() + 6 * k;
+        batch_volumetric_[k] = (de[0] + de[1] + de[2]) / 3.0;
       }
-  divide_by_volume(ng, strain_average_.data(), volume_sum_.data());
+      add_volume_weighted(mesh_, b.first, b.n, batch_volumetric_.data(), scratch.volume.data(),
+                          strain_average_.data(), volume_sum_.data());
+    }
+    else if (b.mixed)
+    {
+      tet4_volumetric_increments(mesh_, b.first, b.n, x, v, strain_dt, batch_volumetric_.data(),
+                                 scratch_.volume.data());
+      add_volume_weighted(mesh_, b.first, b.n, batch_volumetric_.data(), scratch_.volume.data(),
+                          strain_average_.data(), volume_sum_.data());
+    }
+    divide_by_volume(completed_gridpoint_.data() + completed_start_[j],
+                     completed_start_[j + 1] - completed_start_[j], strain_average_.data(),
+                     volume_sum_.data());
+  };
 
-  // Nodal forces in the second sweep unless a mixed zone may yield; if one
+  // Nodal forces in the model stage unless a mixed zone may yield; if one
   // may, but none did at the last step, they are taken there all the same
   // and taken again, all of them in order, only if one did yield after all
   // (the sums are the same either way).
@@ -585,62 +671,67 @@ void DeformableSolver::nodal_mixed_zone_forces(const double* x, const double* v,
     yielded_zone_.clear();
     yielded_volumetric_.clear();
   }
-  for (std::size_t r = 0; r + 1 < batch_start_.size(); ++r)
+  unsigned int summed = 0; // batches through the sums stage
+  for (unsigned int j = 0; j < nmd_batches_.size(); ++j)
   {
-    const ZoneMaterial& mat = material_of_run(r);
+    for (; summed <= nmd_batches_[j].ready_after; ++summed)
+      sums_stage(summed);
+    const unsigned int first = nmd_batches_[j].first, n = nmd_batches_[j].n;
+    Tet4Scratch& scratch = ring > 0 ? nmd_ring_[j % ring] : scratch_;
+    if (ring == 0)
+      tet4_strain_increments(mesh_, first, n, x, v, strain_dt, stress_.data(), scratch);
+    const ZoneMaterial& mat = materials_[material_of_zone_[first]];
     const bool hex = mat.element == ZoneElement::hex_mixed;
-    const unsigned int chunk = chunk_of(mat);
-    for (unsigned int first = batch_start_[r]; first < batch_start_[r + 1]; first += chunk)
+    if (mat.nodal_mixed)
+      replace_volumetric_strain(mesh_, first, n, strain_average_.data(),
+                                scratch.strain_increment.data());
+    if (hex) // eqs. 60-63
+      hex_mixed_average_strain(n, scratch.strain_increment.data(), scratch.volume.data());
+    StressBatch batch;
+    batch.size = n;
+    batch.strain_increment = scratch.strain_increment.data();
+    batch.stress = stress_.data() + 6 * first;
+    batch.state = state_.data() + first;
+    const bool collect = plastic_pass && mat.nodal_mixed;
+    if (collect)
     {
-      const unsigned int n = std::min(chunk, batch_start_[r + 1] - first);
-      tet4_strain_increments(mesh_, first, n, x, v, strain_dt, stress_.data(), scratch_);
-      if (mat.nodal_mixed)
-        replace_volumetric_strain(mesh_, first, n, strain_average_.data(),
-                                  scratch_.strain_increment.data());
-      if (hex) // eqs. 60-63
-        hex_mixed_average_strain(n, scratch_.strain_increment.data(), scratch_.volume.data());
-      StressBatch batch = tet4_batch(first, n);
-      const bool collect = plastic_pass && mat.nodal_mixed;
-      if (collect)
-      {
-        std::fill(batch_volumetric_.begin(), batch_volumetric_.begin() + n, 0.0);
-        batch.plastic_volumetric = batch_volumetric_.data();
-      }
-      // The stress work of plastic materials, as in zone_forces(); the
-      // plastic pressure traded in sweep 3 adds its share there.
-      const bool plastic = mat.model != ZoneModel::elastic;
-      const double overlay = hex ? 0.5 : 1.0;
-      if (plastic)
-        plastic_stress_work_ +=
-            0.5 * overlay *
-            stress_power(n, batch.strain_increment, batch.stress, scratch_.volume.data());
-      apply_zone_model(mat, batch);
-      if (hex) // eqs. 64-67
-        hex_mixed_average_mean_stress(n, stress_.data() + 6 * first, scratch_.volume.data());
-      if (plastic)
-        plastic_stress_work_ +=
-            0.5 * overlay *
-            stress_power(n, batch.strain_increment, batch.stress, scratch_.volume.data());
-      if (collect)
-      {
-        // Eq. 73: the plastic pressure K e^p (e^p the trace of the plastic
-        // strain increment, which lowers the mean stress by K e^p).
-        for (unsigned int k = 0; k < n; ++k)
-          if (batch_volumetric_[k] != 0.0)
-          {
-            yielded_zone_.push_back(first + k);
-            yielded_volumetric_.push_back(batch_volumetric_[k]);
-            batch_volumetric_[k] *= mat.bulk_modulus;
-          }
-        add_volume_weighted(mesh_, first, n, batch_volumetric_.data(), scratch_.volume.data(),
-                            plastic_average_.data(), nullptr);
-      }
-      if (forces_now)
-      {
-        if (hex) // each overlay's forces weighted 1/2
-          hex_mixed_overlay_weight(n, scratch_.volume.data());
-        tet4_nodal_forces(mesh_, first, n, stress_.data(), scratch_, f, force_size_.data());
-      }
+      std::fill(batch_volumetric_.begin(), batch_volumetric_.begin() + n, 0.0);
+      batch.plastic_volumetric = batch_volumetric_.data();
+    }
+    // The stress work of plastic materials, as in zone_forces(); the
+    // plastic pressure traded in sweep 3 adds its share there.
+    const bool plastic = mat.model != ZoneModel::elastic;
+    const double overlay = hex ? 0.5 : 1.0;
+    if (plastic)
+      plastic_stress_work_ +=
+          0.5 * overlay *
+          stress_power(n, batch.strain_increment, batch.stress, scratch.volume.data());
+    apply_zone_model(mat, batch);
+    if (hex) // eqs. 64-67
+      hex_mixed_average_mean_stress(n, stress_.data() + 6 * first, scratch.volume.data());
+    if (plastic)
+      plastic_stress_work_ +=
+          0.5 * overlay *
+          stress_power(n, batch.strain_increment, batch.stress, scratch.volume.data());
+    if (collect)
+    {
+      // Eq. 73: the plastic pressure K e^p (e^p the trace of the plastic
+      // strain increment, which lowers the mean stress by K e^p).
+      for (unsigned int k = 0; k < n; ++k)
+        if (batch_volumetric_[k] != 0.0)
+        {
+          yielded_zone_.push_back(first + k);
+          yielded_volumetric_.push_back(batch_volumetric_[k]);
+          batch_volumetric_[k] *= mat.bulk_modulus;
+        }
+      add_volume_weighted(mesh_, first, n, batch_volumetric_.data(), scratch.volume.data(),
+                          plastic_average_.data(), nullptr);
+    }
+    if (forces_now)
+    {
+      if (hex) // each overlay's forces weighted 1/2
+        hex_mixed_overlay_weight(n, scratch.volume.data());
+      tet4_nodal_forces(mesh_, first, n, stress_.data(), scratch, f, force_size_.data());
     }
   }
   if (!plastic_pass)
@@ -658,31 +749,25 @@ void DeformableSolver::nodal_mixed_zone_forces(const double* x, const double* v,
   if (!yielded_zone_.empty())
     divide_by_volume(ng, plastic_average_.data(), volume_sum_.data());
   std::size_t next = 0;
-  for (std::size_t r = 0; r + 1 < batch_start_.size(); ++r)
+  for (const NodalMixedBatch& b : nmd_batches_)
   {
-    const ZoneMaterial& mat = material_of_run(r);
-    const unsigned int chunk = chunk_of(mat);
-    for (unsigned int first = batch_start_[r]; first < batch_start_[r + 1]; first += chunk)
+    for (; next < yielded_zone_.size() && yielded_zone_[next] < b.first + b.n; ++next)
     {
-      const unsigned int n = std::min(chunk, batch_start_[r + 1] - first);
-      for (; next < yielded_zone_.size() && yielded_zone_[next] < first + n; ++next)
-      {
-        const unsigned int z = yielded_zone_[next];
-        const double shift =
-            multiply_add(materials_[material_of_zone_[z]].bulk_modulus, yielded_volumetric_[next],
-                         -corner_mean(mesh_, z, plastic_average_.data()));
-        for (int c = 0; c < 3; ++c)
-          stress_[6 * z + c] += shift;
-        // Its share of the stress work, V shift tr(d eps) / 2: the zone's
-        // volumetric increment is the mean of its gridpoints' (eq. 71).
-        plastic_stress_work_ += 0.5 * tet_volume(x, mesh_.zone_gridpoint[z]) * shift * 3.0 *
-                                corner_mean(mesh_, z, strain_average_.data());
-      }
-      tet4_geometry(mesh_, first, n, x, scratch_);
-      if (mat.element == ZoneElement::hex_mixed)
-        hex_mixed_overlay_weight(n, scratch_.volume.data());
-      tet4_nodal_forces(mesh_, first, n, stress_.data(), scratch_, f, force_size_.data());
+      const unsigned int z = yielded_zone_[next];
+      const double shift =
+          multiply_add(materials_[material_of_zone_[z]].bulk_modulus, yielded_volumetric_[next],
+                       -corner_mean(mesh_, z, plastic_average_.data()));
+      for (int c = 0; c < 3; ++c)
+        stress_[6 * z + c] += shift;
+      // Its share of the stress work, V shift tr(d eps) / 2: the zone's
+      // volumetric increment is the mean of its gridpoints' (eq. 71).
+      plastic_stress_work_ += 0.5 * tet_volume(x, mesh_.zone_gridpoint[z]) * shift * 3.0 *
+                              corner_mean(mesh_, z, strain_average_.data());
     }
+    tet4_geometry(mesh_, b.first, b.n, x, scratch_);
+    if (materials_[material_of_zone_[b.first]].element == ZoneElement::hex_mixed)
+      hex_mixed_overlay_weight(b.n, scratch_.volume.data());
+    tet4_nodal_forces(mesh_, b.first, b.n, stress_.data(), scratch_, f, force_size_.data());
   }
 }
 

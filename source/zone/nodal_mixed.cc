@@ -28,6 +28,17 @@ void divide_by_volume(unsigned int n_gridpoints, double* weighted_sum, const dou
       weighted_sum[g] /= volume_sum[g];
 }
 
+void divide_by_volume(const unsigned int* gridpoints, unsigned int count, double* weighted_sum,
+                      const double* volume_sum)
+{
+  for (unsigned int k = 0; k < count; ++k)
+  {
+    const unsigned int g = gridpoints[k];
+    if (volume_sum[g] > 0.0)
+      weighted_sum[g] /= volume_sum[g];
+  }
+}
+
 void replace_volumetric_strain(const TetMesh& mesh, unsigned int first, unsigned int n,
                                const double* gridpoint_average, double* strain_increment)
 {

@@ -188,7 +188,7 @@ inline Lanes shape_gradients(const Lanes (&p)[4][3], Lanes (&gr)[4][3])
 /// motion, x - v dt / 2 (x at p, v at vel, dt in s): there a rigid rotation
 /// gives an exactly antisymmetric velocity gradient, so no strain, for any
 /// step size. Shared by the strain pass and nodal mixed discretization's
-/// first sweep, which must round alike.
+/// sums, which must round alike.
 inline void mid_step_gradients(const Lanes (&p)[4][3], const Lanes (&vel)[4][3], double dt,
                                Lanes (&gm)[4][3])
 {

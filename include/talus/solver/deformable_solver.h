@@ -150,6 +150,15 @@ public:
   double largest_gridpoint_energy() const;
   std::string divergence_site(double dt) const;
 
+  /// Nodal mixed discretization keeps the strain increments of up to this
+  /// many batches of zones (152 KB each) between its two stages, when one
+  /// layer of the mesh fits (see plan_nodal_mixed); otherwise, or with 0,
+  /// it takes them twice. The results are the same either way: for tests
+  /// and benchmarks. The lag found, in batches: nodal_mixed_lag().
+  void set_nodal_mixed_ring_limit(unsigned int batches);
+  unsigned int nodal_mixed_lag() const { return nmd_lag_; }
+  bool nodal_mixed_keeps_strains() const { return !nmd_ring_.empty(); }
+
   /// Holds every component of gridpoint g at velocity `v` (m/s) from now on.
   void hold_gridpoint(unsigned int g, const Vec3& v);
 
@@ -172,6 +181,9 @@ private:
   /// into force_size_: where the zone forces are added.
   void external_forces(const double* x, double* f);
   void nodal_mixed_zone_forces(const double* x, const double* v, double* f, double strain_dt);
+  /// The batches of nodal_mixed_zone_forces and how far its strain stage
+  /// must run ahead of each (set once, from the mesh and the materials).
+  void plan_nodal_mixed();
   void move_gridpoints();
   /// The model's view of 4-node zones [first, first + n): their strain
   /// increments in scratch_, their stresses and states.
@@ -219,6 +231,24 @@ private:
   std::vector<double> strain_average_;   ///< per gridpoint: volumetric strain increment
   std::vector<double> plastic_average_;  ///< per gridpoint: plastic pressure, Pa
   std::vector<double> batch_volumetric_; ///< per zone of a batch: e, or plastic e^p
+  /// A batch of zones [first, first + n), of a mixed material or not; its
+  /// model stage waits for the sums stage of batch `ready_after`.
+  struct NodalMixedBatch
+  {
+    unsigned int first, n;
+    bool mixed;
+    unsigned int ready_after;
+  };
+  std::vector<NodalMixedBatch> nmd_batches_;
+  /// The gridpoints whose sums batch j completes:
+  /// completed_gridpoint_[completed_start_[j] .. completed_start_[j + 1]).
+  std::vector<unsigned int> completed_start_, completed_gridpoint_;
+  /// Scratch of the batches between their sums and model stages (batch j
+  /// in nmd_ring_[j % size]); empty when the model stage takes the strain
+  /// increments again.
+  std::vector<Tet4Scratch> nmd_ring_;
+  unsigned int nmd_ring_limit_ = 5; ///< 760 KB of scratch: within the second-level cache (measured)
+  unsigned int nmd_lag_ = 0;
   /// Zones whose plastic volumetric strain increment e^p is not zero this
   /// step, in order, with their e^p.
   std::vector<unsigned int> yielded_zone_;

@@ -39,6 +39,10 @@ void add_volume_weighted(const TetMesh& mesh, unsigned int first, unsigned int n
 /// The gridpoint averages, weighted_sum / volume_sum, in place, for the
 /// `n_gridpoints` gridpoints (those with no volume are left alone).
 void divide_by_volume(unsigned int n_gridpoints, double* weighted_sum, const double* volume_sum);
+/// The same for the `count` gridpoints listed (those whose sums are
+/// complete while others are still growing).
+void divide_by_volume(const unsigned int* gridpoints, unsigned int count, double* weighted_sum,
+                      const double* volume_sum);
 
 /// Mean of the gridpoint averages at the four gridpoints of zone z. Each
 /// quarter is exact, so this is the sum of a quarter of each average,
