@@ -631,8 +631,7 @@ void DeformableSolver::nodal_mixed_zone_forces(const double* x, const double* v,
     plastic_pass |= m.nodal_mixed && m.model != ZoneModel::elastic;
   batch_volumetric_.resize(zone_batch + Tet4Scratch::max_lanes);
   scratch_.resize(zone_batch);
-  volume_sum_.assign(ng, 0.0);
-  strain_average_.assign(ng, 0.0);
+  strain_sums_.assign(2 * std::size_t(ng), 0.0);
   const unsigned int ring = static_cast<unsigned int>(nmd_ring_.size());
   const auto sums_stage = [&](unsigned int j)
   {
@@ -648,19 +647,18 @@ void DeformableSolver::nodal_mixed_zone_forces(const double* x, const double* v,
         const double* de = scratch.strain_increment.data() + 6 * k;
         batch_volumetric_[k] = (de[0] + de[1] + de[2]) / 3.0;
       }
-      add_volume_weighted(mesh_, b.first, b.n, batch_volumetric_.data(), scratch.volume.data(),
-                          strain_average_.data(), volume_sum_.data());
+      add_volume_weighted_pairs(mesh_, b.first, b.n, batch_volumetric_.data(),
+                                scratch.volume.data(), strain_sums_.data());
     }
     else if (b.mixed)
     {
       tet4_volumetric_increments(mesh_, b.first, b.n, x, v, strain_dt, batch_volumetric_.data(),
                                  scratch_.volume.data());
-      add_volume_weighted(mesh_, b.first, b.n, batch_volumetric_.data(), scratch_.volume.data(),
-                          strain_average_.data(), volume_sum_.data());
+      add_volume_weighted_pairs(mesh_, b.first, b.n, batch_volumetric_.data(),
+                                scratch_.volume.data(), strain_sums_.data());
     }
-    divide_by_volume(completed_gridpoint_.data() + completed_start_[j],
-                     completed_start_[j + 1] - completed_start_[j], strain_average_.data(),
-                     volume_sum_.data());
+    average_pairs(completed_gridpoint_.data() + completed_start_[j],
+                  completed_start_[j + 1] - completed_start_[j], strain_sums_.data());
   };
 
   // Nodal forces in the model stage unless a mixed zone may yield; if one
@@ -687,7 +685,7 @@ void DeformableSolver::nodal_mixed_zone_forces(const double* x, const double* v,
     const ZoneMaterial& mat = materials_[material_of_zone_[first]];
     const bool hex = mat.element == ZoneElement::hex_mixed;
     if (mat.nodal_mixed)
-      replace_volumetric_strain(mesh_, first, n, strain_average_.data(),
+      replace_volumetric_strain(mesh_, first, n, strain_sums_.data(),
                                 scratch.strain_increment.data());
     if (hex) // eqs. 60-63
       hex_mixed_average_strain(n, scratch.strain_increment.data(), scratch.volume.data());
@@ -729,7 +727,7 @@ void DeformableSolver::nodal_mixed_zone_forces(const double* x, const double* v,
           batch_volumetric_[k] *= mat.bulk_modulus;
         }
       add_volume_weighted(mesh_, first, n, batch_volumetric_.data(), scratch.volume.data(),
-                          plastic_average_.data(), nullptr);
+                          plastic_average_.data());
     }
     if (forces_now)
     {
@@ -751,7 +749,7 @@ void DeformableSolver::nodal_mixed_zone_forces(const double* x, const double* v,
   // Eqs. 74-76: each zone that yielded trades its own plastic pressure for
   // the mean of its gridpoints' averages; then the nodal forces.
   if (!yielded_zone_.empty())
-    divide_by_volume(ng, plastic_average_.data(), volume_sum_.data());
+    divide_by_pair_volume(ng, plastic_average_.data(), strain_sums_.data());
   std::size_t next = 0;
   for (const NodalMixedBatch& b : nmd_batches_)
   {
@@ -766,7 +764,7 @@ void DeformableSolver::nodal_mixed_zone_forces(const double* x, const double* v,
       // Its share of the stress work, V shift tr(d eps) / 2: the zone's
       // volumetric increment is the mean of its gridpoints' (eq. 71).
       plastic_stress_work_ += 0.5 * tet_volume(x, mesh_.zone_gridpoint[z]) * shift * 3.0 *
-                              corner_mean(mesh_, z, strain_average_.data());
+                              corner_mean(mesh_, z, strain_sums_.data(), 2);
     }
     tet4_geometry(mesh_, b.first, b.n, x, scratch_);
     if (materials_[material_of_zone_[b.first]].element == ZoneElement::hex_mixed)

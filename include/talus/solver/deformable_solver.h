@@ -227,8 +227,10 @@ private:
   unsigned int points_per_zone_ = 1; ///< stress points per zone
   // Nodal mixed discretization only (empty otherwise).
   bool nodal_mixed_ = false;
-  std::vector<double> volume_sum_;       ///< per gridpoint: zone volumes around it, m^3
-  std::vector<double> strain_average_;   ///< per gridpoint: volumetric strain increment
+  /// Two per gridpoint, side by side so that one access adds both: the
+  /// volume-weighted sum of the volumetric strain increments around it
+  /// (then their average), and the zone volumes around it (m^3).
+  std::vector<double> strain_sums_;
   std::vector<double> plastic_average_;  ///< per gridpoint: plastic pressure, Pa
   std::vector<double> batch_volumetric_; ///< per zone of a batch: e, or plastic e^p
   /// A batch of zones [first, first + n), of a mixed material or not; its

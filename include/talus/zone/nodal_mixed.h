@@ -28,39 +28,45 @@ inline double multiply_add(double a, double b, double c)
 #endif
 }
 
-/// Eq. 69 (and eq. 75): adds value V to `weighted_sum` and, when
-/// `volume_sum` is given, V to it at each gridpoint of every zone of the
-/// batch (V the zone's volume, m^3). A zone with value 0 changes no sum
-/// and may be left out.
+/// Eq. 75: adds value V to `weighted_sum` at each gridpoint of every zone
+/// of the batch (V the zone's volume, m^3); zones with value 0 change no
+/// sum and are left out.
 void add_volume_weighted(const TetMesh& mesh, unsigned int first, unsigned int n,
-                         const double* value, const double* volume, double* weighted_sum,
-                         double* volume_sum);
+                         const double* value, const double* volume, double* weighted_sum);
 
-/// The gridpoint averages, weighted_sum / volume_sum, in place, for the
-/// `n_gridpoints` gridpoints (those with no volume are left alone).
-void divide_by_volume(unsigned int n_gridpoints, double* weighted_sum, const double* volume_sum);
-/// The same for the `count` gridpoints listed (those whose sums are
-/// complete while others are still growing).
-void divide_by_volume(const unsigned int* gridpoints, unsigned int count, double* weighted_sum,
-                      const double* volume_sum);
+/// Eq. 69 with the two sums side by side (`pairs`: two per gridpoint, the
+/// sum of value V, then the sum of V), rounded as one multiply-add and one
+/// add per gridpoint would round them, with one access to each gridpoint
+/// of every zone of the batch.
+void add_volume_weighted_pairs(const TetMesh& mesh, unsigned int first, unsigned int n,
+                               const double* value, const double* volume, double* pairs);
+/// The first number of each listed gridpoint's pair divided by the second
+/// (its average), in place, where that is positive: for the `count`
+/// gridpoints whose sums are complete while others are still growing.
+void average_pairs(const unsigned int* gridpoints, unsigned int count, double* pairs);
 
-/// Mean of the gridpoint averages at the four gridpoints of zone z. Each
-/// quarter is exact, so this is the sum of a quarter of each average,
-/// in corner order, whether the quarter is taken before or after the
-/// division.
-inline double corner_mean(const TetMesh& mesh, unsigned int z, const double* average)
+/// Eq. 75's averages, weighted_sum / V in place (one number per
+/// gridpoint), V the second number of each gridpoint's pair.
+void divide_by_pair_volume(unsigned int n_gridpoints, double* weighted_sum, const double* pairs);
+
+/// Mean of the gridpoint averages at the four gridpoints of zone z, the
+/// averages `stride` numbers apart. Each quarter is exact, so this is the
+/// sum of a quarter of each average, in corner order, whether the quarter
+/// is taken before or after the division.
+inline double corner_mean(const TetMesh& mesh, unsigned int z, const double* average,
+                          unsigned int stride = 1)
 {
   double mean = 0.0;
   for (unsigned int g : mesh.zone_gridpoint[z])
-    mean += 0.25 * average[g];
+    mean += 0.25 * average[std::size_t(stride) * g];
   return mean;
 }
 
 /// Eqs. 70-71: each zone of the batch keeps the deviatoric part of its
 /// strain increment (6 per zone, xx yy zz xy yz zx) and takes the mean of
 /// its gridpoints' averages of the volumetric increment as its volumetric
-/// part.
+/// part (the first number of each gridpoint's pair, see average_pairs).
 void replace_volumetric_strain(const TetMesh& mesh, unsigned int first, unsigned int n,
-                               const double* gridpoint_average, double* strain_increment);
+                               const double* average_pairs, double* strain_increment);
 
 } // namespace talus
