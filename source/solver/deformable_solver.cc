@@ -504,28 +504,33 @@ void DeformableSolver::zone_forces()
       if (hex) // eqs. 60-63
         hex_mixed_average_strain(n, scratch_.strain_increment.data(), scratch_.volume.data());
       StressBatch batch = tet4_batch(first, n);
-      // Plastic materials: the stress work of the step, V (s_old + s_new) / 2
-      // : d(eps), from which the plastic dissipation follows (elastic ones
-      // store all of it, so theirs is not summed).
-      // Each of a hexahedron's two overlays fills it once: half weight.
-      const bool plastic = mat.model != ZoneModel::elastic;
-      const double overlay = hex ? 0.5 : 1.0;
-      if (plastic)
-        plastic_stress_work_ +=
-            0.5 * overlay *
-            stress_power(n, batch.strain_increment, batch.stress, scratch_.volume.data());
-      apply_zone_model(mat, batch);
-      if (hex) // eqs. 64-67
-        hex_mixed_average_mean_stress(n, stress_.data() + 6 * first, scratch_.volume.data());
-      if (plastic)
-        plastic_stress_work_ +=
-            0.5 * overlay *
-            stress_power(n, batch.strain_increment, batch.stress, scratch_.volume.data());
+      update_tet4_stresses(mat, batch, scratch_.volume.data());
       if (hex) // each overlay's forces weighted 1/2
         hex_mixed_overlay_weight(n, scratch_.volume.data());
       tet4_nodal_forces(mesh_, first, n, stress_.data(), scratch_, f.data(), force_size_.data());
     }
   }
+}
+
+void DeformableSolver::update_tet4_stresses(const ZoneMaterial& mat, StressBatch& batch,
+                                            const double* volume)
+{
+  // Plastic materials: the stress work of the step, V (s_old + s_new) / 2
+  // : d(eps), from which the plastic dissipation follows (elastic ones
+  // store all of it, so theirs is not summed). Each of a hexahedron's two
+  // overlays fills it once: half weight.
+  const bool hex = mat.element == ZoneElement::hex_mixed;
+  const bool plastic = mat.model != ZoneModel::elastic;
+  const double overlay = hex ? 0.5 : 1.0;
+  if (plastic)
+    plastic_stress_work_ +=
+        0.5 * overlay * stress_power(batch.size, batch.strain_increment, batch.stress, volume);
+  apply_zone_model(mat, batch);
+  if (hex) // eqs. 64-67
+    hex_mixed_average_mean_stress(batch.size, batch.stress, volume);
+  if (plastic)
+    plastic_stress_work_ +=
+        0.5 * overlay * stress_power(batch.size, batch.strain_increment, batch.stress, volume);
 }
 
 StressBatch DeformableSolver::tet4_batch(unsigned int first, unsigned int n)
@@ -700,21 +705,9 @@ void DeformableSolver::nodal_mixed_zone_forces(const double* x, const double* v,
       std::fill(batch_volumetric_.begin(), batch_volumetric_.begin() + n, 0.0);
       batch.plastic_volumetric = batch_volumetric_.data();
     }
-    // The stress work of plastic materials, as in zone_forces(); the
-    // plastic pressure traded in sweep 3 adds its share there.
-    const bool plastic = mat.model != ZoneModel::elastic;
-    const double overlay = hex ? 0.5 : 1.0;
-    if (plastic)
-      plastic_stress_work_ +=
-          0.5 * overlay *
-          stress_power(n, batch.strain_increment, batch.stress, scratch.volume.data());
-    apply_zone_model(mat, batch);
-    if (hex) // eqs. 64-67
-      hex_mixed_average_mean_stress(n, stress_.data() + 6 * first, scratch.volume.data());
-    if (plastic)
-      plastic_stress_work_ +=
-          0.5 * overlay *
-          stress_power(n, batch.strain_increment, batch.stress, scratch.volume.data());
+    // The plastic pressure traded in sweep 3 adds its share of the stress
+    // work there.
+    update_tet4_stresses(mat, batch, scratch.volume.data());
     if (collect)
     {
       // Eq. 73: the plastic pressure K e^p (e^p the trace of the plastic

@@ -188,6 +188,11 @@ private:
   /// The model's view of 4-node zones [first, first + n): their strain
   /// increments in scratch_, their stresses and states.
   StressBatch tet4_batch(unsigned int first, unsigned int n);
+  /// The zone model on a batch of 4-node zones of material `mat` (zone
+  /// volumes `volume`, m^3), with the mean stress averaged over each
+  /// hexahedron of hex-mixed zones (eqs. 64-67) and the stress work of
+  /// plastic materials added up.
+  void update_tet4_stresses(const ZoneMaterial& mat, StressBatch& batch, const double* volume);
   /// Elastic strain energy of the zones (J) and of those of plastic
   /// materials alone, with the current volumes.
   std::pair<double, double> elastic_energy(const double* x) const;
