@@ -47,6 +47,15 @@ private:
 
 constexpr unsigned int zone_batch = 1024; ///< zones per kernel call (fits in cache)
 
+/// Zones per kernel call for a material: hexahedral zones in whole
+/// hexahedra (their averages are taken over a hexahedron's ten tetrahedra).
+unsigned int zone_chunk(const ZoneMaterial& m)
+{
+  return m.element == ZoneElement::hex_mixed
+             ? zone_batch / TetMesh::tets_per_hex * TetMesh::tets_per_hex
+             : zone_batch;
+}
+
 /// Sum over n zones of V sigma : d(eps) (J); tensors as six numbers xx, yy,
 /// zz, xy, yz, zx with tensor shear components.
 double stress_power(unsigned int n, const double* strain, const double* stress,
@@ -492,10 +501,8 @@ void DeformableSolver::zone_forces()
   for (std::size_t r = 0; r + 1 < batch_start_.size(); ++r)
   {
     const ZoneMaterial& mat = materials_[material_of_zone_[batch_start_[r]]];
-    // Hexahedral zones: calls of whole hexahedra.
     const bool hex = mat.element == ZoneElement::hex_mixed;
-    const unsigned int chunk =
-        hex ? zone_batch / TetMesh::tets_per_hex * TetMesh::tets_per_hex : zone_batch;
+    const unsigned int chunk = zone_chunk(mat);
     for (unsigned int first = batch_start_[r]; first < batch_start_[r + 1]; first += chunk)
     {
       const unsigned int n = std::min(chunk, batch_start_[r + 1] - first);
@@ -503,7 +510,7 @@ void DeformableSolver::zone_forces()
                              scratch_);
       if (hex) // eqs. 60-63
         hex_mixed_average_strain(n, scratch_.strain_increment.data(), scratch_.volume.data());
-      StressBatch batch = tet4_batch(first, n);
+      StressBatch batch = tet4_batch(first, n, scratch_);
       update_tet4_stresses(mat, batch, scratch_.volume.data());
       if (hex) // each overlay's forces weighted 1/2
         hex_mixed_overlay_weight(n, scratch_.volume.data());
@@ -533,11 +540,11 @@ void DeformableSolver::update_tet4_stresses(const ZoneMaterial& mat, StressBatch
         0.5 * overlay * stress_power(batch.size, batch.strain_increment, batch.stress, volume);
 }
 
-StressBatch DeformableSolver::tet4_batch(unsigned int first, unsigned int n)
+StressBatch DeformableSolver::tet4_batch(unsigned int first, unsigned int n, Tet4Scratch& scratch)
 {
   StressBatch batch;
   batch.size = n;
-  batch.strain_increment = scratch_.strain_increment.data();
+  batch.strain_increment = scratch.strain_increment.data();
   batch.stress = stress_.data() + 6 * first;
   batch.state = state_.data() + first;
   return batch;
@@ -553,10 +560,7 @@ void DeformableSolver::plan_nodal_mixed()
   for (std::size_t r = 0; r + 1 < batch_start_.size(); ++r)
   {
     const ZoneMaterial& mat = materials_[material_of_zone_[batch_start_[r]]];
-    // Hexahedral zones: calls of whole hexahedra.
-    const unsigned int chunk = mat.element == ZoneElement::hex_mixed
-                                   ? zone_batch / TetMesh::tets_per_hex * TetMesh::tets_per_hex
-                                   : zone_batch;
+    const unsigned int chunk = zone_chunk(mat);
     for (unsigned int first = batch_start_[r]; first < batch_start_[r + 1]; first += chunk)
       nmd_batches_.push_back(
           {first, std::min(chunk, batch_start_[r + 1] - first), mat.nodal_mixed, 0});
@@ -694,11 +698,7 @@ void DeformableSolver::nodal_mixed_zone_forces(const double* x, const double* v,
                                 scratch.strain_increment.data());
     if (hex) // eqs. 60-63
       hex_mixed_average_strain(n, scratch.strain_increment.data(), scratch.volume.data());
-    StressBatch batch;
-    batch.size = n;
-    batch.strain_increment = scratch.strain_increment.data();
-    batch.stress = stress_.data() + 6 * first;
-    batch.state = state_.data() + first;
+    StressBatch batch = tet4_batch(first, n, scratch);
     const bool collect = plastic_pass && mat.nodal_mixed;
     if (collect)
     {

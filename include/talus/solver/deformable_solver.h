@@ -186,8 +186,8 @@ private:
   void plan_nodal_mixed();
   void move_gridpoints();
   /// The model's view of 4-node zones [first, first + n): their strain
-  /// increments in scratch_, their stresses and states.
-  StressBatch tet4_batch(unsigned int first, unsigned int n);
+  /// increments in `scratch`, their stresses and states.
+  StressBatch tet4_batch(unsigned int first, unsigned int n, Tet4Scratch& scratch);
   /// The zone model on a batch of 4-node zones of material `mat` (zone
   /// volumes `volume`, m^3), with the mean stress averaged over each
   /// hexahedron of hex-mixed zones (eqs. 64-67) and the stress work of
