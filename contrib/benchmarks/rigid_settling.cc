@@ -6,6 +6,8 @@
 //   cmake --build build --target benchmark_rigid_settling
 //   build/contrib/benchmarks/benchmark_rigid_settling [steps]
 
+#include "benchmark_arguments.h"
+
 #include <talus/geometry/block_generator.h>
 #include <talus/model/block_model.h>
 #include <talus/solver/rigid_solver.h>
@@ -24,7 +26,9 @@ std::size_t bytes(const std::vector<T>& v)
 
 int main(int argc, char** argv)
 {
-  const unsigned long steps = argc > 1 ? std::strtoul(argv[1], nullptr, 10) : 500;
+  const unsigned long steps =
+      argc > 1 ? whole_argument(argv[0], argv[1], "the step count (first argument)", 1, 1000000)
+               : 500;
   std::printf("%4s %7s %9s %11s %9s %14s %16s %8s %8s %8s %8s %10s %10s %10s\n", "n", "blocks",
               "contacts", "subcontacts", "seconds", "block-cycles/s", "subcontact-upd/s", "detect%",
               "planes%", "forces%", "motion%", "B/block", "B/contact", "B/subcont");

@@ -17,6 +17,8 @@
 //   build/contrib/benchmarks/benchmark_tet10_cycle [steps] [n ...]
 // Defaults: 30 steps, n = 10 20 30.
 
+#include "benchmark_arguments.h"
+
 #include <talus/base/parallel_environment.h>
 #include <talus/solver/deformable_solver.h>
 #include <talus/zone/block_mesher.h>
@@ -33,10 +35,13 @@ using namespace talus;
 int main(int argc, char** argv)
 {
   ParallelEnvironment env(argc, argv);
-  const unsigned long steps = argc > 1 ? std::strtoul(argv[1], nullptr, 10) : 30;
+  const unsigned long steps =
+      argc > 1 ? whole_argument(argv[0], argv[1], "the step count (first argument)", 1, 1000000)
+               : 30;
   std::vector<unsigned int> sizes;
   for (int i = 2; i < argc; ++i)
-    sizes.push_back(static_cast<unsigned int>(std::strtoul(argv[i], nullptr, 10)));
+    sizes.push_back(static_cast<unsigned int>(
+        whole_argument(argv[0], argv[i], "a mesh size n (5 n^3 zones)", 1, 100)));
   if (sizes.empty())
     sizes = {10, 20, 30};
 

@@ -52,6 +52,8 @@
 // costs. peakB/z (VmHWM over the run so far) is the meshing peak only while
 // the sizes increase.
 
+#include "benchmark_arguments.h"
+
 #include <talus/base/parallel_environment.h>
 #include <talus/solver/deformable_solver.h>
 #include <talus/zone/block_mesher.h>
@@ -91,7 +93,9 @@ double resident_bytes(const char* field = "VmRSS:")
 int main(int argc, char** argv)
 {
   ParallelEnvironment env(argc, argv);
-  const unsigned long steps = argc > 1 ? std::strtoul(argv[1], nullptr, 10) : 30;
+  const unsigned long steps =
+      argc > 1 ? whole_argument(argv[0], argv[1], "the step count (first argument)", 1, 1000000)
+               : 30;
   const double budget = 4e7; // zone-updates timed per size and model
   std::vector<unsigned int> sizes;
   // Modes: elastic, Mohr-Coulomb, and both with nodal mixed discretization.
@@ -104,7 +108,8 @@ int main(int argc, char** argv)
     if (std::strcmp(argv[i], "generator") == 0)
       order = MeshOrder::generator;
     else if (std::strncmp(argv[i], "ring=", 5) == 0)
-      ring_limit = static_cast<int>(std::strtol(argv[i] + 5, nullptr, 10));
+      ring_limit = static_cast<int>(
+          whole_argument(argv[0], argv[i] + 5, "ring=N (batches of scratch)", 0, 100000));
     else if (std::strcmp(argv[i], "hilbert") == 0)
       order = MeshOrder::hilbert;
     else if (std::isalpha(static_cast<unsigned char>(argv[i][0])))
@@ -113,11 +118,22 @@ int main(int argc, char** argv)
       if (!mode_named)
         std::fill(run_model, run_model + 4, false);
       mode_named = true;
+      bool known = false;
       for (int m = 0; m < 4; ++m)
-        run_model[m] |= std::strcmp(argv[i], mode_name[m]) == 0;
+        if (std::strcmp(argv[i], mode_name[m]) == 0)
+          run_model[m] = known = true;
+      if (!known)
+      {
+        std::fprintf(stderr,
+                     "%s: argument '%s' is not a mode, an order or ring=N; allowed: elastic, mc, "
+                     "nmd-elastic, nmd-mc, generator, hilbert, ring=N, or a mesh size\n",
+                     argv[0], argv[i]);
+        return 2;
+      }
     }
     else
-      sizes.push_back(static_cast<unsigned int>(std::strtoul(argv[i], nullptr, 10)));
+      sizes.push_back(static_cast<unsigned int>(
+          whole_argument(argv[0], argv[i], "a mesh size n (5 n^3 zones)", 1, 200)));
   if (sizes.empty())
     sizes = {20, 40, 60, 80, 100};
 
