@@ -30,12 +30,66 @@ static_assert(Tet4Scratch::max_lanes % W == 0, "scratch holds whole groups");
 /// interleaved runs, n = 20 and 100, elastic and Mohr-Coulomb).
 constexpr unsigned int prefetch_groups = 8;
 
+/// Prefetches the numbers of a gridpoint field (3 per gridpoint) at the
+/// corners of zone z, for reading or (write = 1) for writing. The corners
+/// are found through the zone table, which the hardware prefetcher cannot
+/// follow: on a large mesh each layer's new gridpoints otherwise come from
+/// memory while the kernel waits on them.
+template <int write>
+inline void prefetch_corners(const TetMesh& mesh, std::size_t z, const double* field)
+{
+  if (z < mesh.n_zones())
+    for (unsigned int g : mesh.zone_gridpoint[z])
+    {
+      const double* p = field + 3 * std::size_t(g);
+      __builtin_prefetch(p, write);
+      __builtin_prefetch(p + 2, write);
+    }
+}
+
 /// The zones [k0, k0 + W) of a batch as one group: their gridpoints, lane
 /// by lane; lanes past the batch's end repeat its last zone, so that every
 /// lane computes something harmless and nothing is written for them.
 struct Group
 {
-  unsigned int gridpoint[4][W];
+#if defined(__AVX512F__) && defined(__AVX512VL__)
+  // The gathers below load each corner's row by its gridpoint number, so
+  // the numbers are read straight from the zone table (4 per zone): moving
+  // them into vector registers first and back out cost a vector-to-integer
+  // transfer for every row.
+  const unsigned int* rows;   ///< 4 gridpoints per lane
+  unsigned int padded[4 * W]; ///< a short group's rows, its last zone repeated
+  LaneMask zone;              ///< 6 (zone - k0): the offset of each zone in a zone field
+  unsigned int count;         ///< lanes that are real zones
+
+  Group(const TetMesh& mesh, unsigned int first, unsigned int k0, unsigned int n)
+      : count(std::min(W, n - k0))
+  {
+    static_assert(sizeof(mesh.zone_gridpoint[0]) == 4 * sizeof(unsigned int),
+                  "four packed unsigned ints per zone");
+    if (count == W)
+    {
+      rows = mesh.zone_gridpoint[first + k0].data();
+      zone = LaneMask{0, 6, 12, 18, 24, 30, 36, 42};
+      return;
+    }
+    for (unsigned int l = 0; l < W; ++l)
+    {
+      const unsigned int k = std::min(l, count - 1);
+      for (int a = 0; a < 4; ++a)
+        padded[4 * l + a] = mesh.zone_gridpoint[first + k0 + k][a];
+      zone[l] = 6 * k;
+    }
+    rows = padded;
+  }
+  Group(const Group&) = delete;
+
+  unsigned int gridpoint(int a, unsigned int l) const
+  {
+    return rows[4 * l + a];
+  }
+#else
+  unsigned int gridpoints[4][W];
   LaneMask corner[4]; ///< 3 gridpoint: the offset of each corner in a gridpoint field
   LaneMask zone;      ///< 6 (zone - k0): the offset of each zone in a zone field
   unsigned int count; ///< lanes that are real zones
@@ -43,7 +97,7 @@ struct Group
   Group(const TetMesh& mesh, unsigned int first, unsigned int k0, unsigned int n)
       : count(std::min(W, n - k0))
   {
-#if defined(__clang__) || __GNUC__ >= 12
+#if (defined(__clang__) || __GNUC__ >= 12) && !defined(__AVX512F__)
     if (count == W)
     {
       // The zones' gridpoint numbers, corner-major, by shuffles in
@@ -55,25 +109,14 @@ struct Group
       typedef unsigned int Corners __attribute__((vector_size(W * sizeof(unsigned int))));
       FourZones zones_0_3;
       std::memcpy(&zones_0_3, mesh.zone_gridpoint.data() + first + k0, sizeof zones_0_3);
-#if defined(__AVX512F__)
-      FourZones zones_4_7;
-      std::memcpy(&zones_4_7, mesh.zone_gridpoint.data() + first + k0 + 4, sizeof zones_4_7);
-      const Corners by_corner[4] = {
-          __builtin_shufflevector(zones_0_3, zones_4_7, 0, 4, 8, 12, 16, 20, 24, 28),
-          __builtin_shufflevector(zones_0_3, zones_4_7, 1, 5, 9, 13, 17, 21, 25, 29),
-          __builtin_shufflevector(zones_0_3, zones_4_7, 2, 6, 10, 14, 18, 22, 26, 30),
-          __builtin_shufflevector(zones_0_3, zones_4_7, 3, 7, 11, 15, 19, 23, 27, 31)};
-      zone = LaneMask{0, 6, 12, 18, 24, 30, 36, 42};
-#else
       const Corners by_corner[4] = {__builtin_shufflevector(zones_0_3, zones_0_3, 0, 4, 8, 12),
                                     __builtin_shufflevector(zones_0_3, zones_0_3, 1, 5, 9, 13),
                                     __builtin_shufflevector(zones_0_3, zones_0_3, 2, 6, 10, 14),
                                     __builtin_shufflevector(zones_0_3, zones_0_3, 3, 7, 11, 15)};
       zone = LaneMask{0, 6, 12, 18};
-#endif
       for (int a = 0; a < 4; ++a)
       {
-        std::memcpy(gridpoint[a], &by_corner[a], sizeof by_corner[a]);
+        std::memcpy(gridpoints[a], &by_corner[a], sizeof by_corner[a]);
         corner[a] = __builtin_convertvector(by_corner[a], LaneMask) * 3;
       }
       return;
@@ -85,12 +128,18 @@ struct Group
       const auto& g = mesh.zone_gridpoint[first + k0 + k];
       for (int a = 0; a < 4; ++a)
       {
-        gridpoint[a][l] = g[a];
+        gridpoints[a][l] = g[a];
         corner[a][l] = 3 * std::int64_t(g[a]);
       }
       zone[l] = 6 * k;
     }
   }
+
+  unsigned int gridpoint(int a, unsigned int l) const
+  {
+    return gridpoints[a][l];
+  }
+#endif
 
   /// The three components of a gridpoint field (3 per gridpoint) at the
   /// four corners.
@@ -106,7 +155,7 @@ struct Group
     {
       __m256d row[8];
       for (unsigned int l = 0; l < W; ++l)
-        row[l] = _mm256_maskz_loadu_pd(0x7, field + 3 * std::size_t(gridpoint[a][l]));
+        row[l] = _mm256_maskz_loadu_pd(0x7, field + 3 * std::size_t(gridpoint(a, l)));
       // Rows l and l + 4 side by side: (x y z 0 | x y z 0).
       __m512d pair[4];
       for (int l = 0; l < 4; ++l)
@@ -211,6 +260,8 @@ void tet4_strain_increments(const TetMesh& mesh, unsigned int first, unsigned in
     if (ahead + W <= mesh.n_zones())
       for (std::size_t b = 0; b < 6 * W * sizeof(double); b += 64)
         __builtin_prefetch(reinterpret_cast<const char*>(stress + 6 * ahead) + b, 1);
+    prefetch_corners<0>(mesh, ahead, x);
+    prefetch_corners<0>(mesh, ahead, v);
     const Group group(mesh, first, k0, n);
     Lanes p[4][3], vel[4][3];
     group.gather_corners(x, p);
@@ -283,6 +334,9 @@ void tet4_volumetric_increments(const TetMesh& mesh, unsigned int first, unsigne
   // volumetric part needs (the diagonal of L), operation for operation.
   for (unsigned int k0 = 0; k0 < n; k0 += W)
   {
+    const std::size_t ahead = std::size_t(first) + k0 + prefetch_groups * W;
+    prefetch_corners<0>(mesh, ahead, x);
+    prefetch_corners<0>(mesh, ahead, v);
     const Group group(mesh, first, k0, n);
     Lanes p[4][3], vel[4][3];
     group.gather_corners(x, p);
@@ -342,7 +396,7 @@ void tet4_nodal_forces(const TetMesh& mesh, unsigned int first, unsigned int n,
     for (unsigned int l = 0; l < group.count; ++l)
       for (int a = 0; a < 4; ++a)
       {
-        double* f = force + 3 * group.gridpoint[a][l];
+        double* f = force + 3 * group.gridpoint(a, l);
         for (int d = 0; d < 3; ++d)
           f[d] -= fz[a][d][l];
       }
@@ -355,7 +409,7 @@ void tet4_nodal_forces(const TetMesh& mesh, unsigned int first, unsigned int n,
       for (unsigned int l = 0; l < group.count; ++l)
         for (int a = 0; a < 4; ++a)
         {
-          double* fs = force_size + 3 * group.gridpoint[a][l];
+          double* fs = force_size + 3 * group.gridpoint(a, l);
           for (int d = 0; d < 3; ++d)
             fs[d] += size[a][d][l];
         }
