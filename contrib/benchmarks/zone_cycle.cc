@@ -32,7 +32,7 @@
 // Every run takes the same number of steps from the same start (so each size
 // sees the same physics); each size and mode runs at least 3 times ("runs=N"
 // to change that; one run was too noisy for the 1.3 limit of nodal mixed
-// discretization, its ratio moving by 0.05 between runs) and small sizes
+// discretization, its ratio moving by up to 0.1 between runs) and small sizes
 // repeat the run, from a new solver, until about 4e7 zone-updates have been
 // timed. Only the steps are timed;
 // the rates and the linearity are those of the fastest run (the other core

@@ -31,19 +31,18 @@ static_assert(Tet4Scratch::max_lanes % W == 0, "scratch holds whole groups");
 constexpr unsigned int prefetch_groups = 8;
 
 /// Prefetches the numbers of a gridpoint field (3 per gridpoint) at the
-/// corners of zone z, for reading or (write = 1) for writing. The corners
-/// are found through the zone table, which the hardware prefetcher cannot
-/// follow: on a large mesh each layer's new gridpoints otherwise come from
-/// memory while the kernel waits on them.
-template <int write>
+/// corners of zone z for reading. The corners are found through the zone
+/// table, which the hardware prefetcher cannot follow: on a large mesh each
+/// layer's new gridpoints otherwise come from memory while the kernel waits
+/// on them.
 inline void prefetch_corners(const TetMesh& mesh, std::size_t z, const double* field)
 {
   if (z < mesh.n_zones())
     for (unsigned int g : mesh.zone_gridpoint[z])
     {
       const double* p = field + 3 * std::size_t(g);
-      __builtin_prefetch(p, write);
-      __builtin_prefetch(p + 2, write);
+      __builtin_prefetch(p);
+      __builtin_prefetch(p + 2); // the row may cross into the next line
     }
 }
 
@@ -260,8 +259,8 @@ void tet4_strain_increments(const TetMesh& mesh, unsigned int first, unsigned in
     if (ahead + W <= mesh.n_zones())
       for (std::size_t b = 0; b < 6 * W * sizeof(double); b += 64)
         __builtin_prefetch(reinterpret_cast<const char*>(stress + 6 * ahead) + b, 1);
-    prefetch_corners<0>(mesh, ahead, x);
-    prefetch_corners<0>(mesh, ahead, v);
+    prefetch_corners(mesh, ahead, x);
+    prefetch_corners(mesh, ahead, v);
     const Group group(mesh, first, k0, n);
     Lanes p[4][3], vel[4][3];
     group.gather_corners(x, p);
@@ -335,8 +334,8 @@ void tet4_volumetric_increments(const TetMesh& mesh, unsigned int first, unsigne
   for (unsigned int k0 = 0; k0 < n; k0 += W)
   {
     const std::size_t ahead = std::size_t(first) + k0 + prefetch_groups * W;
-    prefetch_corners<0>(mesh, ahead, x);
-    prefetch_corners<0>(mesh, ahead, v);
+    prefetch_corners(mesh, ahead, x);
+    prefetch_corners(mesh, ahead, v);
     const Group group(mesh, first, k0, n);
     Lanes p[4][3], vel[4][3];
     group.gather_corners(x, p);
