@@ -648,14 +648,10 @@ void DeformableSolver::nodal_mixed_zone_forces(const double* x, const double* v,
     if (ring > 0)
     {
       Tet4Scratch& scratch = nmd_ring_[j % ring];
-      tet4_strain_increments(mesh_, b.first, b.n, x, v, strain_dt, stress_.data(), scratch);
+      tet4_strain_increments(mesh_, b.first, b.n, x, v, strain_dt, stress_.data(), scratch,
+                             b.mixed ? batch_volumetric_.data() : nullptr);
       if (!b.mixed)
         return;
-      for (unsigned int k = 0; k < b.n; ++k)
-      {
-        const double* de = scratch.strain_increment.data() + 6 * k;
-        batch_volumetric_[k] = (de[0] + de[1] + de[2]) / 3.0;
-      }
       add_volume_weighted_pairs(mesh_, b.first, b.n, batch_volumetric_.data(),
                                 scratch.volume.data(), strain_sums_.data());
     }

@@ -246,11 +246,24 @@ inline void mid_step_gradients(const Lanes (&p)[4][3], const Lanes (&vel)[4][3],
       mid[a][d] = p[a][d] - 0.5 * dt * vel[a][d];
   shape_gradients(mid, gm);
 }
+/// The value as rounded so far: the compiler may not fuse the operation
+/// that made it with the one that uses it (a multiply-add rounds once), so
+/// a sum of stored products here is rounded as one of products read back
+/// from memory.
+inline Lanes rounded(Lanes value)
+{
+#if defined(__AVX__)
+  asm("" : "+v"(value)); // kept in its register
+#else
+  asm("" : "+m"(value)); // no register holds a whole Lanes: through memory
+#endif
+  return value;
+}
 } // namespace
 
 void tet4_strain_increments(const TetMesh& mesh, unsigned int first, unsigned int n,
                             const double* x, const double* v, double dt, double* stress,
-                            Tet4Scratch& s)
+                            Tet4Scratch& s, double* volumetric)
 {
   for (unsigned int k0 = 0; k0 < n; k0 += W)
   {
@@ -289,6 +302,8 @@ void tet4_strain_increments(const TetMesh& mesh, unsigned int first, unsigned in
                          0.5 * (L[1][2] + L[2][1]) * dt,
                          0.5 * (L[2][0] + L[0][2]) * dt};
     group.store_six(de, s.strain_increment.data() + 6 * k0);
+    if (volumetric) // as tet4_volumetric_increments rounds it
+      store_lanes(volumetric + k0, (rounded(de[0]) + rounded(de[1]) + rounded(de[2])) / 3.0);
     const Lanes w01 = 0.5 * (L[0][1] - L[1][0]) * dt; // W_xy dt
     const Lanes w12 = 0.5 * (L[1][2] - L[2][1]) * dt; // W_yz dt
     const Lanes w20 = 0.5 * (L[2][0] - L[0][2]) * dt; // W_zx dt
@@ -307,23 +322,6 @@ void tet4_strain_increments(const TetMesh& mesh, unsigned int first, unsigned in
     group.store_six(sg, zone_stress);
   }
 }
-
-namespace
-{
-/// The value as rounded so far: the compiler may not fuse the operation
-/// that made it with the one that uses it (a multiply-add rounds once), so
-/// a sum of stored products here is rounded as one of products read back
-/// from memory.
-inline Lanes rounded(Lanes value)
-{
-#if defined(__AVX__)
-  asm("" : "+v"(value)); // kept in its register
-#else
-  asm("" : "+m"(value)); // no register holds a whole Lanes: through memory
-#endif
-  return value;
-}
-} // namespace
 
 void tet4_volumetric_increments(const TetMesh& mesh, unsigned int first, unsigned int n,
                                 const double* x, const double* v, double dt, double* volumetric,

@@ -30,10 +30,13 @@ struct Tet4Scratch
 /// positions `x` and velocities `v` (3 per gridpoint), the shape-function
 /// gradients and volume, the strain increment D dt (eq. 58, times dt) into
 /// scratch, and the co-rotational (Jaumann) turn of the stored stress by
-/// the spin, so that a rigid rotation leaves the stress unchanged.
+/// the spin, so that a rigid rotation leaves the stress unchanged. With
+/// `volumetric`, also each zone's tr(D dt) / 3 there, rounded as
+/// tet4_volumetric_increments rounds it (n values rounded up to whole
+/// groups of Tet4Scratch::max_lanes).
 void tet4_strain_increments(const TetMesh& mesh, unsigned int first, unsigned int n,
                             const double* x, const double* v, double dt, double* stress,
-                            Tet4Scratch& scratch);
+                            Tet4Scratch& scratch, double* volumetric = nullptr);
 
 /// For the first sweep of nodal mixed discretization (eqs. 68-69), zones
 /// [first, first + n): each zone's volume (m^3, into `volume`) and
