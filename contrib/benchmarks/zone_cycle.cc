@@ -34,7 +34,9 @@
 // to change that; one run was too noisy for the 1.3 limit of nodal mixed
 // discretization, its ratio moving by up to 0.1 between runs) and small sizes
 // repeat the run, from a new solver, until about 4e7 zone-updates have been
-// timed. Only the steps are timed;
+// timed. The modes take turns (each mode's first run, then each one's
+// second, ...), so that a slow spell of the machine does not fall on one
+// mode and skew a ratio. Only the steps are timed;
 // the rates and the linearity are those of the fastest run (the other core
 // may be busy), the stage shares and "seconds" are over all runs.
 //
@@ -182,30 +184,34 @@ int main(int argc, char** argv)
         std::max(least_runs, static_cast<unsigned int>(budget / (nz * steps)));
     const std::vector<unsigned int> material_of_zone(nz, 0);
 
-    double plain_cost[2] = {0.0, 0.0}; // this size, without nodal mixed discretization
-    for (int mode = 0; mode < 4; ++mode)
+    // The runs of the modes alternate (all modes once, then again), so that
+    // a slow spell of the machine falls on every mode alike.
+    struct Result
     {
-      if (!run_model[mode])
-        continue;
-      const bool mc = mode % 2 == 1, nmd = mode >= 2;
-      ZoneMaterial material = mc ? plastic : elastic;
-      material.nodal_mixed = nmd;
       double best = 1e300, best_cpu = 1e300, best_gridpoints = 1e300, seconds = 0.0,
              seconds_zones = 0.0, seconds_gridpoints = 0.0, rss = 0.0, peak = 0.0, ratio = 0.0;
       std::vector<unsigned char> state;
       bool keeps_strains = false;
       unsigned int lag = 0;
-      for (unsigned int r = 0; r < repeats; ++r)
+    };
+    Result results[4];
+    for (unsigned int r = 0; r < repeats; ++r)
+      for (int mode = 0; mode < 4; ++mode)
       {
+        if (!run_model[mode])
+          continue;
+        ZoneMaterial material = mode % 2 == 1 ? plastic : elastic;
+        material.nodal_mixed = mode >= 2;
+        Result& result = results[mode];
         DeformableSolver solver(mesh, {material}, material_of_zone, settings, {base}, {}, &initial);
         if (ring_limit >= 0)
           solver.set_nodal_mixed_ring_limit(static_cast<unsigned int>(ring_limit));
-        keeps_strains = solver.nodal_mixed_keeps_strains();
-        lag = solver.nodal_mixed_lag();
+        result.keeps_strains = solver.nodal_mixed_keeps_strains();
+        result.lag = solver.nodal_mixed_lag();
         if (r == 0)
         {
-          rss = resident_bytes() - baseline;
-          peak = resident_bytes("VmHWM:") - baseline;
+          result.rss = resident_bytes() - baseline;
+          result.peak = resident_bytes("VmHWM:") - baseline;
         }
         const auto start = std::chrono::steady_clock::now();
         const std::clock_t cpu_start = std::clock();
@@ -213,15 +219,32 @@ int main(int argc, char** argv)
           solver.step();
         const double run_seconds =
             std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-        best = std::min(best, run_seconds);
-        best_cpu = std::min(best_cpu, double(std::clock() - cpu_start) / CLOCKS_PER_SEC);
-        seconds += run_seconds;
-        seconds_zones += solver.seconds_zones();
-        seconds_gridpoints += solver.seconds_gridpoints();
-        best_gridpoints = std::min(best_gridpoints, solver.seconds_gridpoints());
-        ratio = solver.unbalanced_ratio();
-        state = solver.plastic_state();
+        result.best = std::min(result.best, run_seconds);
+        result.best_cpu =
+            std::min(result.best_cpu, double(std::clock() - cpu_start) / CLOCKS_PER_SEC);
+        result.seconds += run_seconds;
+        result.seconds_zones += solver.seconds_zones();
+        result.seconds_gridpoints += solver.seconds_gridpoints();
+        result.best_gridpoints = std::min(result.best_gridpoints, solver.seconds_gridpoints());
+        result.ratio = solver.unbalanced_ratio();
+        result.state = solver.plastic_state();
       }
+
+    double plain_cost[2] = {0.0, 0.0}; // this size, without nodal mixed discretization
+    for (int mode = 0; mode < 4; ++mode)
+    {
+      if (!run_model[mode])
+        continue;
+      const bool mc = mode % 2 == 1, nmd = mode >= 2;
+      const Result& result = results[mode];
+      const double best = result.best, best_cpu = result.best_cpu,
+                   best_gridpoints = result.best_gridpoints, seconds = result.seconds,
+                   seconds_zones = result.seconds_zones,
+                   seconds_gridpoints = result.seconds_gridpoints, rss = result.rss,
+                   peak = result.peak, ratio = result.ratio;
+      const std::vector<unsigned char>& state = result.state;
+      const bool keeps_strains = result.keeps_strains;
+      const unsigned int lag = result.lag;
       const double updates = double(nz) * steps; // per run
       // Nodal mixed discretization keeps nothing per zone beyond a batch;
       // it adds per gridpoint the zone volumes around it and the average

@@ -625,9 +625,11 @@ void DeformableSolver::nodal_mixed_zone_forces(const double* x, const double* v,
   //     strain increments with the volumetric part replaced by the mean of
   //     the gridpoint averages (eqs. 70-71), the zone model, the plastic
   //     pressure of zones that yielded summed at their gridpoints (eqs.
-  //     73-75), and the nodal forces;
-  //   then, when a zone yielded, its plastic pressure traded for the mean
-  //     of its gridpoints' (eq. 76) and the nodal forces again.
+  //     73-75), and the nodal forces unless a mixed zone may yield;
+  //   force stage, if one may, once every gridpoint of the batch has its
+  //     average plastic pressure (the same wait, on the model stage): each
+  //     zone that yielded trades its plastic pressure for the mean of its
+  //     gridpoints' (eq. 76), then the nodal forces.
   // Short layers (see plan_nodal_mixed) keep the strain increments of the
   // sums stage for the model stage; otherwise every sums stage comes first
   // and the model stage takes them again (bitwise the same numbers). Every
@@ -677,6 +679,40 @@ void DeformableSolver::nodal_mixed_zone_forces(const double* x, const double* v,
     yielded_zone_.clear();
     yielded_volumetric_.clear();
   }
+  // Eqs. 74-76 for batch j, once every gridpoint of it has its average
+  // plastic pressure: each zone that yielded trades its own plastic
+  // pressure for the mean of its gridpoints' averages; then the nodal
+  // forces. Batches in order, so the yielded zones come in order.
+  std::size_t next = 0;
+  const auto force_stage = [&](unsigned int j)
+  {
+    const NodalMixedBatch& b = nmd_batches_[j];
+    for (; next < yielded_zone_.size() && yielded_zone_[next] < b.first + b.n; ++next)
+    {
+      const unsigned int z = yielded_zone_[next];
+      const double shift =
+          multiply_add(materials_[material_of_zone_[z]].bulk_modulus, yielded_volumetric_[next],
+                       -corner_mean(mesh_, z, plastic_average_.data()));
+      for (int c = 0; c < 3; ++c)
+        stress_[6 * z + c] += shift;
+      // Its share of the stress work, V shift tr(d eps) / 2: the zone's
+      // volumetric increment is the mean of its gridpoints' (eq. 71).
+      plastic_stress_work_ += 0.5 * tet_volume(x, mesh_.zone_gridpoint[z]) * shift * 3.0 *
+                              corner_mean(mesh_, z, strain_sums_.data(), 2);
+    }
+    tet4_geometry(mesh_, b.first, b.n, x, scratch_);
+    if (materials_[material_of_zone_[b.first]].element == ZoneElement::hex_mixed)
+      hex_mixed_overlay_weight(b.n, scratch_.volume.data());
+    tet4_nodal_forces(mesh_, b.first, b.n, stress_.data(), scratch_, f, force_size_.data());
+  };
+  // When zones yielded at the last step, the force stage of each batch
+  // follows the model stage of the last batch it waits for (as the model
+  // stage follows the sums stage), while its gridpoints are still in cache;
+  // a plastic average is complete, and made an average, with the model
+  // stage of the last batch around its gridpoint.
+  const bool force_stage_follows = plastic_pass && !forces_now;
+  unsigned int forced = 0; // batches through the force stage
+
   unsigned int summed = 0; // batches through the sums stage
   const unsigned int nb = static_cast<unsigned int>(nmd_batches_.size());
   for (unsigned int j = 0; j < nmd_batches_.size(); ++j)
@@ -701,8 +737,8 @@ void DeformableSolver::nodal_mixed_zone_forces(const double* x, const double* v,
       std::fill(batch_volumetric_.begin(), batch_volumetric_.begin() + n, 0.0);
       batch.plastic_volumetric = batch_volumetric_.data();
     }
-    // The plastic pressure traded in sweep 3 adds its share of the stress
-    // work there.
+    // The plastic pressure traded in the force stage adds its share of the
+    // stress work there.
     update_tet4_stresses(mat, batch, scratch.volume.data());
     if (collect)
     {
@@ -724,42 +760,27 @@ void DeformableSolver::nodal_mixed_zone_forces(const double* x, const double* v,
         hex_mixed_overlay_weight(n, scratch.volume.data());
       tet4_nodal_forces(mesh_, first, n, stress_.data(), scratch, f, force_size_.data());
     }
+    if (force_stage_follows)
+    {
+      divide_by_pair_volume(completed_gridpoint_.data() + completed_start_[j],
+                            completed_start_[j + 1] - completed_start_[j], plastic_average_.data(),
+                            strain_sums_.data());
+      for (; forced <= j && nmd_batches_[forced].ready_after <= j; ++forced)
+        force_stage(forced);
+    }
   }
   if (!plastic_pass)
     return;
   const bool yielded = !yielded_zone_.empty();
-  const bool forces_done = forces_now && !yielded;
   last_step_yielded_ = yielded;
-  if (forces_done)
-    return;
-  if (forces_now) // with stresses that the plastic correction changes
-    external_forces(x, f);
-
-  // Eqs. 74-76: each zone that yielded trades its own plastic pressure for
-  // the mean of its gridpoints' averages; then the nodal forces.
-  if (!yielded_zone_.empty())
-    divide_by_pair_volume(ng, plastic_average_.data(), strain_sums_.data());
-  std::size_t next = 0;
-  for (const NodalMixedBatch& b : nmd_batches_)
-  {
-    for (; next < yielded_zone_.size() && yielded_zone_[next] < b.first + b.n; ++next)
-    {
-      const unsigned int z = yielded_zone_[next];
-      const double shift =
-          multiply_add(materials_[material_of_zone_[z]].bulk_modulus, yielded_volumetric_[next],
-                       -corner_mean(mesh_, z, plastic_average_.data()));
-      for (int c = 0; c < 3; ++c)
-        stress_[6 * z + c] += shift;
-      // Its share of the stress work, V shift tr(d eps) / 2: the zone's
-      // volumetric increment is the mean of its gridpoints' (eq. 71).
-      plastic_stress_work_ += 0.5 * tet_volume(x, mesh_.zone_gridpoint[z]) * shift * 3.0 *
-                              corner_mean(mesh_, z, strain_sums_.data(), 2);
-    }
-    tet4_geometry(mesh_, b.first, b.n, x, scratch_);
-    if (materials_[material_of_zone_[b.first]].element == ZoneElement::hex_mixed)
-      hex_mixed_overlay_weight(b.n, scratch_.volume.data());
-    tet4_nodal_forces(mesh_, b.first, b.n, stress_.data(), scratch_, f, force_size_.data());
-  }
+  if (force_stage_follows || !yielded)
+    return; // forces done
+  // A zone yielded where none did at the last step: the forces taken in
+  // the model stage are wrong for it, so all of them again, in order.
+  external_forces(x, f);
+  divide_by_pair_volume(ng, plastic_average_.data(), strain_sums_.data());
+  for (unsigned int j = 0; j < nb; ++j)
+    force_stage(j);
 }
 
 void DeformableSolver::move_gridpoints()

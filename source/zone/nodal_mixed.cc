@@ -61,6 +61,17 @@ void divide_by_pair_volume(unsigned int n_gridpoints, double* weighted_sum, cons
       weighted_sum[g] /= pairs[2 * g + 1];
 }
 
+void divide_by_pair_volume(const unsigned int* gridpoints, unsigned int count, double* weighted_sum,
+                           const double* pairs)
+{
+  for (unsigned int k = 0; k < count; ++k)
+  {
+    const std::size_t g = gridpoints[k];
+    if (pairs[2 * g + 1] > 0.0)
+      weighted_sum[g] /= pairs[2 * g + 1];
+  }
+}
+
 void replace_volumetric_strain(const TetMesh& mesh, unsigned int first, unsigned int n,
                                const double* average_pairs, double* strain_increment)
 {

@@ -261,7 +261,7 @@ private:
   std::vector<unsigned int> yielded_zone_;
   std::vector<double> yielded_volumetric_;
   /// Whether a mixed zone yielded with a volumetric part at the last step
-  /// (then the forces wait for the third sweep; only speed depends on it).
+  /// (then the forces wait for the force stage; only speed depends on it).
   bool last_step_yielded_ = false;
   Damper damper_{Damping::none, 0.0, 0.5, 1.0};
   std::vector<double> last_force_; ///< 3 per gridpoint, N (combined damping only)

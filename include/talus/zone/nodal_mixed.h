@@ -48,6 +48,9 @@ void average_pairs(const unsigned int* gridpoints, unsigned int count, double* p
 /// Eq. 75's averages, weighted_sum / V in place (one number per
 /// gridpoint), V the second number of each gridpoint's pair.
 void divide_by_pair_volume(unsigned int n_gridpoints, double* weighted_sum, const double* pairs);
+/// The same for the `count` listed gridpoints only (whose sums are complete).
+void divide_by_pair_volume(const unsigned int* gridpoints, unsigned int count, double* weighted_sum,
+                           const double* pairs);
 
 /// Mean of the gridpoint averages at the four gridpoints of zone z, the
 /// averages `stride` numbers apart. Each quarter is exact, so this is the
