@@ -236,15 +236,7 @@ int main(int argc, char** argv)
       if (!run_model[mode])
         continue;
       const bool mc = mode % 2 == 1, nmd = mode >= 2;
-      const Result& result = results[mode];
-      const double best = result.best, best_cpu = result.best_cpu,
-                   best_gridpoints = result.best_gridpoints, seconds = result.seconds,
-                   seconds_zones = result.seconds_zones,
-                   seconds_gridpoints = result.seconds_gridpoints, rss = result.rss,
-                   peak = result.peak, ratio = result.ratio;
-      const std::vector<unsigned char>& state = result.state;
-      const bool keeps_strains = result.keeps_strains;
-      const unsigned int lag = result.lag;
+      const Result& r = results[mode];
       const double updates = double(nz) * steps; // per run
       // Nodal mixed discretization keeps nothing per zone beyond a batch;
       // it adds per gridpoint the zone volumes around it and the average
@@ -255,24 +247,24 @@ int main(int argc, char** argv)
           (4 * 3 + 3 * 3 + (nmd ? (mc ? 3 : 2) : 0)) * sizeof(double) + 1;
       const double hot = zone_bytes + gridpoint_bytes * ng / nz;
       unsigned int yielding = 0, yielded = 0;
-      for (unsigned char s : state)
+      for (unsigned char s : r.state)
       {
         yielding += (s & (shear_now | tension_now)) != 0;
         yielded += (s & (shear_past | tension_past)) != 0;
       }
-      const double cost = best / updates;
+      const double cost = r.best / updates;
       if (first_cost[mode] == 0.0)
         first_cost[mode] = cost;
-      const double stages = seconds_zones + seconds_gridpoints;
+      const double stages = r.seconds_zones + r.seconds_gridpoints;
       if (!nmd)
         plain_cost[mc] = cost;
       std::printf("%-6s %4u %8u %8u %5u %8.2f %10.2f %10.2f %4.0f/%-4.0f %8.1f %7.1f %8.0f %8.0f "
                   "%8.2f %8.2f",
                   nmd ? (mc ? "NMD-MC" : "NMD-el") : (mc ? "MC" : "elast"), n, nz, ng, repeats,
-                  seconds, 1e-6 * updates / best, 1e-6 * ng * steps / best_gridpoints,
-                  100 * seconds_zones / stages, 100 * seconds_gridpoints / stages, hot,
-                  100 * gridpoint_bytes * ng / nz / hot, rss / nz, peak / nz,
-                  cost / first_cost[mode], 1e-6 * updates / best_cpu);
+                  r.seconds, 1e-6 * updates / r.best, 1e-6 * ng * steps / r.best_gridpoints,
+                  100 * r.seconds_zones / stages, 100 * r.seconds_gridpoints / stages, hot,
+                  100 * gridpoint_bytes * ng / nz / hot, r.rss / nz, r.peak / nz,
+                  cost / first_cost[mode], 1e-6 * updates / r.best_cpu);
       if (mc)
         std::printf(" %7.1f %7.1f", 100.0 * yielding / nz, 100.0 * yielded / nz);
       else
@@ -280,10 +272,11 @@ int main(int argc, char** argv)
       if (nmd && plain_cost[mc] > 0.0)
         std::printf("  cost vs plain %.2f", cost / plain_cost[mc]);
       if (nmd)
-        std::printf(" (lag %u batches, strains %s)", lag, keeps_strains ? "kept" : "taken twice");
+        std::printf(" (lag %u batches, strains %s)", r.lag,
+                    r.keeps_strains ? "kept" : "taken twice");
       std::printf("\n");
       std::fflush(stdout);
-      if (!std::isfinite(ratio))
+      if (!std::isfinite(r.ratio))
         std::printf("  (unbalanced ratio not finite: the run went wrong)\n");
     }
   }

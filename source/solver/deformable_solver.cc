@@ -710,8 +710,8 @@ void DeformableSolver::nodal_mixed_zone_forces(const double* x, const double* v,
   // stage follows the sums stage), while its gridpoints are still in cache;
   // a plastic average is complete, and made an average, with the model
   // stage of the last batch around its gridpoint.
-  const bool force_stage_follows = plastic_pass && !forces_now;
-  unsigned int forced = 0; // batches through the force stage
+  const bool force_stage_follows = !forces_now; // (only in a plastic pass)
+  unsigned int forced = 0;                      // batches through the force stage
 
   unsigned int summed = 0; // batches through the sums stage
   const unsigned int nb = static_cast<unsigned int>(nmd_batches_.size());
@@ -778,7 +778,9 @@ void DeformableSolver::nodal_mixed_zone_forces(const double* x, const double* v,
   // A zone yielded where none did at the last step: the forces taken in
   // the model stage are wrong for it, so all of them again, in order.
   external_forces(x, f);
-  divide_by_pair_volume(ng, plastic_average_.data(), strain_sums_.data());
+  divide_by_pair_volume(completed_gridpoint_.data(),
+                        static_cast<unsigned int>(completed_gridpoint_.size()),
+                        plastic_average_.data(), strain_sums_.data());
   for (unsigned int j = 0; j < nb; ++j)
     force_stage(j);
 }

@@ -54,13 +54,6 @@ void average_pairs(const unsigned int* gridpoints, unsigned int count, double* p
   }
 }
 
-void divide_by_pair_volume(unsigned int n_gridpoints, double* weighted_sum, const double* pairs)
-{
-  for (std::size_t g = 0; g < n_gridpoints; ++g)
-    if (pairs[2 * g + 1] > 0.0)
-      weighted_sum[g] /= pairs[2 * g + 1];
-}
-
 void divide_by_pair_volume(const unsigned int* gridpoints, unsigned int count, double* weighted_sum,
                            const double* pairs)
 {

@@ -45,10 +45,9 @@ void add_volume_weighted_pairs(const TetMesh& mesh, unsigned int first, unsigned
 /// gridpoints whose sums are complete while others are still growing.
 void average_pairs(const unsigned int* gridpoints, unsigned int count, double* pairs);
 
-/// Eq. 75's averages, weighted_sum / V in place (one number per
-/// gridpoint), V the second number of each gridpoint's pair.
-void divide_by_pair_volume(unsigned int n_gridpoints, double* weighted_sum, const double* pairs);
-/// The same for the `count` listed gridpoints only (whose sums are complete).
+/// Eq. 75's averages at the `count` listed gridpoints (those whose sums
+/// are complete): weighted_sum / V in place (one number per gridpoint), V
+/// the second number of each gridpoint's pair, where V is positive.
 void divide_by_pair_volume(const unsigned int* gridpoints, unsigned int count, double* weighted_sum,
                            const double* pairs);
 
