@@ -721,11 +721,12 @@ void DeformableSolver::nodal_mixed_zone_forces(const double* x, const double* v,
       sums_stage(summed);
     const unsigned int first = nmd_batches_[j].first, n = nmd_batches_[j].n;
     Tet4Scratch& scratch = ring > 0 ? nmd_ring_[j % ring] : scratch_;
-    if (ring == 0)
-      tet4_strain_increments(mesh_, first, n, x, v, strain_dt, stress_.data(), scratch);
     const ZoneMaterial& mat = materials_[material_of_zone_[first]];
     const bool hex = mat.element == ZoneElement::hex_mixed;
-    if (mat.nodal_mixed)
+    if (ring == 0) // the strain pass again, eqs. 70-71 in it
+      tet4_strain_increments(mesh_, first, n, x, v, strain_dt, stress_.data(), scratch, nullptr,
+                             mat.nodal_mixed ? strain_sums_.data() : nullptr);
+    else if (mat.nodal_mixed) // on the kept strain increments
       replace_volumetric_strain(mesh_, first, n, strain_sums_.data(),
                                 scratch.strain_increment.data());
     if (hex) // eqs. 60-63

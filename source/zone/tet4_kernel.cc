@@ -35,14 +35,16 @@ constexpr unsigned int prefetch_groups = 8;
 /// table, which the hardware prefetcher cannot follow: on a large mesh each
 /// layer's new gridpoints otherwise come from memory while the kernel waits
 /// on them.
-inline void prefetch_corners(const TetMesh& mesh, std::size_t z, const double* field)
+inline void prefetch_corners(const TetMesh& mesh, std::size_t z, const double* field,
+                             unsigned int stride = 3)
 {
   if (z < mesh.n_zones())
     for (unsigned int g : mesh.zone_gridpoint[z])
     {
-      const double* p = field + 3 * std::size_t(g);
+      const double* p = field + stride * std::size_t(g);
       __builtin_prefetch(p);
-      __builtin_prefetch(p + 2); // the row may cross into the next line
+      if (stride > 2)
+        __builtin_prefetch(p + 2); // the row may cross into the next line
     }
 }
 
@@ -178,6 +180,40 @@ struct Group
 #endif
   }
 
+  /// One number per gridpoint, `stride` numbers apart in `field`, at the
+  /// four corners.
+  void gather_corner_values(const double* field, unsigned int stride, Lanes (&out)[4]) const
+  {
+#if defined(__AVX512F__) && defined(__AVX512VL__)
+    // Each corner's gridpoint numbers picked out of the rows of lanes 0-3
+    // and 4-7 in registers, then one gather per corner.
+    typedef unsigned int FourZones __attribute__((vector_size(16 * sizeof(unsigned int))));
+    typedef unsigned int Corners __attribute__((vector_size(W * sizeof(unsigned int))));
+    FourZones lanes_0_3, lanes_4_7;
+    std::memcpy(&lanes_0_3, rows, sizeof lanes_0_3);
+    std::memcpy(&lanes_4_7, rows + 16, sizeof lanes_4_7);
+    const Corners by_corner[4] = {
+        __builtin_shufflevector(lanes_0_3, lanes_4_7, 0, 4, 8, 12, 16, 20, 24, 28),
+        __builtin_shufflevector(lanes_0_3, lanes_4_7, 1, 5, 9, 13, 17, 21, 25, 29),
+        __builtin_shufflevector(lanes_0_3, lanes_4_7, 2, 6, 10, 14, 18, 22, 26, 30),
+        __builtin_shufflevector(lanes_0_3, lanes_4_7, 3, 7, 11, 15, 19, 23, 27, 31)};
+    for (int a = 0; a < 4; ++a)
+    {
+      const Corners index = by_corner[a] * stride;
+      out[a] = (Lanes)_mm512_mask_i32gather_pd(_mm512_setzero_pd(), 0xff, (__m256i)index, field,
+                                               sizeof(double));
+    }
+#else
+    for (int a = 0; a < 4; ++a)
+    {
+      LaneMask index;
+      for (unsigned int l = 0; l < W; ++l)
+        index[l] = std::int64_t(stride) * gridpoint(a, l);
+      out[a] = gather_lanes(field, index);
+    }
+#endif
+  }
+
   /// Six stress (or strain) components of the group's zones, from the zone
   /// array (6 per zone, starting at zone k0) to lanes and back.
   void load_six(const double* zone_values, Lanes (&out)[6]) const
@@ -263,7 +299,7 @@ inline Lanes rounded(Lanes value)
 
 void tet4_strain_increments(const TetMesh& mesh, unsigned int first, unsigned int n,
                             const double* x, const double* v, double dt, double* stress,
-                            Tet4Scratch& s, double* volumetric)
+                            Tet4Scratch& s, double* volumetric, const double* average_pairs)
 {
   for (unsigned int k0 = 0; k0 < n; k0 += W)
   {
@@ -274,6 +310,8 @@ void tet4_strain_increments(const TetMesh& mesh, unsigned int first, unsigned in
         __builtin_prefetch(reinterpret_cast<const char*>(stress + 6 * ahead) + b, 1);
     prefetch_corners(mesh, ahead, x);
     prefetch_corners(mesh, ahead, v);
+    if (average_pairs)
+      prefetch_corners(mesh, ahead, average_pairs, 2);
     const Group group(mesh, first, k0, n);
     Lanes p[4][3], vel[4][3];
     group.gather_corners(x, p);
@@ -295,15 +333,27 @@ void tet4_strain_increments(const TetMesh& mesh, unsigned int first, unsigned in
         for (int j = 0; j < 3; ++j)
           L[i][j] += vel[a][i] * gm[a][j];
     // Eq. 58: strain rate and spin; the increment of this step.
-    const Lanes de[6] = {L[0][0] * dt,
-                         L[1][1] * dt,
-                         L[2][2] * dt,
-                         0.5 * (L[0][1] + L[1][0]) * dt,
-                         0.5 * (L[1][2] + L[2][1]) * dt,
-                         0.5 * (L[2][0] + L[0][2]) * dt};
-    group.store_six(de, s.strain_increment.data() + 6 * k0);
+    Lanes de[6] = {L[0][0] * dt,
+                   L[1][1] * dt,
+                   L[2][2] * dt,
+                   0.5 * (L[0][1] + L[1][0]) * dt,
+                   0.5 * (L[1][2] + L[2][1]) * dt,
+                   0.5 * (L[2][0] + L[0][2]) * dt};
     if (volumetric) // as tet4_volumetric_increments rounds it
       store_lanes(volumetric + k0, (rounded(de[0]) + rounded(de[1]) + rounded(de[2])) / 3.0);
+    if (average_pairs)
+    {
+      // Eqs. 70-71, operation for operation as replace_volumetric_strain.
+      Lanes average[4];
+      group.gather_corner_values(average_pairs, 2, average);
+      Lanes mean = {};
+      for (int a = 0; a < 4; ++a)
+        mean += 0.25 * average[a];
+      const Lanes shift = mean - (rounded(de[0]) + rounded(de[1]) + rounded(de[2])) / 3.0;
+      for (int c = 0; c < 3; ++c)
+        de[c] = rounded(de[c]) + shift;
+    }
+    group.store_six(de, s.strain_increment.data() + 6 * k0);
     const Lanes w01 = 0.5 * (L[0][1] - L[1][0]) * dt; // W_xy dt
     const Lanes w12 = 0.5 * (L[1][2] - L[2][1]) * dt; // W_yz dt
     const Lanes w20 = 0.5 * (L[2][0] - L[0][2]) * dt; // W_zx dt

@@ -33,10 +33,15 @@ struct Tet4Scratch
 /// the spin, so that a rigid rotation leaves the stress unchanged. With
 /// `volumetric`, also each zone's tr(D dt) / 3 there, rounded as
 /// tet4_volumetric_increments rounds it (n values rounded up to whole
-/// groups of Tet4Scratch::max_lanes).
+/// groups of Tet4Scratch::max_lanes). With `average_pairs` (nodal mixed
+/// discretization, eqs. 70-71), each zone's volumetric part is replaced
+/// before it is stored by the mean of its gridpoints' averages (the first
+/// number of each gridpoint's pair), bitwise as replace_volumetric_strain
+/// replaces it afterwards, without a second sweep over the zones.
 void tet4_strain_increments(const TetMesh& mesh, unsigned int first, unsigned int n,
                             const double* x, const double* v, double dt, double* stress,
-                            Tet4Scratch& scratch, double* volumetric = nullptr);
+                            Tet4Scratch& scratch, double* volumetric = nullptr,
+                            const double* average_pairs = nullptr);
 
 /// For the first sweep of nodal mixed discretization (eqs. 68-69), zones
 /// [first, first + n): each zone's volume (m^3, into `volume`) and
