@@ -43,8 +43,8 @@ inline void prefetch_corners(const TetMesh& mesh, std::size_t z, const double* f
     {
       const double* p = field + stride * std::size_t(g);
       __builtin_prefetch(p);
-      if (stride > 2)
-        __builtin_prefetch(p + 2); // the row may cross into the next line
+      if (stride > 2) // a row of three may cross into the next line (a pair does not)
+        __builtin_prefetch(p + 2);
     }
 }
 
@@ -339,8 +339,11 @@ void tet4_strain_increments(const TetMesh& mesh, unsigned int first, unsigned in
                    0.5 * (L[0][1] + L[1][0]) * dt,
                    0.5 * (L[1][2] + L[2][1]) * dt,
                    0.5 * (L[2][0] + L[0][2]) * dt};
-    if (volumetric) // as tet4_volumetric_increments rounds it
-      store_lanes(volumetric + k0, (rounded(de[0]) + rounded(de[1]) + rounded(de[2])) / 3.0);
+    // tr(D dt) / 3 of the stored increments, as tet4_volumetric_increments
+    // and replace_volumetric_strain round it.
+    const Lanes volumetric_part = (rounded(de[0]) + rounded(de[1]) + rounded(de[2])) / 3.0;
+    if (volumetric)
+      store_lanes(volumetric + k0, volumetric_part);
     if (average_pairs)
     {
       // Eqs. 70-71, operation for operation as replace_volumetric_strain.
@@ -349,7 +352,7 @@ void tet4_strain_increments(const TetMesh& mesh, unsigned int first, unsigned in
       Lanes mean = {};
       for (int a = 0; a < 4; ++a)
         mean += 0.25 * average[a];
-      const Lanes shift = mean - (rounded(de[0]) + rounded(de[1]) + rounded(de[2])) / 3.0;
+      const Lanes shift = mean - volumetric_part;
       for (int c = 0; c < 3; ++c)
         de[c] = rounded(de[c]) + shift;
     }
