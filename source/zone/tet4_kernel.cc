@@ -339,22 +339,25 @@ void tet4_strain_increments(const TetMesh& mesh, unsigned int first, unsigned in
                    0.5 * (L[0][1] + L[1][0]) * dt,
                    0.5 * (L[1][2] + L[2][1]) * dt,
                    0.5 * (L[2][0] + L[0][2]) * dt};
-    // tr(D dt) / 3 of the stored increments, as tet4_volumetric_increments
-    // and replace_volumetric_strain round it.
-    const Lanes volumetric_part = (rounded(de[0]) + rounded(de[1]) + rounded(de[2])) / 3.0;
-    if (volumetric)
-      store_lanes(volumetric + k0, volumetric_part);
-    if (average_pairs)
+    if (volumetric || average_pairs) // nodal mixed discretization only
     {
-      // Eqs. 70-71, operation for operation as replace_volumetric_strain.
-      Lanes average[4];
-      group.gather_corner_values(average_pairs, 2, average);
-      Lanes mean = {};
-      for (int a = 0; a < 4; ++a)
-        mean += 0.25 * average[a];
-      const Lanes shift = mean - volumetric_part;
-      for (int c = 0; c < 3; ++c)
-        de[c] = rounded(de[c]) + shift;
+      // tr(D dt) / 3 of the stored increments, as tet4_volumetric_increments
+      // and replace_volumetric_strain round it.
+      const Lanes volumetric_part = (rounded(de[0]) + rounded(de[1]) + rounded(de[2])) / 3.0;
+      if (volumetric)
+        store_lanes(volumetric + k0, volumetric_part);
+      if (average_pairs)
+      {
+        // Eqs. 70-71, operation for operation as replace_volumetric_strain.
+        Lanes average[4];
+        group.gather_corner_values(average_pairs, 2, average);
+        Lanes mean = {};
+        for (int a = 0; a < 4; ++a)
+          mean += 0.25 * average[a];
+        const Lanes shift = mean - volumetric_part;
+        for (int c = 0; c < 3; ++c)
+          de[c] = rounded(de[c]) + shift;
+      }
     }
     group.store_six(de, s.strain_increment.data() + 6 * k0);
     const Lanes w01 = 0.5 * (L[0][1] - L[1][0]) * dt; // W_xy dt
