@@ -5,7 +5,8 @@
 // contact forces, zone stresses), kinetic energy never more than the
 // sources supplied (energy at the start plus the work of gravity and
 // boundaries), and an energy balance that closes within a stated tolerance
-// (see talus::EnergyAccount). Prints what it measured.
+// (see talus::EnergyAccount). Prints what it checked, and what it
+// measured to standard error (see tests.h).
 
 #include <talus/base/parallel_environment.h>
 #include <talus/model/build_blocks.h>
@@ -17,6 +18,8 @@
 #include <cstdlib>
 #include <memory>
 #include <string>
+
+#include "../tests.h"
 
 struct StabilityRun
 {
@@ -130,41 +133,46 @@ struct StabilityRun
   }
   void run() { run(scene.solver.steps); }
 
-  /// Prints what was measured and whether each thing holds: the balance
-  /// error relative to the largest energy term within `tolerance` (or,
-  /// with `loss_only`, no energy created beyond it: scenes where the
-  /// sub-contact rebuilds lose energy), and the kinetic energy never beyond
-  /// what the sources gave by more than `tolerance` of that term. A
-  /// negative `tolerance` reports the balance without asserting it.
+  /// Prints whether each thing holds: the balance error relative to the
+  /// largest energy term within `tolerance` (or, with `loss_only`, no
+  /// energy created beyond it: scenes where the sub-contact rebuilds lose
+  /// energy), and the kinetic energy never beyond what the sources gave by
+  /// more than `tolerance` of that term. A negative `tolerance` reports the
+  /// balance without asserting it. The figures go to standard error: on
+  /// scenes of many impacts they follow the CPU's rounding (another
+  /// contact count, another largest kinetic energy with AVX2 than with
+  /// AVX-512), the checks do not.
   void report(double tolerance, bool loss_only = false)
   {
-    std::printf("steps: %lu, time step %.3g s, %u blocks, %u contacts, %u zones\n", steps,
-                system_->solver->dt(), model.n_blocks(), system_->solver->contacts().n_contacts(),
-                system_->mesh.n_zones());
+    std::printf("%u blocks, %u zones\n", model.n_blocks(), system_->mesh.n_zones());
+    std::fprintf(stderr, "steps: %lu, time step %.3g s, %u contacts\n", steps,
+                 system_->solver->dt(), system_->solver->contacts().n_contacts());
     std::printf("no NaN or Inf anywhere: %s\n",
                 finite ? "yes" : ("NO: " + first_non_finite).c_str());
-    std::printf("largest kinetic energy: %.3g J\n", largest_kinetic);
+    std::fprintf(stderr, "largest kinetic energy: %.3g J\n", largest_kinetic);
     const double scale = largest_scale > 0.0 ? largest_scale : 1.0;
     const double relative = largest_error / scale, gain = std::max(largest_gain, 0.0) / scale;
+    std::fprintf(stderr,
+                 "energy balance: largest |error| %.2g J, %.1e of the largest energy term %.3g J; "
+                 "energy created at most %.1e of it\n",
+                 largest_error, relative, largest_scale, gain);
     if (tolerance < 0.0)
-      std::printf("energy balance: largest |error| %.2g J, %.1e of the largest energy term %.3g J "
-                  "(reported, not asserted)\n",
-                  largest_error, relative, largest_scale);
+      std::printf("energy balance: reported, not asserted\n");
     else if (loss_only)
-      std::printf("energy balance: largest |error| %.2g J, %.1e of the largest energy term %.3g J; "
-                  "energy created at most %.1e of it (tolerance %.0e) %s\n",
-                  largest_error, relative, largest_scale, gain, tolerance,
-                  gain <= tolerance ? "OK" : "WRONG");
+      std::printf("energy balance: energy created within %.0e of the largest energy term: %s\n",
+                  tolerance, gain <= tolerance ? "OK" : "WRONG");
     else
-      std::printf("energy balance: largest |error| %.2g J, %.1e of the largest energy term %.3g J "
-                  "(tolerance %.0e) %s\n",
-                  largest_error, relative, largest_scale, tolerance,
-                  relative <= tolerance ? "OK" : "WRONG");
+      std::printf("energy balance: largest |error| within %.0e of the largest energy term: %s\n",
+                  tolerance, relative <= tolerance ? "OK" : "WRONG");
     tolerance = std::abs(tolerance);
     const double excess = std::max(largest_excess, 0.0) / scale;
-    std::printf("kinetic energy beyond the energy supplied: at most %.1e of the largest energy "
-                "term (tolerance %.0e) %s\n",
-                excess, tolerance, excess <= tolerance ? "OK" : "WRONG");
+    std::fprintf(stderr,
+                 "kinetic energy beyond the energy supplied: at most %.1e of the largest "
+                 "energy term\n",
+                 excess);
+    std::printf("kinetic energy beyond the energy supplied: within %.0e of the largest energy "
+                "term: %s\n",
+                tolerance, excess <= tolerance ? "OK" : "WRONG");
   }
 
 private:

@@ -14,6 +14,7 @@ int main(int argc, char** argv)
   double largest = 0.0;
   for (const talus::Vec3& u : r.solver().displacement)
     largest = std::max(largest, u.norm());
-  std::printf("blocks fell: largest displacement %.2f m %s\n", largest,
-              largest > 0.2 ? "(collapsing)" : "(NOT collapsing)");
+  std::fprintf(stderr, "blocks fell: largest displacement %.2f m\n", largest);
+  std::printf("blocks fell: largest displacement above 0.2 m: %s\n",
+              largest > 0.2 ? "yes (collapsing)" : "NO (not collapsing)");
 }
