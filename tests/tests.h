@@ -6,6 +6,7 @@
 // not compare. Kept free of deal.II headers so that a test compiles in
 // seconds.
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -28,15 +29,28 @@ inline const bool standard_output_compared = []
   return file != nullptr && std::freopen(file, "w", stdout) != nullptr;
 }();
 
+/// |computed - expected| / |expected| (the absolute error where expected is 0).
+inline double relative_error(double computed, double expected)
+{
+  const double scale = std::max(std::abs(expected), 1e-300);
+  return std::abs(computed - expected) / (expected == 0.0 ? 1.0 : scale);
+}
+
+/// "name: computed (exact expected, relative error e)" to `stream`, no newline.
+inline void print_value(std::FILE* stream, const std::string& name, double computed,
+                        double expected)
+{
+  std::fprintf(stream, "%s: %.10g (exact %.10g, relative error %.1e)", name.c_str(), computed,
+               expected, relative_error(computed, expected));
+}
+
 /// Prints "name: computed (expected), relative error e" and whether it is
 /// within `tolerance`; the expected output holds the line, so a loss of
 /// accuracy changes the output and fails the test.
 inline void check(const std::string& name, double computed, double expected, double tolerance)
 {
-  const double scale = std::max(std::abs(expected), 1e-300);
-  const double error = std::abs(computed - expected) / (expected == 0.0 ? 1.0 : scale);
-  std::printf("%s: %.10g (exact %.10g, relative error %.1e) %s\n", name.c_str(), computed, expected,
-              error, error <= tolerance ? "OK" : "WRONG");
+  print_value(stdout, name, computed, expected);
+  std::printf(" %s\n", relative_error(computed, expected) <= tolerance ? "OK" : "WRONG");
 }
 
 /// For a value whose last digits follow the CPU's rounding (a static run
@@ -47,12 +61,10 @@ inline void check(const std::string& name, double computed, double expected, dou
 inline void check_within(const std::string& name, double computed, double expected,
                          double tolerance)
 {
-  const double scale = std::max(std::abs(expected), 1e-300);
-  const double error = std::abs(computed - expected) / (expected == 0.0 ? 1.0 : scale);
-  std::fprintf(stderr, "%s: %.10g (exact %.10g, relative error %.1e)\n", name.c_str(), computed,
-               expected, error);
+  print_value(stderr, name, computed, expected);
+  std::fputc('\n', stderr);
   std::printf("%s: within %.0e of %.10g: %s\n", name.c_str(), tolerance, expected,
-              error <= tolerance ? "OK" : "WRONG");
+              relative_error(computed, expected) <= tolerance ? "OK" : "WRONG");
 }
 
 } // namespace talus_test
