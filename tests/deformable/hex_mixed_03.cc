@@ -154,8 +154,8 @@ int main(int argc, char** argv)
                    ring.solver->unbalanced_ratio());
       std::printf("   %-19s %s; ", name(element, nodal_mixed),
                   ring.solver->unbalanced_ratio() < 1e-6 ? "converged" : "NOT converged");
-      talus_test::check("wall pressure (Pa)", p, exact,
-                        element == ZoneElement::hex_mixed ? 0.02 : 1e300);
+      talus_test::check_error("wall pressure (Pa)", p, exact,
+                              element == ZoneElement::hex_mixed ? 0.02 : 1e300);
     }
   }
   // 2. Limit load of a Tresca ring.
@@ -176,16 +176,19 @@ int main(int argc, char** argv)
       const unsigned int loading = 20000;
       const double u_end = 2e-3 * a;
       ring.drive(u_end / loading);
-      std::printf("   %-19s wall pressure / limit at u_a/a = ", name(element, nodal_mixed));
+      // The path of a yielding body follows the CPU's rounding (its points
+      // move by up to 0.6 % without fused multiply-adds): standard error.
+      std::fprintf(stderr,
+                   "   %-19s wall pressure / limit at u_a/a = ", name(element, nodal_mixed));
       for (unsigned int k = 1; k <= loading; ++k)
       {
         ring.solver->step();
         if (k % (loading / 4) == 0)
-          std::printf("%.0e: %.4f%s", u_end * k / loading / a, ring.wall_pressure() / exact,
-                      k < loading ? ", " : "\n");
+          std::fprintf(stderr, "%.0e: %.4f%s", u_end * k / loading / a,
+                       ring.wall_pressure() / exact, k < loading ? ", " : "\n");
       }
       std::printf("   %-19s ", name(element, nodal_mixed));
-      talus_test::check("wall pressure at the end (Pa)", ring.wall_pressure(), exact, 0.02);
+      talus_test::check_within("wall pressure at the end (Pa)", ring.wall_pressure(), exact, 0.02);
     }
   }
 }

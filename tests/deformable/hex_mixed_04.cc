@@ -113,7 +113,8 @@ int main(int argc, char** argv)
   {
     Footing f(element, nodal_mixed, clay);
     f.drive(s_end / loading);
-    std::printf("%-19s q / (2 + pi) c at s/B =", label);
+    // The path follows the CPU's rounding (by 1e-4): standard error.
+    std::fprintf(stderr, "%-19s q / (2 + pi) c at s/B =", label);
     double last = 0.0, before = 0.0;
     for (unsigned int k = 1; k <= loading; ++k)
     {
@@ -122,16 +123,16 @@ int main(int argc, char** argv)
       {
         before = last;
         last = f.pressure();
-        std::printf(" %.3f: %.4f%s", s_end * k / loading / B, last / exact,
-                    k < loading ? "," : "\n");
+        std::fprintf(stderr, " %.3f: %.4f%s", s_end * k / loading / B, last / exact,
+                     k < loading ? "," : "\n");
       }
     }
     std::printf("%-19s ", label);
     if (element == ZoneElement::hex_mixed)
-      talus_test::check("footing pressure at the end (Pa)", last, exact, 0.05);
+      talus_test::check_error("footing pressure at the end (Pa)", last, exact, 0.05);
     else
     {
-      talus_test::check("footing pressure at the end (Pa)", last, exact, 1e300);
+      talus_test::check_error("footing pressure at the end (Pa)", last, exact, 1e300);
       if (!nodal_mixed)
         std::printf("   still rising over the last quarter: %s (by %.1f %%)\n",
                     last > 1.005 * before ? "yes" : "NO", 100.0 * (last / before - 1.0));

@@ -123,12 +123,16 @@ struct Salencon
   }
 };
 
-/// Prints computed and closed form with the error over p0.
+/// Whether computed is within tolerance p0 of the closed form; the values
+/// and the error go to standard error (their last digits follow the CPU's
+/// rounding: a static run stopped at a ratio after a plastic path).
 void check_over_p0(const std::string& name, double computed, double exact, double tolerance)
 {
   const double error = std::abs(computed - exact) / p0;
-  std::printf("%s: %.6g (closed form %.6g, error %.1e of p0) %s\n", name.c_str(), computed, exact,
-              error, error <= tolerance ? "OK" : "WRONG");
+  std::fprintf(stderr, "%s: %.6g (closed form %.6g, error %.1e of p0)\n", name.c_str(), computed,
+               exact, error);
+  std::printf("%s: within %.1e p0 of the closed form: %s\n", name.c_str(), tolerance,
+              error <= tolerance ? "OK" : "WRONG");
 }
 } // namespace
 
@@ -172,8 +176,9 @@ int main(int argc, char** argv)
                           plane_strain_rollers(t, eps, big), {outer_x, outer_y}, &initial);
   const double target = 1e-5;
   const unsigned long steps = solver.run_to_ratio(target, 200000);
-  std::printf("static run: %s (%lu steps)\n",
-              solver.unbalanced_ratio() < target ? "reached ratio 1e-5" : "NOT converged", steps);
+  std::printf("static run: %s\n",
+              solver.unbalanced_ratio() < target ? "reached ratio 1e-5" : "NOT converged");
+  std::fprintf(stderr, "static run: %lu steps\n", steps);
 
   // Per zone: centroid radius, ring, stresses in polar axes, the yield
   // function f = (s1 - K_p s3 + 2c sqrt(K_p)) / p0 (s1 <= s2 <= s3 the
@@ -236,9 +241,9 @@ int main(int argc, char** argv)
       b[k] = rows_f[k];
     }
     const Eigen::Vector2d fit = A.colPivHouseholderQr().solve(b);
-    talus_test::check("plastic radius, root of the yield function fitted over the " +
-                          std::to_string(rows_x.size()) + " elastic zones within 2 R_f (m)",
-                      std::sqrt(-fit[1] / fit[0]), closed.Rp, 0.015);
+    talus_test::check_within("plastic radius, root of the yield function fitted over the " +
+                                 std::to_string(rows_x.size()) + " elastic zones within 2 R_f (m)",
+                             std::sqrt(-fit[1] / fit[0]), closed.Rp, 0.015);
   }
 
   // Ring means of the stresses against the closed form at the same

@@ -49,6 +49,6 @@ int main(int argc, char** argv)
   for (const auto& [z, fn] : joint_force)
   {
     std::printf("joint at z = %ld: ", z);
-    talus_test::check("normal force (N)", fn, rho_g * (6 - z), 1e-5);
+    talus_test::check_within("normal force (N)", fn, rho_g * (6 - z), 1e-6);
   }
 }
