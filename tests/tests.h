@@ -36,12 +36,19 @@ inline double relative_error(double computed, double expected)
   return std::abs(computed - expected) / (expected == 0.0 ? 1.0 : scale);
 }
 
-/// "name: computed (exact expected, relative error e)" to `stream`, no newline.
-inline void print_value(std::FILE* stream, const std::string& name, double computed,
-                        double expected)
+/// "OK" where the check holds, else "WRONG" (which fails the comparison).
+inline const char* verdict(bool holds)
 {
-  std::fprintf(stream, "%s: %.10g (exact %.10g, relative error %.1e)", name.c_str(), computed,
-               expected, relative_error(computed, expected));
+  return holds ? "OK" : "WRONG";
+}
+
+/// "name: computed (exact expected, relative error e)" and then `end` to
+/// `stream`.
+inline void print_value(std::FILE* stream, const std::string& name, double computed,
+                        double expected, const char* end)
+{
+  std::fprintf(stream, "%s: %.10g (exact %.10g, relative error %.1e)%s", name.c_str(), computed,
+               expected, relative_error(computed, expected), end);
 }
 
 /// Prints "name: computed (expected), relative error e" and whether it is
@@ -49,8 +56,8 @@ inline void print_value(std::FILE* stream, const std::string& name, double compu
 /// accuracy changes the output and fails the test.
 inline void check(const std::string& name, double computed, double expected, double tolerance)
 {
-  print_value(stdout, name, computed, expected);
-  std::printf(" %s\n", relative_error(computed, expected) <= tolerance ? "OK" : "WRONG");
+  print_value(stdout, name, computed, expected, " ");
+  std::printf("%s\n", verdict(relative_error(computed, expected) <= tolerance));
 }
 
 /// For a value whose last digits follow the CPU's rounding (a static run
@@ -61,10 +68,9 @@ inline void check(const std::string& name, double computed, double expected, dou
 inline void check_within(const std::string& name, double computed, double expected,
                          double tolerance)
 {
-  print_value(stderr, name, computed, expected);
-  std::fputc('\n', stderr);
+  print_value(stderr, name, computed, expected, "\n");
   std::printf("%s: within %.2g of %.10g: %s\n", name.c_str(), tolerance, expected,
-              relative_error(computed, expected) <= tolerance ? "OK" : "WRONG");
+              verdict(relative_error(computed, expected) <= tolerance));
 }
 
 /// For a value whose last digits follow the CPU's rounding but whose error
@@ -76,11 +82,9 @@ inline void check_within(const std::string& name, double computed, double expect
 /// are the same on every CPU and an accuracy regression still changes them.
 inline void check_error(const std::string& name, double computed, double expected, double tolerance)
 {
-  print_value(stderr, name, computed, expected);
-  std::fputc('\n', stderr);
+  print_value(stderr, name, computed, expected, "\n");
   const double error = relative_error(computed, expected);
-  std::printf("%s: relative error %.1e %s\n", name.c_str(), error,
-              error <= tolerance ? "OK" : "WRONG");
+  std::printf("%s: relative error %.1e %s\n", name.c_str(), error, verdict(error <= tolerance));
 }
 
 } // namespace talus_test
