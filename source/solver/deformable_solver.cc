@@ -597,15 +597,18 @@ void DeformableSolver::plan_nodal_mixed()
     if (last_batch[g] != none)
       completed_gridpoint_[fill[last_batch[g]]++] = g;
   // Batches between their sums stage and their model stage: at most
-  // lag + 1 at once, one layer of zones in slab order. While their scratch
-  // fits in the second-level cache (a layer of up to about 4,000 zones),
-  // the sums stage is the strain pass itself and keeps its scratch for the
-  // model stage. A larger mesh sums the volumetric increments of all zones
-  // first and takes the strain pass again in the model stage: a layer of
-  // scratch beyond the second-level cache cost more than the second pass
-  // (measured: 1.43-1.51 times plain zones at n = 100, against 1.30), and
-  // so did the two stages a layer apart without it (1.37 against 1.27 at
-  // n = 40).
+  // lag + 1 at once, one layer of zones in slab order. Up to
+  // nmd_ring_limit_ of them, the sums stage is the strain pass itself and
+  // keeps its scratch for the model stage, which then reads it back from
+  // the third-level cache. A longer layer sums the volumetric increments of
+  // all zones first and takes the strain pass again in the model stage.
+  // Measured on 2-core Zen 4 EPYC guests (benchmark_zone_cycle, elastic /
+  // Mohr-Coulomb cost against plain zones, kept against taken twice):
+  // lag 9 batches 1.19 / 1.19 against 1.33 / 1.24, lag 18 1.21 / 1.24
+  // against 1.32 / 1.27, lag 32 1.22 / 1.27 against 1.33 / 1.29; lag 40
+  // and 50 even (1.24-1.31 against 1.28-1.32), and so was lag 71. The two
+  // stages a layer apart without kept scratch cost more than either
+  // (1.37 against 1.27 at n = 40).
   nmd_lag_ = lag;
   nmd_ring_.assign(lag + 1 <= nmd_ring_limit_ ? lag + 1 : 0, Tet4Scratch());
   for (Tet4Scratch& scratch : nmd_ring_)
