@@ -132,7 +132,7 @@ void check_over_p0(const std::string& name, double computed, double exact, doubl
   std::fprintf(stderr, "%s: %.6g (closed form %.6g, error %.1e of p0)\n", name.c_str(), computed,
                exact, error);
   std::printf("%s: within %.1e p0 of the closed form: %s\n", name.c_str(), tolerance,
-              error <= tolerance ? "OK" : "WRONG");
+              talus_test::verdict(error <= tolerance));
 }
 } // namespace
 
