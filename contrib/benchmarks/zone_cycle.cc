@@ -43,15 +43,19 @@
 // One core; run from a Release build:
 //   cmake --build build --target benchmark_zone_cycle
 //   build/contrib/benchmarks/benchmark_zone_cycle [steps] [n ...] [modes]
-//     [generator|hilbert] [ring=N] [runs=N]
+//     [generator|hilbert] [columns=N] [ring=N] [runs=N]
 // Defaults: 30 steps, n = 20 40 60 80 100, four modes: elastic, mc,
 // nmd-elastic, nmd-mc (the last two with nodal mixed discretization; their
 // rows end with the cost per zone-update over the plain run of the same
 // size and model). Name modes to run only those (one, to profile it).
-// "ring=N" sets DeformableSolver::set_nodal_mixed_ring_limit (0: nodal
-// mixed discretization takes the strain increments twice; default: the
-// solver's own choice); NMD rows end with the lag between its two stages
-// and whether the strains were kept.
+// Nodal mixed discretization runs on the same cube with its zones in
+// columns of 32 cells across (MeshOrder::columns, as talus meshes blocks
+// for it); "columns=N" sets the width, "columns=0" runs it on the plain
+// zones' mesh. "ring=N" sets DeformableSolver::set_nodal_mixed_ring_limit
+// (0: nodal mixed discretization takes the strain increments twice;
+// default: the solver's own choice); NMD rows end with the batches of
+// scratch kept between its two stages and the share of batches whose
+// strain increments were kept.
 // "generator" or "hilbert" puts zones and gridpoints in that order instead
 // of the mesher's default (slabs, mesh_order.h), to measure what the order
 // costs. peakB/z (VmHWM over the run so far) is the meshing peak only while
@@ -62,6 +66,7 @@
 #include <talus/base/parallel_environment.h>
 #include <talus/solver/deformable_solver.h>
 #include <talus/zone/block_mesher.h>
+#include <talus/zone/mesh_order.h>
 
 #include <malloc.h>
 
@@ -110,6 +115,9 @@ int main(int argc, char** argv)
   MeshOrder order = MeshOrder::slabs;
   int ring_limit = -1; // nodal mixed discretization: the solver's own choice
   unsigned int least_runs = 3;
+  // Nodal mixed discretization's mesh: in columns of this many cells across
+  // (as talus orders it), or (0) the same mesh as the plain zones'.
+  unsigned int column_cells = 32;
   for (int i = 2; i < argc; ++i)
     if (std::strcmp(argv[i], "generator") == 0)
       order = MeshOrder::generator;
@@ -119,6 +127,9 @@ int main(int argc, char** argv)
     else if (std::strncmp(argv[i], "runs=", 5) == 0)
       least_runs = static_cast<unsigned int>(whole_argument(
           argv[0], argv[i] + 5, "runs=N (runs at least, per size and mode)", 1, 100));
+    else if (std::strncmp(argv[i], "columns=", 8) == 0)
+      column_cells = static_cast<unsigned int>(whole_argument(
+          argv[0], argv[i] + 8, "columns=N (cells across a column, 0: no columns)", 0, 1000));
     else if (std::strcmp(argv[i], "hilbert") == 0)
       order = MeshOrder::hilbert;
     else if (std::isalpha(static_cast<unsigned char>(argv[i][0])))
@@ -133,12 +144,12 @@ int main(int argc, char** argv)
           run_model[m] = known = true;
       if (!known)
       {
-        std::fprintf(
-            stderr,
-            "%s: argument '%s' is not a mode, an order, ring=N or runs=N; allowed: elastic, "
-            "mc, nmd-elastic, nmd-mc, generator, hilbert, ring=N, runs=N, or a mesh "
-            "size\n",
-            argv[0], argv[i]);
+        std::fprintf(stderr,
+                     "%s: argument '%s' is not a mode, an order, columns=N, ring=N or runs=N; "
+                     "allowed: elastic, mc, nmd-elastic, nmd-mc, generator, hilbert, columns=N, "
+                     "ring=N, runs=N, or a mesh "
+                     "size\n",
+                     argv[0], argv[i]);
         return 2;
       }
     }
@@ -179,6 +190,18 @@ int main(int argc, char** argv)
     blocks.add_block(ConvexPolyhedron::box(Vec3::Zero(), Vec3::Constant(side)), 0);
     MeshReport report;
     const TetMesh mesh = mesh_blocks(blocks, {0}, side / n, report, ZoneElement::tet4, order);
+    // Nodal mixed discretization's zones in columns (as talus meshes them
+    // for it), the plain zones in `order`; both meshes stay in memory, so
+    // the column mesh's own bytes are taken off every mode's rssB/z.
+    TetMesh column_mesh;
+    double column_mesh_bytes = 0.0;
+    if (column_cells > 0 && (run_model[2] || run_model[3]))
+    {
+      const double before = resident_bytes();
+      column_mesh = mesh;
+      order_for_locality(column_mesh, MeshOrder::columns, column_cells);
+      column_mesh_bytes = resident_bytes() - before;
+    }
     const unsigned int nz = mesh.n_zones(), ng = mesh.n_gridpoints();
     const unsigned int repeats =
         std::max(least_runs, static_cast<unsigned int>(budget / (nz * steps)));
@@ -191,8 +214,8 @@ int main(int argc, char** argv)
       double best = 1e300, best_cpu = 1e300, best_gridpoints = 1e300, seconds = 0.0,
              seconds_zones = 0.0, seconds_gridpoints = 0.0, rss = 0.0, peak = 0.0, ratio = 0.0;
       std::vector<unsigned char> state;
-      bool keeps_strains = false;
-      unsigned int lag = 0;
+      double kept_share = 0.0;
+      unsigned int ring = 0;
     };
     Result results[4];
     for (unsigned int r = 0; r < repeats; ++r)
@@ -203,14 +226,15 @@ int main(int argc, char** argv)
         ZoneMaterial material = mode % 2 == 1 ? plastic : elastic;
         material.nodal_mixed = mode >= 2;
         Result& result = results[mode];
-        DeformableSolver solver(mesh, {material}, material_of_zone, settings, {base}, {}, &initial);
+        DeformableSolver solver(mode >= 2 && column_cells > 0 ? column_mesh : mesh, {material},
+                                material_of_zone, settings, {base}, {}, &initial);
         if (ring_limit >= 0)
           solver.set_nodal_mixed_ring_limit(static_cast<unsigned int>(ring_limit));
-        result.keeps_strains = solver.nodal_mixed_keeps_strains();
-        result.lag = solver.nodal_mixed_lag();
+        result.kept_share = solver.nodal_mixed_kept_share();
+        result.ring = solver.nodal_mixed_ring_batches();
         if (r == 0)
         {
-          result.rss = resident_bytes() - baseline;
+          result.rss = resident_bytes() - baseline - column_mesh_bytes;
           result.peak = resident_bytes("VmHWM:") - baseline;
         }
         const auto start = std::chrono::steady_clock::now();
@@ -272,16 +296,19 @@ int main(int argc, char** argv)
       if (nmd && plain_cost[mc] > 0.0)
         std::printf("  cost vs plain %.2f", cost / plain_cost[mc]);
       if (nmd)
-        std::printf(" (lag %u batches, strains %s)", r.lag,
-                    r.keeps_strains ? "kept" : "taken twice");
+        std::printf(" (ring of %u batches, strains of %.0f %% of the batches kept)", r.ring,
+                    100.0 * r.kept_share);
       std::printf("\n");
       std::fflush(stdout);
       if (!std::isfinite(r.ratio))
         std::printf("  (unbalanced ratio not finite: the run went wrong)\n");
     }
   }
-  std::printf("steps per run: %lu; mesh order: %s\n", steps,
+  std::printf("steps per run: %lu; mesh order: %s", steps,
               order == MeshOrder::generator ? "generator"
               : order == MeshOrder::hilbert ? "hilbert"
                                             : "slabs");
+  if (column_cells > 0)
+    std::printf(", nodal mixed discretization in columns of %u cells", column_cells);
+  std::printf("\n");
 }

@@ -379,7 +379,8 @@ void parse_deformable(ParameterFile& prm, Scene& scene)
     // written.
     try
     {
-      d.mesh = std::make_shared<TetMesh>(read_gmsh_block(d.mesh_file, 0));
+      d.mesh = std::make_shared<TetMesh>(read_gmsh_block(
+          d.mesh_file, 0, d.material.nodal_mixed ? MeshOrder::columns : MeshOrder::slabs));
       measure_mesh(*d.mesh);
     }
     catch (const InputError& e)

@@ -596,21 +596,82 @@ void DeformableSolver::plan_nodal_mixed()
   for (unsigned int g = 0; g < mesh_.n_gridpoints(); ++g)
     if (last_batch[g] != none)
       completed_gridpoint_[fill[last_batch[g]]++] = g;
-  // Batches between their sums stage and their model stage: at most
-  // lag + 1 at once, one layer of zones in slab order. Up to
-  // nmd_ring_limit_ of them, the sums stage is the strain pass itself and
-  // keeps its scratch for the model stage, which then reads it back from
-  // the third-level cache. A longer layer sums the volumetric increments of
-  // all zones first and takes the strain pass again in the model stage.
+
+  // The model order: each batch as soon as its sums are complete, those
+  // ready at the same time in their order (on a mesh in slabs, the order
+  // of the batches; in columns, a seam batch joins the columns when the
+  // last column around it has been summed).
+  model_start_.assign(nb + 1, 0);
+  for (const NodalMixedBatch& batch : nmd_batches_)
+    ++model_start_[batch.ready_after + 1];
+  for (unsigned int j = 0; j < nb; ++j)
+    model_start_[j + 1] += model_start_[j];
+  model_order_.resize(nb);
+  std::vector<unsigned int> place(nb);
+  fill.assign(model_start_.begin(), model_start_.end() - 1);
+  for (unsigned int b = 0; b < nb; ++b)
+    model_order_[place[b] = fill[nmd_batches_[b].ready_after]++] = b;
+  // A plastic average is complete with the last model stage around its
+  // gridpoint; the force stage of a batch waits for all of its own.
+  std::fill(last_batch.begin(), last_batch.end(), none);
+  for (unsigned int p = 0; p < nb; ++p)
+  {
+    const NodalMixedBatch& batch = nmd_batches_[model_order_[p]];
+    if (batch.mixed)
+      for (unsigned int z = batch.first; z < batch.first + batch.n; ++z)
+        for (unsigned int g : mesh_.zone_gridpoint[z])
+          last_batch[g] = p; // (now a place in the model order)
+  }
+  for (unsigned int b = 0; b < nb; ++b)
+  {
+    NodalMixedBatch& batch = nmd_batches_[b];
+    batch.forces_after = place[b];
+    if (batch.mixed)
+      for (unsigned int z = batch.first; z < batch.first + batch.n; ++z)
+        for (unsigned int g : mesh_.zone_gridpoint[z])
+          batch.forces_after = std::max(batch.forces_after, last_batch[g]);
+  }
+  plastic_start_.assign(nb + 1, 0);
+  for (unsigned int g = 0; g < mesh_.n_gridpoints(); ++g)
+    if (last_batch[g] != none)
+      ++plastic_start_[last_batch[g] + 1];
+  for (unsigned int p = 0; p < nb; ++p)
+    plastic_start_[p + 1] += plastic_start_[p];
+  plastic_gridpoint_.resize(plastic_start_[nb]);
+  fill.assign(plastic_start_.begin(), plastic_start_.end() - 1);
+  for (unsigned int g = 0; g < mesh_.n_gridpoints(); ++g)
+    if (last_batch[g] != none)
+      plastic_gridpoint_[fill[last_batch[g]]++] = g;
+
+  // A batch whose model stage comes at most nmd_ring_limit_ - 1 batches
+  // after its sums stage is kept: its sums stage is the strain pass itself,
+  // whose scratch waits in the ring (one slot per batch in between, from
+  // the third-level cache) for the model stage. The others sum the
+  // volumetric increments alone and the model stage takes the strain pass
+  // again. On a mesh in slabs every batch waits about one layer of zones;
+  // in columns (MeshOrder::columns) only the seam batches wait long.
   // Measured on 2-core Zen 4 EPYC guests (benchmark_zone_cycle, elastic /
   // Mohr-Coulomb cost against plain zones, kept against taken twice):
   // lag 9 batches 1.19 / 1.19 against 1.33 / 1.24, lag 18 1.21 / 1.24
   // against 1.32 / 1.27, lag 32 1.22 / 1.27 against 1.33 / 1.29; lag 40
   // and 50 even (1.24-1.31 against 1.28-1.32), and so was lag 71. The two
   // stages a layer apart without kept scratch cost more than either
-  // (1.37 against 1.27 at n = 40).
+  // (1.37 against 1.27 at n = 40): with no batch kept, every sums stage
+  // comes first.
+  unsigned int slots = 0;
+  nmd_kept_ = 0;
+  for (unsigned int b = 0; b < nb; ++b)
+  {
+    NodalMixedBatch& batch = nmd_batches_[b];
+    batch.kept = batch.ready_after - b + 1 <= nmd_ring_limit_;
+    if (batch.kept)
+    {
+      slots = std::max(slots, batch.ready_after - b + 1);
+      ++nmd_kept_;
+    }
+  }
   nmd_lag_ = lag;
-  nmd_ring_.assign(lag + 1 <= nmd_ring_limit_ ? lag + 1 : 0, Tet4Scratch());
+  nmd_ring_.assign(slots, Tet4Scratch());
   for (Tet4Scratch& scratch : nmd_ring_)
     scratch.resize(zone_batch);
 }
@@ -650,7 +711,7 @@ void DeformableSolver::nodal_mixed_zone_forces(const double* x, const double* v,
   const auto sums_stage = [&](unsigned int j)
   {
     const NodalMixedBatch& b = nmd_batches_[j];
-    if (ring > 0)
+    if (b.kept)
     {
       Tet4Scratch& scratch = nmd_ring_[j % ring];
       tet4_strain_increments(mesh_, b.first, b.n, x, v, strain_dt, stress_.data(), scratch,
@@ -673,8 +734,8 @@ void DeformableSolver::nodal_mixed_zone_forces(const double* x, const double* v,
 
   // Nodal forces in the model stage unless a mixed zone may yield; if one
   // may, but none did at the last step, they are taken there all the same
-  // and taken again, all of them in order, only if one did yield after all
-  // (the sums are the same either way).
+  // and taken again, all of them in the model order, only if one did yield
+  // after all (the sums are the same either way).
   const bool forces_now = !plastic_pass || !last_step_yielded_;
   if (plastic_pass)
   {
@@ -685,12 +746,14 @@ void DeformableSolver::nodal_mixed_zone_forces(const double* x, const double* v,
   // Eqs. 74-76 for batch j, once every gridpoint of it has its average
   // plastic pressure: each zone that yielded trades its own plastic
   // pressure for the mean of its gridpoints' averages; then the nodal
-  // forces. Batches in order, so the yielded zones come in order.
+  // forces. Batches in the model order, as the yielded zones were listed.
   std::size_t next = 0;
   const auto force_stage = [&](unsigned int j)
   {
     const NodalMixedBatch& b = nmd_batches_[j];
-    for (; next < yielded_zone_.size() && yielded_zone_[next] < b.first + b.n; ++next)
+    for (; next < yielded_zone_.size() && yielded_zone_[next] >= b.first &&
+           yielded_zone_[next] < b.first + b.n;
+         ++next)
     {
       const unsigned int z = yielded_zone_[next];
       const double shift =
@@ -709,24 +772,22 @@ void DeformableSolver::nodal_mixed_zone_forces(const double* x, const double* v,
     tet4_nodal_forces(mesh_, b.first, b.n, stress_.data(), scratch_, f, force_size_.data());
   };
   // When zones yielded at the last step, the force stage of each batch
-  // follows the model stage of the last batch it waits for (as the model
-  // stage follows the sums stage), while its gridpoints are still in cache;
-  // a plastic average is complete, and made an average, with the model
-  // stage of the last batch around its gridpoint.
+  // follows the model stage it waits for (as the model stage follows the
+  // sums stage), while its gridpoints are still in cache; a plastic
+  // average is complete, and made an average, with the last model stage
+  // around its gridpoint.
   const bool force_stage_follows = !forces_now; // (only in a plastic pass)
-  unsigned int forced = 0;                      // batches through the force stage
+  unsigned int forced = 0;                      // places of the model order through the force stage
 
-  unsigned int summed = 0; // batches through the sums stage
-  const unsigned int nb = static_cast<unsigned int>(nmd_batches_.size());
-  for (unsigned int j = 0; j < nmd_batches_.size(); ++j)
+  const auto model_stage = [&](unsigned int p)
   {
-    for (; summed <= (ring > 0 ? nmd_batches_[j].ready_after : nb - 1); ++summed)
-      sums_stage(summed);
-    const unsigned int first = nmd_batches_[j].first, n = nmd_batches_[j].n;
-    Tet4Scratch& scratch = ring > 0 ? nmd_ring_[j % ring] : scratch_;
+    const unsigned int j = model_order_[p];
+    const NodalMixedBatch& b = nmd_batches_[j];
+    const unsigned int first = b.first, n = b.n;
+    Tet4Scratch& scratch = b.kept ? nmd_ring_[j % ring] : scratch_;
     const ZoneMaterial& mat = materials_[material_of_zone_[first]];
     const bool hex = mat.element == ZoneElement::hex_mixed;
-    if (ring == 0) // the strain pass again, eqs. 70-71 in it
+    if (!b.kept) // the strain pass again, eqs. 70-71 in it
       tet4_strain_increments(mesh_, first, n, x, v, strain_dt, stress_.data(), scratch, nullptr,
                              mat.nodal_mixed ? strain_sums_.data() : nullptr);
     else if (mat.nodal_mixed) // on the kept strain increments
@@ -766,12 +827,24 @@ void DeformableSolver::nodal_mixed_zone_forces(const double* x, const double* v,
     }
     if (force_stage_follows)
     {
-      divide_by_pair_volume(completed_gridpoint_.data() + completed_start_[j],
-                            completed_start_[j + 1] - completed_start_[j], plastic_average_.data(),
+      divide_by_pair_volume(plastic_gridpoint_.data() + plastic_start_[p],
+                            plastic_start_[p + 1] - plastic_start_[p], plastic_average_.data(),
                             strain_sums_.data());
-      for (; forced <= j && nmd_batches_[forced].ready_after <= j; ++forced)
-        force_stage(forced);
+      for (; forced <= p && nmd_batches_[model_order_[forced]].forces_after <= p; ++forced)
+        force_stage(model_order_[forced]);
     }
+  };
+
+  const unsigned int nb = static_cast<unsigned int>(nmd_batches_.size());
+  if (ring == 0) // nothing kept: every sums stage first
+    for (unsigned int j = 0; j < nb; ++j)
+      sums_stage(j);
+  for (unsigned int j = 0; j < nb; ++j)
+  {
+    if (ring > 0)
+      sums_stage(j);
+    for (unsigned int p = model_start_[j]; p < model_start_[j + 1]; ++p)
+      model_stage(p);
   }
   if (!plastic_pass)
     return;
@@ -782,11 +855,11 @@ void DeformableSolver::nodal_mixed_zone_forces(const double* x, const double* v,
   // A zone yielded where none did at the last step: the forces taken in
   // the model stage are wrong for it, so all of them again, in order.
   external_forces(x, f);
-  divide_by_pair_volume(completed_gridpoint_.data(),
-                        static_cast<unsigned int>(completed_gridpoint_.size()),
+  divide_by_pair_volume(plastic_gridpoint_.data(),
+                        static_cast<unsigned int>(plastic_gridpoint_.size()),
                         plastic_average_.data(), strain_sums_.data());
-  for (unsigned int j = 0; j < nb; ++j)
-    force_stage(j);
+  for (unsigned int p = 0; p < nb; ++p)
+    force_stage(model_order_[p]);
 }
 
 void DeformableSolver::move_gridpoints()

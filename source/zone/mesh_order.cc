@@ -61,7 +61,7 @@ double zone_volume(const TetMesh& mesh, unsigned int z)
 }
 } // namespace
 
-MeshPermutation order_for_locality(TetMesh& mesh, MeshOrder order)
+MeshPermutation order_for_locality(TetMesh& mesh, MeshOrder order, unsigned int column_cells)
 {
   const unsigned int nz = mesh.n_zones(), ng = mesh.n_gridpoints();
   MeshPermutation perm;
@@ -104,6 +104,9 @@ MeshPermutation order_for_locality(TetMesh& mesh, MeshOrder order)
   }
   // The sort key of each unit, within the bounding box of its run.
   std::vector<std::uint64_t> key(nu, 0);
+  // Columns only: the column of each unit and whether it is a seam unit.
+  std::vector<unsigned int> column(order == MeshOrder::columns ? nu : 0);
+  std::vector<unsigned char> seam(column.size(), 0);
   constexpr std::uint32_t cells = (1u << 21) - 1; // per axis, at most
   for (std::size_t begin = 0, end = 0; begin < nu; begin = end)
   {
@@ -123,7 +126,7 @@ MeshPermutation order_for_locality(TetMesh& mesh, MeshOrder order)
     // by a quarter cell so that their centroids (a quarter to three
     // quarters across the hexahedron) stay clear of the cell faces.
     double cell = extent / cells, shift = 0.0;
-    if (order == MeshOrder::slabs)
+    if (order != MeshOrder::hilbert)
     {
       double volume = 0.0;
       const unsigned int first = unit_first[begin];
@@ -133,6 +136,13 @@ MeshPermutation order_for_locality(TetMesh& mesh, MeshOrder order)
       cell = std::max(cell, std::cbrt(5.0 * volume / (last - first)));
       shift = 0.25;
     }
+    // Columns: column_cells x column_cells cells across, numbered along x
+    // first.
+    const std::uint32_t per_row =
+        cell > 0.0 ? (static_cast<std::uint32_t>(std::floor((hi[0] - lo[0]) / cell + shift)) +
+                      column_cells) /
+                         column_cells
+                   : 1u;
     for (std::size_t u = begin; u < end; ++u)
     {
       std::uint32_t c[3];
@@ -144,13 +154,48 @@ MeshPermutation order_for_locality(TetMesh& mesh, MeshOrder order)
       key[u] = order == MeshOrder::hilbert
                    ? hilbert_index(c[0], c[1], c[2])
                    : (std::uint64_t(c[2]) << 42) | (std::uint64_t(c[1]) << 21) | c[0];
+      if (order == MeshOrder::columns)
+        column[u] = (c[1] / column_cells) * per_row + c[0] / column_cells;
     }
+  }
+  if (order == MeshOrder::columns)
+  {
+    // A unit is a seam unit if one of its gridpoints is also used by a unit
+    // of a later column: every gridpoint is then used by seam units and by
+    // the other units of one column at most, so that nodal mixed
+    // discretization's sums at a gridpoint are complete within that
+    // column's sweep. (Column numbers of different blocks do not meet:
+    // blocks have gridpoints of their own.)
+    std::vector<unsigned int> last_column(ng, 0);
+    const auto for_gridpoints = [&](std::size_t u, auto&& visit)
+    {
+      for (unsigned int z = unit_first[u]; z < unit_first[u] + unit_size[u]; ++z)
+        for (unsigned int g : mesh.zone_gridpoint[z])
+          visit(g);
+    };
+    for (std::size_t u = 0; u < nu; ++u)
+      for_gridpoints(u,
+                     [&](unsigned int g) { last_column[g] = std::max(last_column[g], column[u]); });
+    for (std::size_t u = 0; u < nu; ++u)
+      for_gridpoints(u, [&](unsigned int g) { seam[u] |= last_column[g] > column[u]; });
   }
   std::vector<unsigned int> unit_order(nu);
   std::iota(unit_order.begin(), unit_order.end(), 0u);
   std::stable_sort(unit_order.begin(), unit_order.end(),
                    [&](unsigned int a, unsigned int b)
-                   { return run[a] != run[b] ? run[a] < run[b] : key[a] < key[b]; });
+                   {
+                     if (run[a] != run[b])
+                       return run[a] < run[b];
+                     if (order == MeshOrder::columns)
+                     {
+                       // Seams first, in slabs; then column by column.
+                       if (seam[a] != seam[b])
+                         return seam[a] > seam[b];
+                       if (!seam[a] && column[a] != column[b])
+                         return column[a] < column[b];
+                     }
+                     return key[a] < key[b];
+                   });
 
   perm.old_zone.reserve(nz);
   for (unsigned int u : unit_order)

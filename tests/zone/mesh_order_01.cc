@@ -11,15 +11,19 @@
 //    each hexahedron's ten tetrahedra still consecutive and in order;
 //    gridpoints in first use by the zones; a second renumbering changes
 //    nothing. The zone order of the cube brick is the generator's.
+//    The same in columns (MeshOrder::columns) of 2 or 3 cells; columns
+//    wider than the brick are its slabs. In a brick of 10,000 zones in
+//    columns of 5 cells, the zones that wait long for the last zone around
+//    their gridpoints are the seam zones, all at the start, and fewer than
+//    in slabs.
 // 3. A scrambled mesh (zones and gridpoints in a random order) comes back
 //    local: the mean spread of the gridpoint numbers of a zone, over the
 //    number of gridpoints, no more than in the generator's order.
 // 4. The same answer: the cube (and its hexahedral and 10-node versions)
 //    falling under gravity on its held base, 200 dynamic steps, in
-//    generator order and renumbered. The displacements and stresses differ
-//    by round-off only (the sums at gridpoints take their terms in another
-//    order): the largest difference over the largest value must be below
-//    1e-12.
+//    generator order and renumbered (Hilbert; 4-node zones also columns). The displacements and
+//    stresses differ by round-off only (the sums at gridpoints take their terms in another order):
+//    the largest difference over the largest value must be below 1e-12.
 
 #include <talus/base/parallel_environment.h>
 #include <talus/solver/deformable_solver.h>
@@ -146,20 +150,45 @@ bool is_identity(const std::vector<unsigned int>& p)
 /// Renumbers a copy of `mesh` in `order`, checks it and the renumbering of
 /// that again; returns the renumbered mesh and its permutation.
 TetMesh renumbered(const std::string& name, const TetMesh& mesh, MeshOrder order,
-                   MeshPermutation& perm)
+                   MeshPermutation& perm, unsigned int column_cells = 32)
 {
   TetMesh out = mesh;
-  perm = order_for_locality(out, order);
+  perm = order_for_locality(out, order, column_cells);
   TetMesh again = out;
-  const MeshPermutation second = order_for_locality(again, order);
+  const MeshPermutation second = order_for_locality(again, order, column_cells);
   std::printf("%-28s %-7s: %6u zones, %5u gridpoints; mismatches %u; zones moved %s; "
               "renumbered again: %s\n",
-              name.c_str(), order == MeshOrder::slabs ? "slabs" : "hilbert", mesh.n_zones(),
-              mesh.n_gridpoints(), count_mismatches(mesh, out, perm),
+              name.c_str(),
+              order == MeshOrder::slabs     ? "slabs"
+              : order == MeshOrder::hilbert ? "hilbert"
+                                            : "columns",
+              mesh.n_zones(), mesh.n_gridpoints(), count_mismatches(mesh, out, perm),
               is_identity(perm.old_zone) ? "no" : "yes",
               is_identity(second.old_zone) && is_identity(second.old_gridpoint) ? "unchanged"
                                                                                 : "CHANGED");
   return out;
+}
+
+/// The zones that wait more than `limit` zones for the last zone that
+/// shares a gridpoint with them (nodal mixed discretization's wait between
+/// its two stages), and whether they are all at the start.
+unsigned int long_waits(const TetMesh& mesh, unsigned int limit, bool& first)
+{
+  std::vector<unsigned int> last(mesh.n_gridpoints(), 0);
+  for (unsigned int z = 0; z < mesh.n_zones(); ++z)
+    for (unsigned int g : mesh.zone_gridpoint[z])
+      last[g] = z;
+  unsigned int count = 0;
+  first = true;
+  for (unsigned int z = 0; z < mesh.n_zones(); ++z)
+  {
+    unsigned int wait = 0;
+    for (unsigned int g : mesh.zone_gridpoint[z])
+      wait = std::max(wait, last[g] - z);
+    if (wait > limit)
+      first &= count++ == z;
+  }
+  return count;
 }
 
 /// Displacements and stresses after 200 dynamic steps of the block falling
@@ -281,6 +310,36 @@ int main(int argc, char** argv)
       renumbered("hexahedral zones", hex_mesh, MeshOrder::hilbert, hex_perm);
   const TetMesh tet10_ordered =
       renumbered("10-node zones", tet10_mesh, MeshOrder::hilbert, tet10_perm);
+  MeshPermutation cube_columns;
+  const TetMesh cube_in_columns =
+      renumbered("cube brick, 2-cell columns", cube_mesh, MeshOrder::columns, cube_columns, 2);
+  renumbered("two bricks, 2-cell columns", two_bricks, MeshOrder::columns, other, 2);
+  renumbered("tetrahedral block, columns 3", tet_mesh, MeshOrder::columns, other, 3);
+  renumbered("hexahedral zones, columns 2", hex_mesh, MeshOrder::columns, other, 2);
+  renumbered("cube brick, 32-cell columns", cube_mesh, MeshOrder::columns, other);
+  std::printf("cube brick, columns wider than the brick: slab order: %s\n",
+              is_identity(other.old_zone) && is_identity(other.old_gridpoint) ? "yes" : "NO");
+  // Columns: a 2 x 1 x 1 brick of 20 x 10 x 10 cells (10,000 zones) in
+  // columns of 5 x 5 cells, against slabs: the zones that wait more than
+  // two slabs of a column (250 zones) for the last zone around their
+  // gridpoints, all seam zones at the start; in slabs every zone but the
+  // top slab's waits about one slab of the brick (1,000 zones).
+  {
+    BlockModel brick;
+    brick.add_block(ConvexPolyhedron::box(Vec3::Zero(), Vec3(2, 1, 1)), 0);
+    const TetMesh slabs = mesh_blocks(brick, {0}, 0.1, report);
+    const TetMesh columns =
+        mesh_blocks(brick, {0}, 0.1, report, ZoneElement::tet4, MeshOrder::columns);
+    TetMesh narrow = slabs;
+    order_for_locality(narrow, MeshOrder::columns, 5);
+    bool first_slabs = false, first_narrow = false, first_columns = false;
+    const unsigned int in_slabs = long_waits(slabs, 250, first_slabs);
+    const unsigned int in_narrow = long_waits(narrow, 250, first_narrow);
+    const unsigned int in_columns = long_waits(columns, 250, first_columns);
+    std::printf("brick of 10000 zones, zones waiting more than 250 zones: slabs %u; columns of 5 "
+                "cells %u, all at the start: %s; columns of 32 cells (the default) %u\n",
+                in_slabs, in_narrow, first_narrow ? "yes" : "NO", in_columns);
+  }
 
   // 3. A scrambled mesh.
   {
@@ -318,6 +377,8 @@ int main(int argc, char** argv)
 
   // 4. The same answer.
   compare_answers("cube, 4-node zones, Hilbert", cube_mesh, cube_ordered, cube_hilbert,
+                  ZoneElement::tet4);
+  compare_answers("cube, 4-node zones, 2-cell columns", cube_mesh, cube_in_columns, cube_columns,
                   ZoneElement::tet4);
   compare_answers("cube, hexahedral zones, Hilbert", hex_mesh, hex_ordered, hex_perm,
                   ZoneElement::hex_mixed);

@@ -150,14 +150,25 @@ public:
   double largest_gridpoint_energy() const;
   std::string divergence_site(double dt) const;
 
-  /// Nodal mixed discretization keeps the strain increments of up to this
-  /// many batches of zones (152 KB each) between its two stages, when one
-  /// layer of the mesh fits (see plan_nodal_mixed); otherwise, or with 0,
-  /// it takes them twice. The results are the same either way: for tests
-  /// and benchmarks. The lag found, in batches: nodal_mixed_lag().
+  /// Nodal mixed discretization keeps the strain increments of a batch of
+  /// zones between its two stages when its model stage comes at most this
+  /// many batches (152 KB of scratch each) after its sums stage (see
+  /// plan_nodal_mixed); otherwise, or with 0, it takes them twice. The
+  /// results are the same either way: for tests and benchmarks. The
+  /// longest wait found, in batches: nodal_mixed_lag().
   void set_nodal_mixed_ring_limit(unsigned int batches);
   unsigned int nodal_mixed_lag() const { return nmd_lag_; }
   bool nodal_mixed_keeps_strains() const { return !nmd_ring_.empty(); }
+  /// Batches of scratch held for the kept strain increments.
+  unsigned int nodal_mixed_ring_batches() const
+  {
+    return static_cast<unsigned int>(nmd_ring_.size());
+  }
+  /// The share of batches whose strain increments are kept.
+  double nodal_mixed_kept_share() const
+  {
+    return nmd_batches_.empty() ? 0.0 : double(nmd_kept_) / nmd_batches_.size();
+  }
 
   /// Holds every component of gridpoint g at velocity `v` (m/s) from now on.
   void hold_gridpoint(unsigned int g, const Vec3& v);
@@ -239,23 +250,37 @@ private:
   std::vector<double> plastic_average_;  ///< per gridpoint: plastic pressure, Pa
   std::vector<double> batch_volumetric_; ///< per zone of a batch: e, or plastic e^p
   /// A batch of zones [first, first + n), of a mixed material or not; its
-  /// model stage waits for the sums stage of batch `ready_after`.
+  /// model stage waits for the sums stage of batch `ready_after`, its force
+  /// stage for the model stage at place `forces_after` of the model order.
+  /// `kept`: its sums stage is the strain pass, whose scratch waits in the
+  /// ring for the model stage.
   struct NodalMixedBatch
   {
     unsigned int first, n;
     bool mixed;
     unsigned int ready_after;
+    unsigned int forces_after = 0;
+    bool kept = false;
   };
   std::vector<NodalMixedBatch> nmd_batches_;
   /// The gridpoints whose sums batch j completes:
   /// completed_gridpoint_[completed_start_[j] .. completed_start_[j + 1]).
   std::vector<unsigned int> completed_start_, completed_gridpoint_;
-  /// Scratch of the batches between their sums and model stages (batch j
-  /// in nmd_ring_[j % size]); empty when the model stage takes the strain
-  /// increments again.
+  /// The model order: batches by ready_after, then by number; the batches
+  /// ready after sums batch j are model_order_[model_start_[j] ..
+  /// model_start_[j + 1]).
+  std::vector<unsigned int> model_start_, model_order_;
+  /// The gridpoints whose plastic sums the model stage at place p of the
+  /// model order completes: plastic_gridpoint_[plastic_start_[p] ..
+  /// plastic_start_[p + 1]).
+  std::vector<unsigned int> plastic_start_, plastic_gridpoint_;
+  /// Scratch of the kept batches between their sums and model stages
+  /// (batch j in nmd_ring_[j % size]); empty when no batch is kept.
   std::vector<Tet4Scratch> nmd_ring_;
-  /// 41 batches, 6.2 MB of scratch (see plan_nodal_mixed): a layer of up
-  /// to about 40,000 zones, such as a brick of 90 x 90 cells of 5 zones.
+  unsigned int nmd_kept_ = 0; ///< batches kept
+  /// 41 batches, 6.2 MB of scratch at most (see plan_nodal_mixed): a
+  /// layer of up to about 40,000 zones, such as a brick of 90 x 90 cells of
+  /// 5 zones in slabs; in columns a batch waits some 5 batches.
   unsigned int nmd_ring_limit_ = 41;
   unsigned int nmd_lag_ = 0;
   /// Zones whose plastic volumetric strain increment e^p is not zero this
