@@ -198,6 +198,29 @@ void implicit_check(const talus::Scene& scene, const talus::DeformableSolver& so
               largest, r.iterations, difference, largest > 0.0 ? difference / largest : 0.0);
 }
 
+/// The largest displacement of a gridpoint (m).
+double largest_gridpoint_displacement(const talus::DeformableSolver& solver)
+{
+  const std::vector<double> u = solver.displacements();
+  double largest = 0.0;
+  for (std::size_t g = 0; g < u.size() / 3; ++g)
+    largest = std::max(largest, std::sqrt(u[3 * g] * u[3 * g] + u[3 * g + 1] * u[3 * g + 1] +
+                                          u[3 * g + 2] * u[3 * g + 2]));
+  return largest;
+}
+
+/// The summary's line on nodal mixed discretization, when some zones have
+/// it.
+void print_nodal_mixed(const talus::Scene& scene, const talus::BlockModel& model,
+                       const talus::TetMesh& mesh)
+{
+  unsigned int mixed = 0;
+  for (unsigned int z = 0; z < mesh.n_zones(); ++z)
+    mixed += scene.deformable.nodal_mixed(model.group_names[model.group[mesh.zone_block[z]]]);
+  if (mixed > 0)
+    std::printf("Nodal mixed:  %u of %u zones (eqs. 68-76)\n", mixed, mesh.n_zones());
+}
+
 /// Runs a scene of deformable blocks: meshes them, then the explicit zone
 /// cycle with output and histories.
 void solve_deformable(talus::Scene& scene, talus::BlockModel& model, const std::string& prefix)
@@ -212,6 +235,8 @@ void solve_deformable(talus::Scene& scene, talus::BlockModel& model, const std::
   const bool from_file = !scene.deformable.mesh_file.empty();
   TetMesh mesh = from_file ? *scene.deformable.mesh
                            : mesh_deformable_blocks(scene, model, deformable, mesh_report);
+  if (from_file) // read in slabs, before the body's group was known
+    order_for_locality(mesh, deformable_zone_order(scene, model));
   if (from_file && scene.deformable.material.element == ZoneElement::tet10)
     make_quadratic(mesh);
   if (from_file)
@@ -229,14 +254,15 @@ void solve_deformable(talus::Scene& scene, talus::BlockModel& model, const std::
     std::printf("Hexahedra:    %u (mixed discretization: the tetrahedra are their two overlays of "
                 "five)\n",
                 mesh_report.hexes);
+  print_nodal_mixed(scene, model, mesh);
   int argc = 1;
   char name[] = "talus";
   char* args[] = {name, nullptr};
   char** argv = args;
   ParallelEnvironment parallel(argc, argv);
-  DeformableSolver solver(mesh, {scene.deformable.material},
-                          std::vector<unsigned int>(mesh.n_zones(), 0), scene.solver,
-                          scene.gridpoint_conditions, scene.face_pressures,
+  ZoneMaterials materials = zone_materials(scene, model, mesh);
+  DeformableSolver solver(mesh, std::move(materials.materials), std::move(materials.of_zone),
+                          scene.solver, scene.gridpoint_conditions, scene.face_pressures,
                           scene.has_initial_stress ? &scene.initial_stress : nullptr);
   std::printf("Time step:    %.6g s (eq. 84%s)\n", solver.dt(),
               !scene.solver.dynamic && scene.solver.density_scaling ? ", density scaling: unit step"
@@ -273,15 +299,6 @@ void solve_deformable(talus::Scene& scene, talus::BlockModel& model, const std::
   checkpoint.add(frame);
   checkpoint.add(last_output);
   restore_run(checkpoint);
-  const auto largest_displacement = [&]()
-  {
-    const std::vector<double> u = solver.displacements();
-    double largest = 0.0;
-    for (std::size_t g = 0; g < u.size() / 3; ++g)
-      largest = std::max(largest, std::sqrt(u[3 * g] * u[3 * g] + u[3 * g + 1] * u[3 * g + 1] +
-                                            u[3 * g + 2] * u[3 * g + 2]));
-    return largest;
-  };
   const auto output = [&]()
   {
     if (scene.output.write_vtu)
@@ -306,7 +323,7 @@ void solve_deformable(talus::Scene& scene, talus::BlockModel& model, const std::
     if (n % scene.solver.history_interval == 0)
     {
       std::vector<double> row{double(n), solver.time(), solver.unbalanced_ratio(),
-                              largest_displacement()};
+                              largest_gridpoint_displacement(solver)};
       points.add_values(row, solver);
       for (const ReactionReport& r : scene.reactions)
       {
@@ -335,7 +352,7 @@ void solve_deformable(talus::Scene& scene, talus::BlockModel& model, const std::
     output();
   std::printf("Steps:        %lu (time %.6g s)\n", solver.steps_done(), solver.time());
   std::printf("Unbalanced force ratio: %.3g\n", solver.unbalanced_ratio());
-  std::printf("Largest displacement: %.6g m\n", largest_displacement());
+  std::printf("Largest displacement: %.6g m\n", largest_gridpoint_displacement(solver));
   {
     EnergyAccount e;
     solver.add_energy(e);
@@ -395,6 +412,8 @@ void solve(talus::Scene& scene, talus::BlockModel& model, talus::PvdSeries& seri
     std::printf("Hexahedra:    %u (mixed discretization: the tetrahedra are their two overlays of "
                 "five)\n",
                 system.mesh_report.hexes);
+  if (zones)
+    print_nodal_mixed(scene, model, mesh);
   std::printf("Time step:    %.6g s (eq. 87, fraction %g%s)\n", solver.dt(),
               scene.solver.time_step_fraction, zones ? "; eq. 84 for the zones" : "");
   PvdSeries zone_series(prefix + "_zones.pvd");
@@ -515,8 +534,10 @@ void solve(talus::Scene& scene, talus::BlockModel& model, talus::PvdSeries& seri
       "motion %.0f %%\n",
       total, 100 * r.seconds_detection / total, 100 * r.seconds_planes / total,
       100 * r.seconds_forces / total, 100 * r.seconds_motion / total);
-  std::printf("Output:       %s_blocks.pvd, %s_contacts.pvd, %s_history.csv\n", prefix.c_str(),
-              prefix.c_str(), prefix.c_str());
+  if (zones)
+    std::printf("Largest gridpoint displacement: %.6g m\n", largest_gridpoint_displacement(*zones));
+  std::printf("Output:       %s_blocks.pvd, %s_contacts.pvd, %s%s_history.csv\n", prefix.c_str(),
+              prefix.c_str(), zones ? (prefix + "_zones.pvd, ").c_str() : "", prefix.c_str());
 }
 
 int run(const std::string& filename)

@@ -298,6 +298,10 @@ void declare_deformable(ParameterFile& prm)
       "Nodal mixed discretization", "false", P::Bool(), "true or false",
       "Average the zones' volumetric strain and plastic pressure at the gridpoints (eqs. "
       "68-76): constant-strain tetrahedra then do not lock in incompressible or plastic flow.");
+  prm.declare("Nodal mixed groups", "", P::List(P::Anything()),
+              "group names separated by commas (some of 'Groups')",
+              "Deformable blocks of these groups have nodal mixed discretization, the others "
+              "not ('Nodal mixed discretization = true' gives it to all of them).");
   prm.declare(
       "Element", "tet4", P::Selection("tet4|tet10|hex-mixed"), "tet4, tet10 or hex-mixed",
       "Zone type: 4-node constant-strain tetrahedra, 10-node tetrahedra, or hexahedral zones of "
@@ -360,6 +364,20 @@ void parse_deformable(ParameterFile& prm, Scene& scene)
                     "hex-mixed averages over its hexahedra and does not combine with 'Nodal mixed "
                     "discretization = true'",
                     "tet4 with nodal mixed discretization, or hex-mixed without it");
+  for (const std::string& g : dealii::Utilities::split_string_list(prm.get("Nodal mixed groups")))
+  {
+    if (std::find(d.groups.begin(), d.groups.end(), g) == d.groups.end())
+      throw prm.error("Nodal mixed groups", "names '" + g + "', which is not in 'Groups'",
+                      "names of deformable groups");
+    if (d.material.element != ZoneElement::tet4)
+      throw prm.error("Nodal mixed groups",
+                      "names '" + g + "', but 'Element' is " + element +
+                          (d.material.element == ZoneElement::tet10
+                               ? " (10-node zones do not lock and need no mixed discretization)"
+                               : " (hex-mixed averages over its hexahedra already)"),
+                      "no groups with Element " + element + ", or Element tet4");
+    d.nodal_mixed_groups.push_back(g);
+  }
   if (d.material.element == ZoneElement::tet10 && d.material.nodal_mixed)
     throw prm.error("Element",
                     "tet10 cannot be combined with 'Nodal mixed discretization = true' (10-node "
@@ -379,8 +397,9 @@ void parse_deformable(ParameterFile& prm, Scene& scene)
     // written.
     try
     {
-      d.mesh = std::make_shared<TetMesh>(read_gmsh_block(
-          d.mesh_file, 0, d.material.nodal_mixed ? MeshOrder::columns : MeshOrder::slabs));
+      // In slabs; a body with nodal mixed discretization is put in columns
+      // when its group is known (solve_deformable).
+      d.mesh = std::make_shared<TetMesh>(read_gmsh_block(d.mesh_file, 0));
       measure_mesh(*d.mesh);
     }
     catch (const InputError& e)

@@ -3,8 +3,66 @@
 #include <talus/zone/tet10_mesh.h>
 #include <talus/zone/zone_surface.h>
 
+#include <algorithm>
+
 namespace talus
 {
+
+namespace
+{
+const std::string& group_of(const BlockModel& model, unsigned int block)
+{
+  return model.group_names[model.group[block]];
+}
+} // namespace
+
+BlockMeshOrder deformable_zone_order(const Scene& scene, const BlockModel& model)
+{
+  return [&scene, &model](unsigned int block)
+  {
+    return scene.deformable.nodal_mixed(group_of(model, block)) ? MeshOrder::columns
+                                                                : MeshOrder::slabs;
+  };
+}
+
+ZoneMaterials zone_materials(const Scene& scene, const BlockModel& model, const TetMesh& mesh)
+{
+  const DeformableSpec& d = scene.deformable;
+  ZoneMaterials m;
+  m.of_zone.resize(mesh.n_zones());
+  // Material index of each (scaled, nodal mixed) pair, made when first used.
+  constexpr unsigned int none = ~0u;
+  unsigned int index[2][2] = {{none, none}, {none, none}};
+  for (unsigned int z = 0; z < mesh.n_zones(); ++z)
+  {
+    if (z > 0 && mesh.zone_block[z] == mesh.zone_block[z - 1])
+    {
+      m.of_zone[z] = m.of_zone[z - 1];
+      continue;
+    }
+    const std::string& group = group_of(model, mesh.zone_block[z]);
+    const bool scaled =
+        std::find(d.scaled_groups.begin(), d.scaled_groups.end(), group) != d.scaled_groups.end();
+    const bool mixed = d.nodal_mixed(group);
+    unsigned int& i = index[scaled][mixed];
+    if (i == none)
+    {
+      ZoneMaterial material = d.material;
+      if (scaled)
+      {
+        material.bulk_modulus *= d.stiffness_ratio;
+        material.shear_modulus *= d.stiffness_ratio;
+      }
+      material.nodal_mixed = mixed;
+      i = static_cast<unsigned int>(m.materials.size());
+      m.materials.push_back(material);
+    }
+    m.of_zone[z] = i;
+  }
+  if (m.materials.empty()) // no zones
+    m.materials.push_back(d.material);
+  return m;
+}
 
 TetMesh mesh_deformable_blocks(const Scene& scene, const BlockModel& model,
                                const std::vector<unsigned int>& which, MeshReport& report)
@@ -13,11 +71,9 @@ TetMesh mesh_deformable_blocks(const Scene& scene, const BlockModel& model,
   {
     const ZoneElement element = scene.deformable.material.element;
     // 10-node zones are made from the 4-node mesh (tet10_mesh.h).
-    // Nodal mixed discretization runs fastest on zones in columns.
-    TetMesh mesh =
-        mesh_blocks(model, which, scene.deformable.edge_length, report,
-                    element == ZoneElement::tet10 ? ZoneElement::tet4 : element,
-                    scene.deformable.material.nodal_mixed ? MeshOrder::columns : MeshOrder::slabs);
+    TetMesh mesh = mesh_blocks(model, which, scene.deformable.edge_length, report,
+                               element == ZoneElement::tet10 ? ZoneElement::tet4 : element,
+                               deformable_zone_order(scene, model));
     if (element == ZoneElement::tet10)
     {
       make_quadratic(mesh);
@@ -42,23 +98,11 @@ BlockSystem build_block_system(const Scene& scene, BlockModel& model)
   {
     s.mesh = mesh_deformable_blocks(scene, model, s.deformable_blocks, s.mesh_report);
     s.vertex_gridpoint = use_zone_surfaces(model, s.mesh);
-    // A second material for the 'Stiffness ratio groups' (E scaled).
-    std::vector<ZoneMaterial> materials{scene.deformable.material};
-    std::vector<unsigned int> material_of_zone(s.mesh.n_zones(), 0);
-    if (!scene.deformable.scaled_groups.empty())
-    {
-      ZoneMaterial scaled = scene.deformable.material;
-      scaled.bulk_modulus *= scene.deformable.stiffness_ratio;
-      scaled.shear_modulus *= scene.deformable.stiffness_ratio;
-      materials.push_back(scaled);
-      for (unsigned int z = 0; z < s.mesh.n_zones(); ++z)
-        for (const std::string& g : scene.deformable.scaled_groups)
-          if (model.group_names[model.group[s.mesh.zone_block[z]]] == g)
-            material_of_zone[z] = 1;
-    }
+    ZoneMaterials m = zone_materials(scene, model, s.mesh);
     s.zones = std::make_unique<DeformableSolver>(
-        s.mesh, materials, material_of_zone, scene.solver, scene.gridpoint_conditions,
-        scene.face_pressures, scene.has_initial_stress ? &scene.initial_stress : nullptr);
+        s.mesh, std::move(m.materials), std::move(m.of_zone), scene.solver,
+        scene.gridpoint_conditions, scene.face_pressures,
+        scene.has_initial_stress ? &scene.initial_stress : nullptr);
   }
   SolverSettings settings = scene.solver;
   if (scene.has_initial_stress)

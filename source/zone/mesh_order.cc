@@ -63,16 +63,24 @@ double zone_volume(const TetMesh& mesh, unsigned int z)
 
 MeshPermutation order_for_locality(TetMesh& mesh, MeshOrder order, unsigned int column_cells)
 {
-  const unsigned int nz = mesh.n_zones(), ng = mesh.n_gridpoints();
-  MeshPermutation perm;
   if (order == MeshOrder::generator)
   {
-    perm.old_zone.resize(nz);
-    perm.old_gridpoint.resize(ng);
+    MeshPermutation perm;
+    perm.old_zone.resize(mesh.n_zones());
+    perm.old_gridpoint.resize(mesh.n_gridpoints());
     std::iota(perm.old_zone.begin(), perm.old_zone.end(), 0u);
     std::iota(perm.old_gridpoint.begin(), perm.old_gridpoint.end(), 0u);
     return perm;
   }
+  return order_for_locality(
+      mesh, [order](unsigned int) { return order; }, column_cells);
+}
+
+MeshPermutation order_for_locality(TetMesh& mesh, const BlockMeshOrder& order_of_block,
+                                   unsigned int column_cells)
+{
+  const unsigned int nz = mesh.n_zones(), ng = mesh.n_gridpoints();
+  MeshPermutation perm;
   constexpr unsigned int none = std::numeric_limits<unsigned int>::max();
   // Units that move together: a hexahedral zone's ten tetrahedra, or one
   // plain zone. unit_hex: the hexahedron of a unit, or none.
@@ -102,14 +110,20 @@ MeshPermutation order_for_locality(TetMesh& mesh, MeshOrder order, unsigned int 
         for (int d = 0; d < 3; ++d)
           centroid[3 * u + d] += mesh.position[3 * g + d] / (4.0 * unit_size[u]);
   }
-  // The sort key of each unit, within the bounding box of its run.
+  // The sort key of each unit, within the bounding box of its run, and
+  // the order of each run (of its block).
   std::vector<std::uint64_t> key(nu, 0);
+  std::vector<MeshOrder> run_order;
   // Columns only: the column of each unit and whether it is a seam unit.
-  std::vector<unsigned int> column(order == MeshOrder::columns ? nu : 0);
-  std::vector<unsigned char> seam(column.size(), 0);
+  std::vector<unsigned int> column(nu, 0);
+  std::vector<unsigned char> seam(nu, 0);
+  bool any_columns = false;
   constexpr std::uint32_t cells = (1u << 21) - 1; // per axis, at most
   for (std::size_t begin = 0, end = 0; begin < nu; begin = end)
   {
+    const MeshOrder order = order_of_block(mesh.zone_block[unit_first[begin]]);
+    run_order.push_back(order);
+    any_columns |= order == MeshOrder::columns;
     double lo[3], hi[3];
     for (int d = 0; d < 3; ++d)
       lo[d] = hi[d] = centroid[3 * begin + d];
@@ -125,6 +139,12 @@ MeshPermutation order_for_locality(TetMesh& mesh, MeshOrder order, unsigned int 
     // the brick generator, whose five tetrahedra then share a cell), shifted
     // by a quarter cell so that their centroids (a quarter to three
     // quarters across the hexahedron) stay clear of the cell faces.
+    if (order == MeshOrder::generator) // as they are
+    {
+      for (std::size_t u = begin; u < end; ++u)
+        key[u] = u;
+      continue;
+    }
     double cell = extent / cells, shift = 0.0;
     if (order != MeshOrder::hilbert)
     {
@@ -158,7 +178,7 @@ MeshPermutation order_for_locality(TetMesh& mesh, MeshOrder order, unsigned int 
         column[u] = (c[1] / column_cells) * per_row + c[0] / column_cells;
     }
   }
-  if (order == MeshOrder::columns)
+  if (any_columns)
   {
     // A unit is a seam unit if one of its gridpoints is also used by a unit
     // of a later column: every gridpoint is then used by seam units and by
@@ -177,7 +197,8 @@ MeshPermutation order_for_locality(TetMesh& mesh, MeshOrder order, unsigned int 
       for_gridpoints(u,
                      [&](unsigned int g) { last_column[g] = std::max(last_column[g], column[u]); });
     for (std::size_t u = 0; u < nu; ++u)
-      for_gridpoints(u, [&](unsigned int g) { seam[u] |= last_column[g] > column[u]; });
+      if (run_order[run[u]] == MeshOrder::columns)
+        for_gridpoints(u, [&](unsigned int g) { seam[u] |= last_column[g] > column[u]; });
   }
   std::vector<unsigned int> unit_order(nu);
   std::iota(unit_order.begin(), unit_order.end(), 0u);
@@ -186,7 +207,7 @@ MeshPermutation order_for_locality(TetMesh& mesh, MeshOrder order, unsigned int 
                    {
                      if (run[a] != run[b])
                        return run[a] < run[b];
-                     if (order == MeshOrder::columns)
+                     if (run_order[run[a]] == MeshOrder::columns)
                      {
                        // Seams first, in slabs; then column by column.
                        if (seam[a] != seam[b])

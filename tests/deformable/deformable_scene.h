@@ -6,9 +6,8 @@
 #include <talus/base/parallel_environment.h>
 #include <talus/io/scene.h>
 #include <talus/model/build_blocks.h>
+#include <talus/solver/block_system.h>
 #include <talus/solver/deformable_solver.h>
-#include <talus/zone/block_mesher.h>
-#include <talus/zone/tet10_mesh.h>
 
 #include <memory>
 #include <string>
@@ -36,13 +35,13 @@ struct DeformableScene
       for (const std::string& g : scene.deformable.groups)
         if (model.group_names[model.group[b]] == g)
           which.push_back(b);
-    mesh = talus::mesh_blocks(model, which, scene.deformable.edge_length, mesh_report);
-    if (scene.deformable.material.element == talus::ZoneElement::tet10)
-      talus::make_quadratic(mesh);
+    // As talus meshes them and gives them their materials.
+    mesh = talus::mesh_deformable_blocks(scene, model, which, mesh_report);
+    talus::ZoneMaterials materials = talus::zone_materials(scene, model, mesh);
     solver = std::make_unique<talus::DeformableSolver>(
-        mesh, std::vector<talus::ZoneMaterial>{scene.deformable.material},
-        std::vector<unsigned int>(mesh.n_zones(), 0), scene.solver, scene.gridpoint_conditions,
-        scene.face_pressures, scene.has_initial_stress ? &scene.initial_stress : nullptr);
+        mesh, std::move(materials.materials), std::move(materials.of_zone), scene.solver,
+        scene.gridpoint_conditions, scene.face_pressures,
+        scene.has_initial_stress ? &scene.initial_stress : nullptr);
   }
 
   /// Mean of displacement component d over the gridpoints whose initial

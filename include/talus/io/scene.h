@@ -5,6 +5,7 @@
 #include <talus/solver/deformable_solver.h>
 #include <talus/solver/rigid_solver.h>
 
+#include <algorithm>
 #include <map>
 #include <memory>
 #include <string>
@@ -50,6 +51,17 @@ struct DeformableSpec
   /// Blocks of these groups take `material` with E times stiffness_ratio.
   std::vector<std::string> scaled_groups;
   double stiffness_ratio = 1.0;
+  /// Blocks of these groups take nodal mixed discretization (eqs. 68-76)
+  /// when `material.nodal_mixed` does not give it to every block.
+  std::vector<std::string> nodal_mixed_groups;
+
+  /// Whether the zones of a block of group `group` have nodal mixed
+  /// discretization.
+  bool nodal_mixed(const std::string& group) const
+  {
+    return material.nodal_mixed || std::find(nodal_mixed_groups.begin(), nodal_mixed_groups.end(),
+                                             group) != nodal_mixed_groups.end();
+  }
 };
 
 /// A 'Boundary N' of held gridpoints whose reaction (the force the

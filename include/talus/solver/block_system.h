@@ -25,9 +25,28 @@ struct BlockSystem
   std::unique_ptr<RigidSolver> solver;
 };
 
+/// The order of each deformable block's zones: in columns for a block with
+/// nodal mixed discretization (its strain increments then wait in cache
+/// between the two stages, DeformableSolver::plan_nodal_mixed), in slabs
+/// otherwise (mesh_order.h).
+BlockMeshOrder deformable_zone_order(const Scene& scene, const BlockModel& model);
+
+/// The materials of a scene's zones and each zone's index into them: the
+/// scene's material, with E scaled for the blocks of 'Stiffness ratio
+/// groups' and nodal mixed discretization for the blocks of 'Nodal mixed
+/// groups' (or all, with 'Nodal mixed discretization'). Only the
+/// combinations that some zone takes are listed, so that a scene without
+/// nodal mixed zones plans none.
+struct ZoneMaterials
+{
+  std::vector<ZoneMaterial> materials;
+  std::vector<unsigned int> of_zone;
+};
+ZoneMaterials zone_materials(const Scene& scene, const BlockModel& model, const TetMesh& mesh);
+
 /// Meshes blocks `which` of `model` with the scene's zone edge length and
-/// element (entry 'Element'); an InputError of the mesher is given the
-/// parameter file's name.
+/// element (entry 'Element'), in deformable_zone_order; an InputError of
+/// the mesher is given the parameter file's name.
 TetMesh mesh_deformable_blocks(const Scene& scene, const BlockModel& model,
                                const std::vector<unsigned int>& which, MeshReport& report);
 

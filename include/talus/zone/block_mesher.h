@@ -53,13 +53,19 @@ MeshReport measure_mesh(const TetMesh& mesh);
 /// With `element` hex_mixed every block must be an axis-aligned brick: it
 /// becomes hexahedral zones of two overlays of five tetrahedra
 /// (append_hex_mixed_brick); any other block throws InputError naming the
-/// entry 'Element'. tet10 is not built yet (InputError).
+/// entry 'Element'. 10-node zones are made from the 4-node ones
+/// (make_quadratic); tet10 here throws.
 ///
 /// Last, zones and gridpoints are put in `order` (by default slabs,
 /// renumbered block by block for memory locality, mesh_order.h).
 TetMesh mesh_blocks(const BlockModel& blocks, const std::vector<unsigned int>& which,
                     double edge_length, MeshReport& report, ZoneElement element = ZoneElement::tet4,
                     MeshOrder order = MeshOrder::slabs);
+
+/// The same with an order for each block.
+TetMesh mesh_blocks(const BlockModel& blocks, const std::vector<unsigned int>& which,
+                    double edge_length, MeshReport& report, ZoneElement element,
+                    const BlockMeshOrder& order);
 
 /// The number of zones mesh_blocks would make, found without meshing (as a
 /// double: a bad edge length can ask for more than any integer holds), so
