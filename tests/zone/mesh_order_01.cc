@@ -12,7 +12,8 @@
 //    gridpoints in first use by the zones; a second renumbering changes
 //    nothing. The zone order of the cube brick is the generator's.
 //    The same in columns (MeshOrder::columns) of 2 or 3 cells; columns
-//    wider than the brick are its slabs. In a brick of 10,000 zones in
+//    wider than the brick are its slabs. With an order per block, each
+//    block as in its own order. In a brick of 10,000 zones in
 //    columns of 5 cells, the zones that wait long for the last zone around
 //    their gridpoints are the seam zones, all at the start, and fewer than
 //    in slabs.
@@ -301,7 +302,8 @@ int main(int argc, char** argv)
               is_identity(cube_slabs.old_zone) ? "yes" : "NO");
   const TetMesh cube_ordered =
       renumbered("cube brick", cube_mesh, MeshOrder::hilbert, cube_hilbert);
-  renumbered("two bricks (2x1x0.5, 1x1x1)", two_bricks, MeshOrder::slabs, other);
+  MeshPermutation bricks_slabs;
+  renumbered("two bricks (2x1x0.5, 1x1x1)", two_bricks, MeshOrder::slabs, bricks_slabs);
   renumbered("two bricks (2x1x0.5, 1x1x1)", two_bricks, MeshOrder::hilbert, other);
   renumbered("tetrahedral block", tet_mesh, MeshOrder::slabs, other);
   renumbered("tetrahedral block", tet_mesh, MeshOrder::hilbert, other);
@@ -313,7 +315,30 @@ int main(int argc, char** argv)
   MeshPermutation cube_columns;
   const TetMesh cube_in_columns =
       renumbered("cube brick, 2-cell columns", cube_mesh, MeshOrder::columns, cube_columns, 2);
-  renumbered("two bricks, 2-cell columns", two_bricks, MeshOrder::columns, other, 2);
+  MeshPermutation bricks_columns;
+  renumbered("two bricks, 2-cell columns", two_bricks, MeshOrder::columns, bricks_columns, 2);
+  // An order per block (talus: columns for blocks with nodal mixed
+  // discretization): the first brick's zones and gridpoints as in columns,
+  // the second's as in slabs; a mesh's array checks as above.
+  {
+    TetMesh mixed = two_bricks;
+    const MeshPermutation perm = order_for_locality(
+        mixed,
+        [](unsigned int block) { return block == 0 ? MeshOrder::columns : MeshOrder::slabs; }, 2);
+    const unsigned int first_zone = static_cast<unsigned int>(
+        std::count(two_bricks.zone_block.begin(), two_bricks.zone_block.end(), 0u));
+    const unsigned int first_gridpoint = static_cast<unsigned int>(
+        std::count(two_bricks.gridpoint_block.begin(), two_bricks.gridpoint_block.end(), 0u));
+    unsigned int differ = 0;
+    for (unsigned int z = 0; z < two_bricks.n_zones(); ++z)
+      differ += perm.old_zone[z] != (z < first_zone ? bricks_columns : bricks_slabs).old_zone[z];
+    for (unsigned int g = 0; g < two_bricks.n_gridpoints(); ++g)
+      differ += perm.old_gridpoint[g] !=
+                (g < first_gridpoint ? bricks_columns : bricks_slabs).old_gridpoint[g];
+    std::printf("two bricks, the first in 2-cell columns and the second in slabs: mismatches %u; "
+                "zones and gridpoints as in the two orders: %s\n",
+                count_mismatches(two_bricks, mixed, perm), differ == 0 ? "yes" : "NO");
+  }
   renumbered("tetrahedral block, columns 3", tet_mesh, MeshOrder::columns, other, 3);
   renumbered("hexahedral zones, columns 2", hex_mesh, MeshOrder::columns, other, 2);
   renumbered("cube brick, 32-cell columns", cube_mesh, MeshOrder::columns, other);
