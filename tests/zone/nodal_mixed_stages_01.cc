@@ -175,9 +175,15 @@ Answer modes(const char* name, const TetMesh& mesh)
   for (unsigned int g = 0; g < mesh.n_gridpoints(); ++g)
     if (mesh.position[3 * g + 2] > 1 - 1e-9)
       lowest = std::min(lowest, reference.x[3 * g + 2]);
+  // How many zones yield follows the CPU's rounding (3156 here, 3155 with
+  // the zones in columns or without fused multiply-adds): the counts go to
+  // standard error, the check that the path is plastic to the output.
+  std::fprintf(stderr, "%s: zones that yielded %u (in tension %u)\n", name, yielded, volumetric);
   std::printf("%s, solver's choice: lag %u batches, strain increments of %.0f %% of the batches "
-              "kept; zones that yielded %u (in tension %u); top moved to z = %.6f m\n",
-              name, reference.lag, 100.0 * reference.kept, yielded, volumetric, lowest);
+              "kept; more than a quarter of the zones yielded, some in tension: %s; top moved to "
+              "z = %.6f m\n",
+              name, reference.lag, 100.0 * reference.kept,
+              yielded > mesh.n_zones() / 4 && volumetric > 0 ? "yes" : "NO", lowest);
   for (int limit : {0, 2, 1000})
   {
     const Answer a = solve(mesh, limit);
