@@ -114,6 +114,24 @@ void tet10_gauss_volumes(const TetMesh& mesh, unsigned int z, const double* x, d
     volume[q] = J.determinant() / 24.0;
   }
 }
+/// The indices i with key[i] below n_keys, listed by key and in order
+/// within one key (a counting sort): those of key k are
+/// items[start[k] .. start[k + 1]).
+void list_by_key(const std::vector<unsigned int>& key, unsigned int n_keys,
+                 std::vector<unsigned int>& start, std::vector<unsigned int>& items)
+{
+  start.assign(n_keys + 1, 0);
+  for (unsigned int k : key)
+    if (k < n_keys)
+      ++start[k + 1];
+  for (unsigned int k = 0; k < n_keys; ++k)
+    start[k + 1] += start[k];
+  items.resize(start[n_keys]);
+  std::vector<unsigned int> fill(start.begin(), start.end() - 1);
+  for (unsigned int i = 0; i < key.size(); ++i)
+    if (key[i] < n_keys)
+      items[fill[key[i]]++] = i;
+}
 } // namespace
 
 /// Gridpoint state, 3 numbers per gridpoint in each vector.
@@ -567,81 +585,53 @@ void DeformableSolver::plan_nodal_mixed()
   }
   const unsigned int nb = static_cast<unsigned int>(nmd_batches_.size());
   const unsigned int none = std::numeric_limits<unsigned int>::max();
-  std::vector<unsigned int> last_batch(mesh_.n_gridpoints(), none);
-  for (unsigned int j = 0; j < nb; ++j)
-    if (nmd_batches_[j].mixed)
-      for (unsigned int z = nmd_batches_[j].first; z < nmd_batches_[j].first + nmd_batches_[j].n;
-           ++z)
-        for (unsigned int g : mesh_.zone_gridpoint[z])
-          last_batch[g] = j;
+  // Visits every gridpoint of every zone of batch b.
+  const auto for_gridpoints = [&](unsigned int b, auto&& visit)
+  {
+    const NodalMixedBatch& batch = nmd_batches_[b];
+    for (unsigned int z = batch.first; z < batch.first + batch.n; ++z)
+      for (unsigned int g : mesh_.zone_gridpoint[z])
+        visit(g);
+  };
+  // Of each gridpoint, the last place in `order` (batches) of a mixed batch
+  // around it, or none.
+  std::vector<unsigned int> last_place(mesh_.n_gridpoints());
+  const auto find_last_places = [&](const auto& order)
+  {
+    std::fill(last_place.begin(), last_place.end(), none);
+    for (unsigned int p = 0; p < nb; ++p)
+      if (nmd_batches_[order(p)].mixed)
+        for_gridpoints(order(p), [&](unsigned int g) { last_place[g] = p; });
+  };
+  // Of each batch, the largest of `least` and the last places around it.
+  const auto latest_around = [&](unsigned int b, unsigned int least)
+  {
+    if (nmd_batches_[b].mixed)
+      for_gridpoints(b, [&](unsigned int g) { least = std::max(least, last_place[g]); });
+    return least;
+  };
+
+  find_last_places([](unsigned int p) { return p; });
   unsigned int lag = 0;
+  std::vector<unsigned int> ready_after(nb);
   for (unsigned int b = 0; b < nb; ++b)
   {
-    NodalMixedBatch& batch = nmd_batches_[b];
-    batch.ready_after = b;
-    if (batch.mixed)
-      for (unsigned int z = batch.first; z < batch.first + batch.n; ++z)
-        for (unsigned int g : mesh_.zone_gridpoint[z])
-          batch.ready_after = std::max(batch.ready_after, last_batch[g]);
-    lag = std::max(lag, batch.ready_after - b);
+    ready_after[b] = nmd_batches_[b].ready_after = latest_around(b, b);
+    lag = std::max(lag, ready_after[b] - b);
   }
-  completed_start_.assign(nb + 1, 0);
-  for (unsigned int g = 0; g < mesh_.n_gridpoints(); ++g)
-    if (last_batch[g] != none)
-      ++completed_start_[last_batch[g] + 1];
-  for (unsigned int j = 0; j < nb; ++j)
-    completed_start_[j + 1] += completed_start_[j];
-  completed_gridpoint_.resize(completed_start_[nb]);
-  std::vector<unsigned int> fill(completed_start_.begin(), completed_start_.end() - 1);
-  for (unsigned int g = 0; g < mesh_.n_gridpoints(); ++g)
-    if (last_batch[g] != none)
-      completed_gridpoint_[fill[last_batch[g]]++] = g;
+  list_by_key(last_place, nb, completed_start_, completed_gridpoint_);
 
   // The model order: each batch as soon as its sums are complete, those
   // ready at the same time in their order (on a mesh in slabs, the order
   // of the batches; in columns, a seam batch joins the columns when the
   // last column around it has been summed).
-  model_start_.assign(nb + 1, 0);
-  for (const NodalMixedBatch& batch : nmd_batches_)
-    ++model_start_[batch.ready_after + 1];
-  for (unsigned int j = 0; j < nb; ++j)
-    model_start_[j + 1] += model_start_[j];
-  model_order_.resize(nb);
-  std::vector<unsigned int> place(nb);
-  fill.assign(model_start_.begin(), model_start_.end() - 1);
-  for (unsigned int b = 0; b < nb; ++b)
-    model_order_[place[b] = fill[nmd_batches_[b].ready_after]++] = b;
+  list_by_key(ready_after, nb, model_start_, model_order_);
   // A plastic average is complete with the last model stage around its
   // gridpoint; the force stage of a batch waits for all of its own.
-  std::fill(last_batch.begin(), last_batch.end(), none);
+  find_last_places([&](unsigned int p) { return model_order_[p]; });
   for (unsigned int p = 0; p < nb; ++p)
-  {
-    const NodalMixedBatch& batch = nmd_batches_[model_order_[p]];
-    if (batch.mixed)
-      for (unsigned int z = batch.first; z < batch.first + batch.n; ++z)
-        for (unsigned int g : mesh_.zone_gridpoint[z])
-          last_batch[g] = p; // (now a place in the model order)
-  }
-  for (unsigned int b = 0; b < nb; ++b)
-  {
-    NodalMixedBatch& batch = nmd_batches_[b];
-    batch.forces_after = place[b];
-    if (batch.mixed)
-      for (unsigned int z = batch.first; z < batch.first + batch.n; ++z)
-        for (unsigned int g : mesh_.zone_gridpoint[z])
-          batch.forces_after = std::max(batch.forces_after, last_batch[g]);
-  }
-  plastic_start_.assign(nb + 1, 0);
-  for (unsigned int g = 0; g < mesh_.n_gridpoints(); ++g)
-    if (last_batch[g] != none)
-      ++plastic_start_[last_batch[g] + 1];
-  for (unsigned int p = 0; p < nb; ++p)
-    plastic_start_[p + 1] += plastic_start_[p];
-  plastic_gridpoint_.resize(plastic_start_[nb]);
-  fill.assign(plastic_start_.begin(), plastic_start_.end() - 1);
-  for (unsigned int g = 0; g < mesh_.n_gridpoints(); ++g)
-    if (last_batch[g] != none)
-      plastic_gridpoint_[fill[last_batch[g]]++] = g;
+    nmd_batches_[model_order_[p]].forces_after = latest_around(model_order_[p], p);
+  list_by_key(last_place, nb, plastic_start_, plastic_gridpoint_);
 
   // A batch whose model stage comes at most nmd_ring_limit_ - 1 batches
   // after its sums stage is kept: its sums stage is the strain pass itself,
@@ -694,9 +684,11 @@ void DeformableSolver::nodal_mixed_zone_forces(const double* x, const double* v,
   //     average plastic pressure (the same wait, on the model stage): each
   //     zone that yielded trades its plastic pressure for the mean of its
   //     gridpoints' (eq. 76), then the nodal forces.
-  // Short layers (see plan_nodal_mixed) keep the strain increments of the
-  // sums stage for the model stage; otherwise every sums stage comes first
-  // and the model stage takes them again (bitwise the same numbers). Every
+  // A batch whose model stage comes soon after its sums stage (see
+  // plan_nodal_mixed) keeps the strain increments of the sums stage for
+  // it; the others sum their volumetric increments alone and the model
+  // stage takes the strain increments again (bitwise the same numbers);
+  // with none kept, every sums stage comes first. Every
   // sum is added up in zone order, as in one sweep over all zones, and the
   // sums stage reads nothing that the model stage writes, so the results
   // do not depend on the distance between the two stages, nor on the mode.
