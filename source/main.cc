@@ -211,14 +211,10 @@ double largest_gridpoint_displacement(const talus::DeformableSolver& solver)
 
 /// The summary's line on nodal mixed discretization, when some zones have
 /// it.
-void print_nodal_mixed(const talus::Scene& scene, const talus::BlockModel& model,
-                       const talus::TetMesh& mesh)
+void print_nodal_mixed(const talus::DeformableSolver& solver)
 {
-  unsigned int mixed = 0;
-  for (unsigned int z = 0; z < mesh.n_zones(); ++z)
-    mixed += scene.deformable.nodal_mixed(model.group_names[model.group[mesh.zone_block[z]]]);
-  if (mixed > 0)
-    std::printf("Nodal mixed:  %u of %u zones (eqs. 68-76)\n", mixed, mesh.n_zones());
+  if (const unsigned int mixed = solver.nodal_mixed_zones(); mixed > 0)
+    std::printf("Nodal mixed:  %u of %u zones (eqs. 68-76)\n", mixed, solver.mesh().n_zones());
 }
 
 /// Runs a scene of deformable blocks: meshes them, then the explicit zone
@@ -254,7 +250,6 @@ void solve_deformable(talus::Scene& scene, talus::BlockModel& model, const std::
     std::printf("Hexahedra:    %u (mixed discretization: the tetrahedra are their two overlays of "
                 "five)\n",
                 mesh_report.hexes);
-  print_nodal_mixed(scene, model, mesh);
   int argc = 1;
   char name[] = "talus";
   char* args[] = {name, nullptr};
@@ -264,6 +259,7 @@ void solve_deformable(talus::Scene& scene, talus::BlockModel& model, const std::
   DeformableSolver solver(mesh, std::move(materials.materials), std::move(materials.of_zone),
                           scene.solver, scene.gridpoint_conditions, scene.face_pressures,
                           scene.has_initial_stress ? &scene.initial_stress : nullptr);
+  print_nodal_mixed(solver);
   std::printf("Time step:    %.6g s (eq. 84%s)\n", solver.dt(),
               !scene.solver.dynamic && scene.solver.density_scaling ? ", density scaling: unit step"
                                                                     : "");
@@ -413,7 +409,7 @@ void solve(talus::Scene& scene, talus::BlockModel& model, talus::PvdSeries& seri
                 "five)\n",
                 system.mesh_report.hexes);
   if (zones)
-    print_nodal_mixed(scene, model, mesh);
+    print_nodal_mixed(*zones);
   std::printf("Time step:    %.6g s (eq. 87, fraction %g%s)\n", solver.dt(),
               scene.solver.time_step_fraction, zones ? "; eq. 84 for the zones" : "");
   PvdSeries zone_series(prefix + "_zones.pvd");

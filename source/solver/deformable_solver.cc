@@ -407,6 +407,15 @@ DeformableSolver::DeformableSolver(const TetMesh& mesh, std::vector<ZoneMaterial
 
 DeformableSolver::~DeformableSolver() = default;
 
+unsigned int DeformableSolver::nodal_mixed_zones() const
+{
+  unsigned int n = 0;
+  for (std::size_t r = 0; r + 1 < batch_start_.size(); ++r)
+    if (materials_[material_of_zone_[batch_start_[r]]].nodal_mixed)
+      n += batch_start_[r + 1] - batch_start_[r];
+  return n;
+}
+
 void DeformableSolver::set_nodal_mixed_ring_limit(unsigned int batches)
 {
   nmd_ring_limit_ = batches;

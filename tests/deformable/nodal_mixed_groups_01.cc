@@ -36,9 +36,7 @@ struct TwoCantilevers
   explicit TwoCantilevers(const std::string& which)
       : scene(read(which)), model(blocks(scene)), system(build_block_system(scene, model))
   {
-    unsigned int mixed = 0;
-    for (unsigned int z = 0; z < system.mesh.n_zones(); ++z)
-      mixed += scene.deformable.nodal_mixed(group(system.mesh.zone_block[z]));
+    const unsigned int mixed = system.zones->nodal_mixed_zones();
     std::printf("nodal mixed discretization in %s: %u of %u zones\n",
                 which == "mixed"  ? "the 'mixed' beam"
                 : which == "both" ? "both beams"

@@ -169,6 +169,8 @@ public:
   {
     return nmd_batches_.empty() ? 0.0 : double(nmd_kept_) / nmd_batches_.size();
   }
+  /// The zones whose material has nodal mixed discretization.
+  unsigned int nodal_mixed_zones() const;
 
   /// Holds every component of gridpoint g at velocity `v` (m/s) from now on.
   void hold_gridpoint(unsigned int g, const Vec3& v);
