@@ -134,17 +134,17 @@ MeshPermutation order_for_locality(TetMesh& mesh, const BlockMeshOrder& order_of
         hi[d] = std::max(hi[d], centroid[3 * end + d]);
       }
     const double extent = std::max({hi[0] - lo[0], hi[1] - lo[1], hi[2] - lo[2]});
-    // Lattice cells: for the curve, the finest the key holds; for slabs,
-    // of the zone size, cbrt(5 V) for mean zone volume V (a hexahedron of
-    // the brick generator, whose five tetrahedra then share a cell), shifted
-    // by a quarter cell so that their centroids (a quarter to three
-    // quarters across the hexahedron) stay clear of the cell faces.
     if (order == MeshOrder::generator) // as they are
     {
       for (std::size_t u = begin; u < end; ++u)
         key[u] = u;
       continue;
     }
+    // Lattice cells: for the curve, the finest the key holds; for slabs,
+    // of the zone size, cbrt(5 V) for mean zone volume V (a hexahedron of
+    // the brick generator, whose five tetrahedra then share a cell), shifted
+    // by a quarter cell so that their centroids (a quarter to three
+    // quarters across the hexahedron) stay clear of the cell faces.
     double cell = extent / cells, shift = 0.0;
     if (order != MeshOrder::hilbert)
     {
