@@ -218,8 +218,9 @@ void print_nodal_mixed(const talus::DeformableSolver& solver)
 }
 
 /// Runs a scene of deformable blocks: meshes them, then the explicit zone
-/// cycle with output and histories.
-void solve_deformable(talus::Scene& scene, talus::BlockModel& model, const std::string& prefix)
+/// cycle with output and histories; returns the unbalanced-force ratio
+/// reached.
+double solve_deformable(talus::Scene& scene, talus::BlockModel& model, const std::string& prefix)
 {
   using namespace talus;
   std::vector<unsigned int> deformable;
@@ -300,8 +301,31 @@ void solve_deformable(talus::Scene& scene, talus::BlockModel& model, const std::
     if (scene.output.write_vtu)
       write_zone_frame(scene, mesh, solver, zone_writer, series, frame++);
   };
+  // One history row at the solver's current step; the last row is kept so
+  // that the run's end is recorded once.
+  unsigned long last_row = solver.steps_done();
+  const auto record = [&]()
+  {
+    std::vector<double> row{double(solver.steps_done()), solver.time(), solver.unbalanced_ratio(),
+                            largest_gridpoint_displacement(solver)};
+    points.add_values(row, solver);
+    for (const ReactionReport& r : scene.reactions)
+    {
+      const Vec3 f = -solver.support_force(r.region);
+      row.insert(row.end(), {f[0], f[1], f[2]});
+    }
+    EnergyAccount e;
+    solver.add_energy(e);
+    row.insert(row.end(), {e.kinetic, e.gravity_work, e.boundary_work, e.zone_elastic, e.plastic,
+                           e.damping, e.error()});
+    history.record(row);
+    last_row = solver.steps_done();
+  };
   if (restart_from.empty())
+  {
     output();
+    record();
+  }
   while (solver.steps_done() < scene.solver.steps)
   {
     try
@@ -317,21 +341,7 @@ void solve_deformable(talus::Scene& scene, talus::BlockModel& model, const std::
     }
     const unsigned long n = solver.steps_done();
     if (n % scene.solver.history_interval == 0)
-    {
-      std::vector<double> row{double(n), solver.time(), solver.unbalanced_ratio(),
-                              largest_gridpoint_displacement(solver)};
-      points.add_values(row, solver);
-      for (const ReactionReport& r : scene.reactions)
-      {
-        const Vec3 f = -solver.support_force(r.region);
-        row.insert(row.end(), {f[0], f[1], f[2]});
-      }
-      EnergyAccount e;
-      solver.add_energy(e);
-      row.insert(row.end(), {e.kinetic, e.gravity_work, e.boundary_work, e.zone_elastic, e.plastic,
-                             e.damping, e.error()});
-      history.record(row);
-    }
+      record();
     progress.update(n, solver.time());
     if (scene.solver.output_interval > 0 && n - last_output >= scene.solver.output_interval)
     {
@@ -344,6 +354,8 @@ void solve_deformable(talus::Scene& scene, talus::BlockModel& model, const std::
     checkpoint.after_step(n);
   }
   progress.finish();
+  if (last_row != solver.steps_done())
+    record();
   if (last_output != solver.steps_done())
     output();
   std::printf("Steps:        %lu (time %.6g s)\n", solver.steps_done(), solver.time());
@@ -376,10 +388,12 @@ void solve_deformable(talus::Scene& scene, talus::BlockModel& model, const std::
   if (scene.deformable.implicit_check)
     implicit_check(scene, solver);
   std::printf("Output:       %s_zones.pvd, %s_history.csv\n", prefix.c_str(), prefix.c_str());
+  return solver.unbalanced_ratio();
 }
 
-/// Runs the calculation the scene asks for, with output and histories.
-void solve(talus::Scene& scene, talus::BlockModel& model, talus::PvdSeries& series,
+/// Runs the calculation the scene asks for, with output and histories;
+/// returns the unbalanced-force ratio reached.
+double solve(talus::Scene& scene, talus::BlockModel& model, talus::PvdSeries& series,
            const std::string& prefix)
 {
   using namespace talus;
@@ -534,6 +548,26 @@ void solve(talus::Scene& scene, talus::BlockModel& model, talus::PvdSeries& seri
     std::printf("Largest gridpoint displacement: %.6g m\n", largest_gridpoint_displacement(*zones));
   std::printf("Output:       %s_blocks.pvd, %s_contacts.pvd, %s%s_history.csv\n", prefix.c_str(),
               prefix.c_str(), zones ? (prefix + "_zones.pvd, ").c_str() : "", prefix.c_str());
+  return r.ratio;
+}
+
+/// Exit code of a static run that stopped at its step limit above its
+/// target ratio: scripts must be able to tell it from an equilibrium.
+constexpr int exit_not_in_equilibrium = 4;
+
+/// Warns, and returns exit_not_in_equilibrium, when a static run with a
+/// target ratio ended above it; 0 otherwise.
+int static_run_end(const talus::Scene& scene, double ratio)
+{
+  const talus::SolverSettings& s = scene.solver;
+  if (s.dynamic || s.target_ratio <= 0.0 || ratio < s.target_ratio)
+    return 0;
+  std::printf("Warning: the run stopped at its step limit ('Steps' = %lu) with the unbalanced "
+              "force ratio at %.3g, above 'Target ratio' = %g: the model is not in equilibrium "
+              "(exit code %d); raise 'Steps', or set 'Target ratio' = 0 to run a fixed number of "
+              "steps\n",
+              s.steps, ratio, s.target_ratio, exit_not_in_equilibrium);
+  return exit_not_in_equilibrium;
 }
 
 int run(const std::string& filename)
@@ -578,27 +612,28 @@ int run(const std::string& filename)
                 report.cutting.smallest_refused_at[1], report.cutting.smallest_refused_at[2]);
 
   talus::PvdSeries series(prefix + "_blocks.pvd");
-  if (scene.solver.steps == 0)
+  if (scene.solver.steps == 0 && scene.output.write_vtu)
   {
-    if (scene.output.write_vtu)
-    {
-      const std::string vtu = scene.output.base_name + "_blocks_00000.vtu";
-      talus::write_blocks_vtu(scene.output.directory + "/" + vtu, model);
-      series.add(0.0, vtu);
-      std::printf("Output:       %s_blocks.pvd\n", prefix.c_str());
-    }
+    const std::string vtu = scene.output.base_name + "_blocks_00000.vtu";
+    talus::write_blocks_vtu(scene.output.directory + "/" + vtu, model);
+    series.add(0.0, vtu);
+    std::printf("Output:       %s_blocks.pvd\n", prefix.c_str());
   }
-  else if (!scene.deformable.groups.empty() && model.n_blocks() == 1)
-    solve_deformable(scene, model, prefix);
-  else
-    solve(scene, model, series, prefix);
+  int exit_code = 0;
+  if (scene.solver.steps > 0)
+  {
+    const double ratio = !scene.deformable.groups.empty() && model.n_blocks() == 1
+                             ? solve_deformable(scene, model, prefix)
+                             : solve(scene, model, series, prefix);
+    exit_code = static_run_end(scene, ratio);
+  }
   const auto done = std::chrono::steady_clock::now();
   // Indented "Time =" lines are ignored when test output is compared.
   std::printf("   Time = %.3f s (blocks %.3f s, output %.3f s)\n",
               std::chrono::duration<double>(done - start).count(),
               std::chrono::duration<double>(built - start).count(),
               std::chrono::duration<double>(done - built).count());
-  return 0;
+  return exit_code;
 }
 
 } // namespace

@@ -2,10 +2,15 @@
 // would see: the message (with FILE's folder removed so that the expected
 // output does not depend on where the tests live) and how talus ended.
 // Succeeds only if talus exited normally with code 1: not 0 (input accepted),
-// not another code, not a signal (a crash).
+// not another code, not a signal (a crash). Directives in FILE's comments:
+//   # expect exit code: N    another exit code that the run must end with
+//   # arguments: A B         arguments put before FILE (e.g. --check)
 
 #include <cstdio>
+#include <fstream>
+#include <sstream>
 #include <string>
+#include <vector>
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -14,6 +19,24 @@ int main(int argc, char** argv)
   if (argc != 2)
     return 2;
   const std::string file = argv[1];
+  int expected_code = 1;
+  std::vector<std::string> arguments{"talus"};
+  {
+    std::ifstream in(file);
+    for (std::string line; std::getline(in, line);)
+    {
+      const std::string code = "# expect exit code:", args = "# arguments:";
+      if (line.rfind(code, 0) == 0)
+        expected_code = std::stoi(line.substr(code.size()));
+      else if (line.rfind(args, 0) == 0)
+      {
+        std::istringstream words(line.substr(args.size()));
+        for (std::string w; words >> w;)
+          arguments.push_back(w);
+      }
+    }
+  }
+  arguments.push_back(file);
   int pipe_fd[2];
   if (pipe(pipe_fd) != 0)
     return 2;
@@ -23,7 +46,11 @@ int main(int argc, char** argv)
     dup2(pipe_fd[1], 1);
     dup2(pipe_fd[1], 2);
     close(pipe_fd[0]);
-    execl(TALUS_EXECUTABLE, "talus", file.c_str(), static_cast<char*>(nullptr));
+    std::vector<char*> argv_child;
+    for (std::string& a : arguments)
+      argv_child.push_back(a.data());
+    argv_child.push_back(nullptr);
+    execv(TALUS_EXECUTABLE, argv_child.data());
     _exit(127);
   }
   close(pipe_fd[1]);
@@ -44,5 +71,5 @@ int main(int argc, char** argv)
     return 1;
   }
   std::printf("exit code %d\n", WEXITSTATUS(status));
-  return WEXITSTATUS(status) == 1 ? 0 : 1;
+  return WEXITSTATUS(status) == expected_code ? 0 : 1;
 }

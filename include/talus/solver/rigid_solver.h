@@ -203,11 +203,17 @@ SolverReport RigidSolver::run(Output&& output, History&& history, AfterStep&& af
     history(step_, time_);
     last_output_ = step_;
   }
+  // The step of the last history row: a run that ends on a multiple of the
+  // history interval has its last row already.
+  unsigned long last_history = step_;
   while (step_ < s_.steps)
   {
     step();
     if (s_.history_interval > 0 && step_ % s_.history_interval == 0)
+    {
       history(step_, time_);
+      last_history = step_;
+    }
     if (s_.output_interval > 0 && step_ % s_.output_interval == 0)
     {
       output(step_, time_);
@@ -217,11 +223,10 @@ SolverReport RigidSolver::run(Output&& output, History&& history, AfterStep&& af
       break;
     after_step(step_);
   }
-  if (last_output_ != step_)
-  {
+  if (last_history != step_)
     history(step_, time_);
+  if (last_output_ != step_)
     output(step_, time_);
-  }
   return report();
 }
 
