@@ -17,6 +17,8 @@
 #include <talus/zone/block_mesher.h>
 #include <talus/zone/tet10_mesh.h>
 
+#include <talus_revision.h>
+
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -31,10 +33,14 @@ namespace
 
 constexpr const char* usage =
     "usage: talus SCENE.prm\n"
+    "       talus --check SCENE.prm\n"
     "       talus --restart CHECKPOINT\n"
+    "       talus --version\n"
     "  Builds the block model the parameter file describes, writes it\n"
     "  for ParaView into the output folder it names, and prints a summary.\n"
     "  Shipped scenes are in the parameters/ folder.\n"
+    "  --check reads, builds and checks the scene (blocks, zones, solvers)\n"
+    "  and writes nothing: exit code 0 when it would run, 1 when not.\n"
     "  --restart continues a run from its checkpoint (<Base name>_checkpoint.bin,\n"
     "  written every 'Checkpoint interval' steps and on SIGINT/SIGTERM) with the\n"
     "  parameter file it was written for.\n";
@@ -217,27 +223,32 @@ void print_nodal_mixed(const talus::DeformableSolver& solver)
     std::printf("Nodal mixed:  %u of %u zones (eqs. 68-76)\n", mixed, solver.mesh().n_zones());
 }
 
+/// The zones of a scene of one deformable block: meshed, or read from its
+/// mesh file (and then ordered and made quadratic as the scene asks).
+talus::TetMesh single_block_zones(const talus::Scene& scene, const talus::BlockModel& model,
+                                  talus::MeshReport& report)
+{
+  using namespace talus;
+  if (scene.deformable.mesh_file.empty())
+    return mesh_deformable_blocks(scene, model, {0}, report);
+  TetMesh mesh = *scene.deformable.mesh;
+  // Read in slabs, before the body's group was known.
+  order_for_locality(mesh, deformable_zone_order(scene, model));
+  if (scene.deformable.material.element == ZoneElement::tet10)
+    make_quadratic(mesh);
+  report = measure_mesh(mesh);
+  return mesh;
+}
+
 /// Runs a scene of deformable blocks: meshes them, then the explicit zone
 /// cycle with output and histories; returns the unbalanced-force ratio
 /// reached.
 double solve_deformable(talus::Scene& scene, talus::BlockModel& model, const std::string& prefix)
 {
   using namespace talus;
-  std::vector<unsigned int> deformable;
-  for (unsigned int b = 0; b < model.n_blocks(); ++b)
-    for (const std::string& g : scene.deformable.groups)
-      if (model.group_names[model.group[b]] == g)
-        deformable.push_back(b);
   MeshReport mesh_report;
+  TetMesh mesh = single_block_zones(scene, model, mesh_report);
   const bool from_file = !scene.deformable.mesh_file.empty();
-  TetMesh mesh = from_file ? *scene.deformable.mesh
-                           : mesh_deformable_blocks(scene, model, deformable, mesh_report);
-  if (from_file) // read in slabs, before the body's group was known
-    order_for_locality(mesh, deformable_zone_order(scene, model));
-  if (from_file && scene.deformable.material.element == ZoneElement::tet10)
-    make_quadratic(mesh);
-  if (from_file)
-    mesh_report = measure_mesh(mesh);
   std::printf(
       "Zones:        %u %s, %u gridpoints, %u boundary faces (%s; largest edge %.4g m, "
       "smallest height %.4g m), zone volume %.9g m^3\n",
@@ -342,7 +353,7 @@ double solve_deformable(talus::Scene& scene, talus::BlockModel& model, const std
     const unsigned long n = solver.steps_done();
     if (n % scene.solver.history_interval == 0)
       record();
-    progress.update(n, solver.time());
+    progress.update(n, solver.time(), solver.unbalanced_ratio());
     if (scene.solver.output_interval > 0 && n - last_output >= scene.solver.output_interval)
     {
       output();
@@ -394,7 +405,7 @@ double solve_deformable(talus::Scene& scene, talus::BlockModel& model, const std
 /// Runs the calculation the scene asks for, with output and histories;
 /// returns the unbalanced-force ratio reached.
 double solve(talus::Scene& scene, talus::BlockModel& model, talus::PvdSeries& series,
-           const std::string& prefix)
+             const std::string& prefix)
 {
   using namespace talus;
   resolve_group_names(scene, model);
@@ -465,7 +476,7 @@ double solve(talus::Scene& scene, talus::BlockModel& model, talus::PvdSeries& se
   bool diverged = false; // then forces and stresses may not be finite: motion only
   const auto output = [&](unsigned long step, double time)
   {
-    progress.update(step, time);
+    progress.update(step, time, solver.unbalanced_ratio());
     if (!scene.output.write_vtu)
       return;
     char name[64];
@@ -497,7 +508,7 @@ double solve(talus::Scene& scene, talus::BlockModel& model, talus::PvdSeries& se
   };
   const auto record = [&](unsigned long step, double time)
   {
-    progress.update(step, time);
+    progress.update(step, time, solver.unbalanced_ratio());
     const EnergyAccount e = solver.energy_account();
     std::vector<double> row{double(step),   time,           solver.unbalanced_ratio(),
                             e.kinetic,      e.gravity_work, e.joint_elastic,
@@ -570,10 +581,50 @@ int static_run_end(const talus::Scene& scene, double ratio)
   return exit_not_in_equilibrium;
 }
 
-int run(const std::string& filename)
+/// `talus --check`: builds what a run would build before its first step
+/// (the zones and the solvers, whose checks refuse an unstable time step
+/// and the like) and prints what it found; writes nothing.
+void check_calculation(talus::Scene& scene, talus::BlockModel& model)
+{
+  using namespace talus;
+  if (scene.solver.steps == 0)
+    return;
+  std::unique_ptr<ParallelEnvironment> parallel;
+  if (!scene.deformable.groups.empty())
+  {
+    int argc = 1;
+    char name[] = "talus";
+    char* args[] = {name, nullptr};
+    char** argv = args;
+    parallel = std::make_unique<ParallelEnvironment>(argc, argv);
+  }
+  if (!scene.deformable.groups.empty() && model.n_blocks() == 1)
+  {
+    MeshReport report;
+    const TetMesh mesh = single_block_zones(scene, model, report);
+    ZoneMaterials materials = zone_materials(scene, model, mesh);
+    const DeformableSolver solver(mesh, std::move(materials.materials),
+                                  std::move(materials.of_zone), scene.solver,
+                                  scene.gridpoint_conditions, scene.face_pressures,
+                                  scene.has_initial_stress ? &scene.initial_stress : nullptr);
+    std::printf("Zones:        %u, %u gridpoints\n", report.zones, report.gridpoints);
+    std::printf("Time step:    %.6g s\n", solver.dt());
+    return;
+  }
+  resolve_group_names(scene, model);
+  const BlockSystem system = build_block_system(scene, model);
+  if (system.zones)
+    std::printf("Zones:        %u in %u deformable blocks, %u gridpoints\n",
+                system.mesh_report.zones, system.mesh_report.blocks, system.mesh_report.gridpoints);
+  std::printf("Time step:    %.6g s\n", system.solver->dt());
+}
+
+/// Runs the scene of `filename`; with `check_only`, reads, builds and checks
+/// it and writes nothing.
+int run(const std::string& filename, bool check_only = false)
 {
   const auto start = std::chrono::steady_clock::now();
-  talus::Scene scene = talus::read_scene(filename);
+  talus::Scene scene = talus::read_scene(filename, !check_only);
   if (!restart_from.empty())
     talus::check_checkpoint_scene(restart_from, scene);
 
@@ -582,6 +633,14 @@ int run(const std::string& filename)
   talus::BuildReport report;
   talus::BlockModel model = talus::build_blocks(scene, report);
   talus::check_built_model(scene, model, report);
+  if (check_only)
+  {
+    std::printf("talus: scene %s\n", std::filesystem::path(filename).filename().c_str());
+    std::printf("Blocks:       %u\n", model.n_blocks());
+    check_calculation(scene, model);
+    std::printf("Check:        no problem found; nothing was written\n");
+    return 0;
+  }
   const std::string prefix = scene.output.directory + "/" + scene.output.base_name;
   talus::write_file_atomically(prefix + "_used_parameters.prm",
                                [&](std::ostream& out) { out << scene.used_parameters; });
@@ -640,16 +699,27 @@ int run(const std::string& filename)
 
 int main(int argc, char** argv)
 {
+  // Each summary line reaches a redirected standard output as it is
+  // printed, not at the end of the run.
+  std::setvbuf(stdout, nullptr, _IOLBF, 0);
+  if (argc == 2 && std::strcmp(argv[1], "--version") == 0)
+  {
+    std::printf("talus %s (git %s)\n", TALUS_VERSION, TALUS_GIT_REVISION);
+    return 0;
+  }
+  const bool check = argc == 3 && std::strcmp(argv[1], "--check") == 0;
   const bool restart = argc == 3 && std::strcmp(argv[1], "--restart") == 0;
-  if ((argc != 2 && !restart) || std::strcmp(argv[1], "--help") == 0 ||
+  if ((argc != 2 && !restart && !check) || std::strcmp(argv[1], "--help") == 0 ||
       std::strcmp(argv[1], "-h") == 0)
   {
     std::fputs(usage, argc == 2 ? stdout : stderr);
     return argc == 2 ? 0 : 1;
   }
-  std::string scene_file = argv[1];
+  std::string scene_file = check ? argv[2] : argv[1];
   try
   {
+    if (check)
+      return run(scene_file, true);
     if (restart)
     {
       restart_from = argv[2];
@@ -674,7 +744,7 @@ int main(int argc, char** argv)
     std::fprintf(stderr,
                  "talus: error in %s: %s (the state of the last good step is written to the "
                  "output folder)\n",
-                 argv[1], e.what());
+                 scene_file.c_str(), e.what());
     return 3;
   }
   catch (const talus::GeometryError& e)

@@ -5,14 +5,17 @@
 // not another code, not a signal (a crash). Directives in FILE's comments:
 //   # expect exit code: N    another exit code that the run must end with
 //   # arguments: A B         arguments put before FILE (e.g. --check)
+//   # show new files         list what the run created in the working folder
 
 #include <cstdio>
+#include <filesystem>
 #include <fstream>
+#include <set>
 #include <sstream>
 #include <string>
-#include <vector>
 #include <sys/wait.h>
 #include <unistd.h>
+#include <vector>
 
 int main(int argc, char** argv)
 {
@@ -20,6 +23,7 @@ int main(int argc, char** argv)
     return 2;
   const std::string file = argv[1];
   int expected_code = 1;
+  bool show_new_files = false;
   std::vector<std::string> arguments{"talus"};
   {
     std::ifstream in(file);
@@ -28,6 +32,8 @@ int main(int argc, char** argv)
       const std::string code = "# expect exit code:", args = "# arguments:";
       if (line.rfind(code, 0) == 0)
         expected_code = std::stoi(line.substr(code.size()));
+      else if (line.rfind("# show new files", 0) == 0)
+        show_new_files = true;
       else if (line.rfind(args, 0) == 0)
       {
         std::istringstream words(line.substr(args.size()));
@@ -37,6 +43,15 @@ int main(int argc, char** argv)
     }
   }
   arguments.push_back(file);
+  namespace fs = std::filesystem;
+  const auto listing = []
+  {
+    std::set<std::string> names;
+    for (const fs::directory_entry& e : fs::recursive_directory_iterator("."))
+      names.insert(e.path().string());
+    return names;
+  };
+  const std::set<std::string> before = show_new_files ? listing() : std::set<std::string>();
   int pipe_fd[2];
   if (pipe(pipe_fd) != 0)
     return 2;
@@ -69,6 +84,15 @@ int main(int argc, char** argv)
   {
     std::printf("talus was killed by signal %d\n", WTERMSIG(status));
     return 1;
+  }
+  if (show_new_files)
+  {
+    std::string created;
+    for (const std::string& name : listing())
+      if (before.count(name) == 0)
+        created += " " + name;
+    std::printf("new files in the working folder:%s\n",
+                created.empty() ? " none" : created.c_str());
   }
   std::printf("exit code %d\n", WEXITSTATUS(status));
   return WEXITSTATUS(status) == expected_code ? 0 : 1;

@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
+#include <cstdlib>
 #include <iostream>
 #include <stdexcept>
 
@@ -75,11 +76,22 @@ void HistoryFile::flush()
   rows_on_disk_ = rows_;
 }
 
-ProgressLine::ProgressLine(unsigned long total_steps, double interval)
-    : total_(total_steps), interval_(interval), start_(wall_seconds())
+ProgressLine::ProgressLine(unsigned long total_steps, std::ostream& out, double log_interval)
+    : total_(total_steps), out_(out), start_(wall_seconds())
 {
   last_ = start_;
-  terminal_ = isatty(fileno(stderr)) != 0;
+  terminal_ = &out == &std::cerr && isatty(fileno(stderr)) != 0;
+  if (terminal_)
+    interval_ = 2.0;
+  else if (log_interval >= 0.0)
+    interval_ = log_interval;
+  else
+  {
+    const char* text = std::getenv("TALUS_PROGRESS_SECONDS");
+    char* end = nullptr;
+    const double given = text != nullptr ? std::strtod(text, &end) : -1.0;
+    interval_ = text != nullptr && end != text && *end == '\0' && given >= 0.0 ? given : 10.0;
+  }
 }
 
 ProgressLine::~ProgressLine()
@@ -90,33 +102,39 @@ ProgressLine::~ProgressLine()
 void ProgressLine::finish()
 {
   if (shown_)
-    std::cerr << '\r' << std::string(79, ' ') << '\r' << std::flush;
+    out_ << '\r' << std::string(100, ' ') << '\r' << std::flush;
   shown_ = false;
 }
 
-std::string ProgressLine::format(unsigned long step, unsigned long total, double time,
+std::string ProgressLine::format(unsigned long step, unsigned long total, double time, double ratio,
                                  double steps_per_second)
 {
-  char line[160];
+  char line[200];
   const double left = steps_per_second > 0.0 && total > step
                           ? static_cast<double>(total - step) / steps_per_second
                           : 0.0;
-  std::snprintf(line, sizeof line, "step %lu/%lu  t = %.4g s  %.3g steps/s  %.0f s left", step,
-                total, time, steps_per_second, left);
+  std::snprintf(line, sizeof line,
+                "step %lu/%lu  t = %.4g s  ratio %.3g  %.3g steps/s  %.0f s left", step, total,
+                time, ratio, steps_per_second, left);
   return line;
 }
 
-void ProgressLine::update(unsigned long step, double time)
+void ProgressLine::update(unsigned long step, double time, double ratio)
 {
-  if (!terminal_)
+  if (interval_ <= 0.0)
     return;
   const double now = wall_seconds();
   if (now - last_ < interval_)
     return;
   last_ = now;
-  shown_ = true;
-  std::cerr << '\r' << format(step, total_, time, step / std::max(now - start_, 1e-9)) << "   "
-            << std::flush;
+  const std::string text = format(step, total_, time, ratio, step / std::max(now - start_, 1e-9));
+  if (terminal_)
+  {
+    shown_ = true;
+    out_ << '\r' << text << "   " << std::flush;
+  }
+  else
+    out_ << "talus: " << text << std::endl;
 }
 
 } // namespace talus

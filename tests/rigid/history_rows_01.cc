@@ -2,8 +2,8 @@
 // of the run, never two rows for the same step: a run whose step count is
 // a multiple of the interval wrote its last row twice (issue 20, item 11).
 
-#include "rigid_scene.h"
 #include "../tests.h"
+#include "rigid_scene.h"
 
 #include <cstdio>
 #include <vector>

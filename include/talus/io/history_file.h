@@ -1,5 +1,6 @@
 #pragma once
 
+#include <iostream>
 #include <string>
 #include <vector>
 
@@ -50,28 +51,34 @@ private:
   double write_seconds_ = 0.0; ///< s, how long the last write took
 };
 
-/// A one-line progress report for long runs: step, time, rate and the
-/// estimated time left, rewritten in place at most once per `interval`
-/// seconds, on standard error so that it never mixes with results.
+/// Progress of a long run: step, model time, unbalanced-force ratio, rate
+/// and the estimated time left. On a terminal, one line on standard error
+/// rewritten in place at most every 2 s; otherwise (output to a log file)
+/// a full line every `log_interval` seconds, so that a run in the
+/// background is never silent. Standard error keeps it apart from results.
 class ProgressLine
 {
 public:
-  explicit ProgressLine(unsigned long total_steps, double interval = 2.0);
+  /// `log_interval` < 0: from the environment variable
+  /// TALUS_PROGRESS_SECONDS, else 10 s; 0: no lines when not on a terminal.
+  explicit ProgressLine(unsigned long total_steps, std::ostream& out = std::cerr,
+                        double log_interval = -1.0);
   ~ProgressLine();
 
-  /// Reports step `step` at model time `time` (s) if `interval` has passed.
-  /// Shown only when standard error is a terminal, so logs stay clean.
-  void update(unsigned long step, double time);
+  /// Reports the state after step `step` (model time `time`, s; the
+  /// unbalanced-force ratio `ratio`) if its interval has passed.
+  void update(unsigned long step, double time, double ratio);
 
   /// Clears the line, so that what is printed next starts on a clean line.
   void finish();
 
   /// The text shown for the given state (separated out for testing).
-  static std::string format(unsigned long step, unsigned long total, double time,
+  static std::string format(unsigned long step, unsigned long total, double time, double ratio,
                             double steps_per_second);
 
 private:
   unsigned long total_;
+  std::ostream& out_;
   double interval_;
   double start_;
   double last_ = 0.0;
