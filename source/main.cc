@@ -19,6 +19,7 @@
 
 #include <talus_revision.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -562,6 +563,25 @@ double solve(talus::Scene& scene, talus::BlockModel& model, talus::PvdSeries& se
   return r.ratio;
 }
 
+/// The summary's lines on the history blocks: which block each is (so that
+/// an id can be checked, and a point's block known), and a warning for a
+/// fixed one, whose history holds only zeros.
+void print_history_blocks(const talus::Scene& scene, const talus::BlockModel& model)
+{
+  for (unsigned int b : scene.solver.history_blocks)
+  {
+    const std::string& group = model.group_names[model.group[b]];
+    const talus::Vec3& c = model.centroid[b];
+    std::printf("History block %u: group %s, centroid %.6g, %.6g, %.6g m\n", b, group.c_str(),
+                c[0], c[1], c[2]);
+    if (std::find(scene.fixed_groups.begin(), scene.fixed_groups.end(), group) !=
+        scene.fixed_groups.end())
+      std::printf("Warning: history block %u is in the fixed group %s: its displacement and "
+                  "velocity stay zero\n",
+                  b, group.c_str());
+  }
+}
+
 /// Exit code of a static run that stopped at its step limit above its
 /// target ratio: scripts must be able to tell it from an equilibrium.
 constexpr int exit_not_in_equilibrium = 4;
@@ -633,6 +653,7 @@ int run(const std::string& filename, bool check_only = false)
   talus::BuildReport report;
   talus::BlockModel model = talus::build_blocks(scene, report);
   talus::check_built_model(scene, model, report);
+  talus::resolve_history_blocks(scene, model);
   if (check_only)
   {
     std::printf("talus: scene %s\n", std::filesystem::path(filename).filename().c_str());
@@ -669,6 +690,8 @@ int run(const std::string& filename, bool check_only = false)
                 report.cutting.skipped_slivers, scene.cutting.minimum_volume,
                 report.cutting.smallest_refused, report.cutting.smallest_refused_at[0],
                 report.cutting.smallest_refused_at[1], report.cutting.smallest_refused_at[2]);
+
+  print_history_blocks(scene, model);
 
   talus::PvdSeries series(prefix + "_blocks.pvd");
   if (scene.solver.steps == 0 && scene.output.write_vtu)

@@ -176,4 +176,36 @@ void check_built_model(const Scene& scene, const BlockModel& model, const BuildR
                       "an edge length that makes at most " + number(max_zones) + " zones");
 }
 
+void resolve_history_blocks(Scene& scene, const BlockModel& model)
+{
+  std::vector<unsigned int>& blocks = scene.solver.history_blocks;
+  for (const Vec3& p : scene.history_block_points)
+  {
+    unsigned int found = model.n_blocks(), nearest = 0;
+    double nearest_distance = 1e300;
+    for (unsigned int b = 0; b < model.n_blocks() && found == model.n_blocks(); ++b)
+    {
+      // Inside every face plane (within a relative 1e-9 of the block's
+      // size): inside the convex block.
+      bool inside = true;
+      for (unsigned int f = model.face_start[b]; inside && f < model.face_start[b + 1]; ++f)
+      {
+        const Vec3& on_face = model.vertex[model.face_vertex[model.face_loop_start[f]]];
+        inside = model.face_normal[f].dot(p - on_face) <= 1e-9 * std::cbrt(model.volume[b]);
+      }
+      if (inside)
+        found = b;
+      const double d = (model.centroid[b] - p).norm();
+      if (d < nearest_distance)
+      {
+        nearest_distance = d;
+        nearest = b;
+      }
+    }
+    const unsigned int b = found < model.n_blocks() ? found : nearest;
+    if (std::find(blocks.begin(), blocks.end(), b) == blocks.end())
+      blocks.push_back(b);
+  }
+}
+
 } // namespace talus

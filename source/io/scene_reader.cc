@@ -618,6 +618,9 @@ void declare_solver(ParameterFile& prm)
   prm.declare("History blocks", "", P::List(P::Integer(0, 2000000000)),
               "block numbers separated by commas",
               "Blocks whose displacement and velocity are written to the history.");
+  prm.declare("History block points", "", P::Anything(), "points 'x, y, z' separated by ';' (m)",
+              "The blocks containing (or, outside every block, nearest to) these points are "
+              "recorded as 'History blocks' are.");
   prm.declare("History interval", "10", P::Integer(1, 1000000000), "an integer from 1 to 1e9",
               "Steps between history rows.");
   prm.declare("Output interval", "0", P::Integer(0), "an integer >= 0 (0: first and last)",
@@ -655,6 +658,29 @@ void declare_solver(ParameterFile& prm)
   prm.leave();
 }
 
+/// The points of `entry` (x, y, z separated by ';', m), each finite.
+std::vector<Vec3> get_points(ParameterFile& prm, const std::string& entry)
+{
+  std::vector<Vec3> points;
+  for (const std::string& point : dealii::Utilities::split_string_list(prm.get(entry), ';'))
+  {
+    const auto xyz = dealii::Utilities::split_string_list(point, ',');
+    Vec3 p;
+    bool good = xyz.size() == 3;
+    for (unsigned int d = 0; good && d < 3; ++d)
+    {
+      char* end = nullptr;
+      p[d] = std::strtod(xyz[d].c_str(), &end);
+      good = end != xyz[d].c_str() && *end == '\0' && std::isfinite(p[d]);
+    }
+    if (!good)
+      throw prm.error(entry, "'" + point + "' is not a point of finite coordinates",
+                      "points 'x, y, z' separated by ';' (m)");
+    points.push_back(p);
+  }
+  return points;
+}
+
 void parse_solver(ParameterFile& prm, Scene& scene)
 {
   SolverSettings& s = scene.solver;
@@ -685,23 +711,8 @@ void parse_solver(ParameterFile& prm, Scene& scene)
     check_group_name(prm, "Fixed groups", scene, g);
     scene.fixed_groups.push_back(g);
   }
-  for (const std::string& point :
-       dealii::Utilities::split_string_list(prm.get("History points"), ';'))
-  {
-    const auto xyz = dealii::Utilities::split_string_list(point, ',');
-    Vec3 p;
-    bool good = xyz.size() == 3;
-    for (unsigned int d = 0; good && d < 3; ++d)
-    {
-      char* end = nullptr;
-      p[d] = std::strtod(xyz[d].c_str(), &end);
-      good = end != xyz[d].c_str() && *end == '\0';
-    }
-    if (!good)
-      throw prm.error("History points", "'" + point + "' is not a point",
-                      "points 'x, y, z' separated by ';' (m)");
-    s.history_points.push_back(p);
-  }
+  s.history_points = get_points(prm, "History points");
+  scene.history_block_points = get_points(prm, "History block points");
   for (const std::string& b : dealii::Utilities::split_string_list(prm.get("History blocks")))
     s.history_blocks.push_back(static_cast<unsigned int>(std::stoul(b)));
   s.history_interval = static_cast<unsigned int>(prm.get_integer("History interval"));

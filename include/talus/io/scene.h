@@ -99,6 +99,9 @@ struct Scene
   /// The calculation (steps = 0: build and write the model only).
   SolverSettings solver;
   std::vector<std::string> fixed_groups; ///< names; resolved to solver.fixed_groups
+  /// m: the blocks containing or nearest to these points join
+  /// solver.history_blocks (resolve_history_blocks).
+  std::vector<Vec3> history_block_points;
   std::vector<std::string> load_groups;  ///< group name of each solver.loads entry
   DeformableSpec deformable;
   std::vector<GridpointCondition> gridpoint_conditions; ///< from 'Boundary N' (velocity)

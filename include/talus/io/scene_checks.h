@@ -33,4 +33,9 @@ void check_model_size(const Scene& scene);
 /// deformable block, or more zones than max_zones.
 void check_built_model(const Scene& scene, const BlockModel& model, const BuildReport& report);
 
+/// Adds to `scene.solver.history_blocks` the block containing each of
+/// `scene.history_block_points` (the block with the nearest centroid when
+/// no block contains it), once each, after the numbered ones.
+void resolve_history_blocks(Scene& scene, const BlockModel& model);
+
 } // namespace talus
