@@ -468,6 +468,12 @@ double solve(talus::Scene& scene, talus::BlockModel& model, talus::PvdSeries& se
   ProgressLine progress(scene.solver.steps);
   unsigned int frame = 0;
   PvdSeries contact_series(prefix + "_contacts.pvd");
+  // 'Joint set N' and 'Joint N' as N, for the contacts' joint_set and joint.
+  JointNumbers joint_numbers;
+  for (const std::string& section : scene.joint_set_sections)
+    joint_numbers.joint_set_number.push_back(std::stoi(section.substr(section.rfind(' ') + 1)));
+  for (const std::string& section : scene.joint_plane_sections)
+    joint_numbers.joint_number.push_back(std::stoi(section.substr(section.rfind(' ') + 1)));
   checkpoint.add(history);
   for (PvdSeries* s : {&series, &contact_series, &zone_series})
     checkpoint.add(*s);
@@ -502,7 +508,8 @@ double solve(talus::Scene& scene, talus::BlockModel& model, talus::PvdSeries& se
     }
     std::snprintf(name, sizeof name, "_contacts_%05u.vtu", frame - 1);
     const std::string contacts_vtu = scene.output.base_name + name;
-    write_contacts_vtu(scene.output.directory + "/" + contacts_vtu, solver.contacts());
+    write_contacts_vtu(scene.output.directory + "/" + contacts_vtu, solver.contacts(), model,
+                       joint_numbers);
     contact_series.add(time, contacts_vtu);
     if (zones)
       write_zone_frame(scene, mesh, *zones, *zone_writer, zone_series, zone_frame++);

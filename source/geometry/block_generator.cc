@@ -19,9 +19,9 @@ double BlockGenerator::tolerance_for(const ConvexPolyhedron& block) const
 }
 
 bool BlockGenerator::try_cut(const ConvexPolyhedron& block, const Plane& plane,
-                             ConvexPolyhedron& above, ConvexPolyhedron& below)
+                             ConvexPolyhedron& above, ConvexPolyhedron& below, int origin)
 {
-  PlaneCut cut = cut_by_plane(block, plane, tolerance_for(block));
+  PlaneCut cut = cut_by_plane(block, plane, tolerance_for(block), origin);
   if (!cut.intersects)
     return false;
   if (settings_.minimum_volume > 0.0)
@@ -47,7 +47,7 @@ bool BlockGenerator::try_cut(const ConvexPolyhedron& block, const Plane& plane,
   return true;
 }
 
-void BlockGenerator::cut_joint_set(const JointSetSpec& set)
+void BlockGenerator::cut_joint_set(const JointSetSpec& set, int origin)
 {
   const Vec3 n = normal_from_dip(set.dip, set.dip_direction);
   const Plane reference = Plane::through(set.origin, n);
@@ -77,7 +77,7 @@ void BlockGenerator::cut_joint_set(const JointSetSpec& set)
     {
       const Plane joint(n, reference.offset + k * set.spacing);
       ConvexPolyhedron above, below;
-      if (try_cut(rest, joint, above, below))
+      if (try_cut(rest, joint, above, below, origin))
       {
         result.push_back(std::move(below));
         rest = std::move(above);
@@ -88,7 +88,7 @@ void BlockGenerator::cut_joint_set(const JointSetSpec& set)
   blocks_ = std::move(result);
 }
 
-void BlockGenerator::cut_plane(const Plane& plane, const Box* extent)
+void BlockGenerator::cut_plane(const Plane& plane, const Box* extent, int origin)
 {
   std::vector<ConvexPolyhedron> result;
   result.reserve(blocks_.size() + 16);
@@ -96,7 +96,7 @@ void BlockGenerator::cut_plane(const Plane& plane, const Box* extent)
   {
     ConvexPolyhedron above, below;
     if ((extent == nullptr || extent->contains(compute_mass_properties(block).centroid)) &&
-        try_cut(block, plane, above, below))
+        try_cut(block, plane, above, below, origin))
     {
       result.push_back(std::move(below));
       result.push_back(std::move(above));

@@ -15,11 +15,13 @@ struct PieceBuilder
 {
   std::vector<unsigned int> face_start{0};
   std::vector<unsigned int> face_vertices;
+  std::vector<int> face_origins;
 
-  void add_face(const std::vector<unsigned int>& loop)
+  void add_face(const std::vector<unsigned int>& loop, int origin)
   {
     face_vertices.insert(face_vertices.end(), loop.begin(), loop.end());
     face_start.push_back(static_cast<unsigned int>(face_vertices.size()));
+    face_origins.push_back(origin);
   }
 
   /// Keeps only referenced vertices, renumbered in order of first use.
@@ -36,7 +38,9 @@ struct PieceBuilder
       }
       v = static_cast<unsigned int>(new_index[v]);
     }
-    return ConvexPolyhedron(std::move(vertices), std::move(face_start), std::move(face_vertices));
+    ConvexPolyhedron piece(std::move(vertices), std::move(face_start), std::move(face_vertices));
+    piece.set_face_origins(std::move(face_origins));
+    return piece;
   }
 };
 
@@ -52,7 +56,8 @@ double twice_area(const std::vector<Vec3>& vertices, const std::vector<unsigned 
 
 } // namespace
 
-PlaneCut cut_by_plane(const ConvexPolyhedron& p, const Plane& plane, double tolerance)
+PlaneCut cut_by_plane(const ConvexPolyhedron& p, const Plane& plane, double tolerance,
+                      int cap_origin)
 {
   PlaneCut result;
   const unsigned int nv = p.n_vertices();
@@ -109,9 +114,9 @@ PlaneCut cut_by_plane(const ConvexPolyhedron& p, const Plane& plane, double tole
       }
     }
     if (loop_above.size() >= 3 && twice_area(vertices, loop_above) > area_tol)
-      above.add_face(loop_above);
+      above.add_face(loop_above, p.face_origin(f));
     if (loop_below.size() >= 3 && twice_area(vertices, loop_below) > area_tol)
-      below.add_face(loop_below);
+      below.add_face(loop_below, p.face_origin(f));
   }
 
   // The cap: every vertex on the plane, ordered by angle about their mean.
@@ -138,9 +143,9 @@ PlaneCut cut_by_plane(const ConvexPolyhedron& p, const Plane& plane, double tole
   for (const auto& a : angle)
     cap_loop.push_back(a.second);
   // Counter-clockwise about +n: outward for the piece below.
-  below.add_face(cap_loop);
+  below.add_face(cap_loop, cap_origin);
   std::reverse(cap_loop.begin(), cap_loop.end());
-  above.add_face(cap_loop);
+  above.add_face(cap_loop, cap_origin);
 
   result.above = above.build(vertices);
   result.below = below.build(vertices);

@@ -1,3 +1,4 @@
+#include <talus/contact/contact_origin.h>
 #include <talus/io/contact_vtu_writer.h>
 #include <talus/io/file_output.h>
 
@@ -6,8 +7,20 @@
 namespace talus
 {
 
-void write_contacts_vtu(const std::string& path, const ContactSet& cs)
+void write_contacts_vtu(const std::string& path, const ContactSet& cs, const BlockModel& model,
+                        const JointNumbers& joints)
 {
+  // The joint of each contact slot, as the numbers of its subsections.
+  std::vector<int> joint_set(cs.n_slots(), 0), joint(cs.n_slots(), 0);
+  for (unsigned int c = 0; c < cs.n_slots(); ++c)
+    if (cs.alive[c])
+    {
+      const int origin = contact_joint_origin(model, cs, c);
+      if (origin > 0)
+        joint_set[c] = joints.joint_set_number.at(static_cast<std::size_t>(origin - 1));
+      else if (origin < 0)
+        joint[c] = joints.joint_number.at(static_cast<std::size_t>(-origin - 1));
+    }
   write_file_atomically(path, [&](std::ostream& out) {
     const unsigned int n = cs.n_subcontacts();
     out.precision(10);
@@ -37,7 +50,7 @@ void write_contacts_vtu(const std::string& path, const ContactSet& cs)
     for (unsigned int i = 0; i < n; ++i)
       out << "1 "; // VTK_VERTEX
     end();
-    out << "      </Cells>\n      <PointData Scalars=\"normal force\">\n";
+    out << "      </Cells>\n      <PointData Scalars=\"normal_force\">\n";
     begin("Float64", "normal", 3);
     for (unsigned int i = 0; i < n; ++i)
     {
@@ -45,13 +58,25 @@ void write_contacts_vtu(const std::string& path, const ContactSet& cs)
       out << nrm[0] << ' ' << nrm[1] << ' ' << nrm[2] << '\n';
     }
     end();
-    begin("Float64", "normal force", 1);
+    // Forces and their stresses (over the sub-contact's area).
+    for (const double per : {0.0, 1.0})
+    {
+      begin("Float64", per == 0.0 ? "normal_force" : "normal_stress", 1);
+      for (unsigned int i = 0; i < n; ++i)
+        out << cs.sc_fn[i] / (per == 0.0 ? 1.0 : cs.sc_area[i]) << ' ';
+      end();
+      begin("Float64", per == 0.0 ? "shear_force" : "shear_stress", 3);
+      for (unsigned int i = 0; i < n; ++i)
+      {
+        const double scale = per == 0.0 ? 1.0 : 1.0 / cs.sc_area[i];
+        out << scale * cs.sc_fs[3 * i] << ' ' << scale * cs.sc_fs[3 * i + 1] << ' '
+            << scale * cs.sc_fs[3 * i + 2] << '\n';
+      }
+      end();
+    }
+    begin("Float64", "shear_displacement", 3);
     for (unsigned int i = 0; i < n; ++i)
-      out << cs.sc_fn[i] << ' ';
-    end();
-    begin("Float64", "shear force", 3);
-    for (unsigned int i = 0; i < n; ++i)
-      out << cs.sc_fs[3 * i] << ' ' << cs.sc_fs[3 * i + 1] << ' ' << cs.sc_fs[3 * i + 2] << '\n';
+      out << cs.sc_us[3 * i] << ' ' << cs.sc_us[3 * i + 1] << ' ' << cs.sc_us[3 * i + 2] << '\n';
     end();
     begin("Float64", "area", 1);
     for (unsigned int i = 0; i < n; ++i)
@@ -61,11 +86,20 @@ void write_contacts_vtu(const std::string& path, const ContactSet& cs)
     for (unsigned int i = 0; i < n; ++i)
       out << static_cast<int>(cs.sc_state[i]) << ' ';
     end();
-    begin("Int32", "contact type", 1);
+    // Numbered from 1 in the order of ContactType.
+    begin("Int32", "type", 1);
     for (unsigned int i = 0; i < n; ++i)
-      out << static_cast<int>(cs.type[cs.sc_contact[i]]) << ' ';
+      out << static_cast<int>(cs.type[cs.sc_contact[i]]) + 1 << ' ';
     end();
-    begin("Int32", "contact", 1);
+    begin("Int32", "joint_set", 1);
+    for (unsigned int i = 0; i < n; ++i)
+      out << joint_set[cs.sc_contact[i]] << ' ';
+    end();
+    begin("Int32", "joint", 1);
+    for (unsigned int i = 0; i < n; ++i)
+      out << joint[cs.sc_contact[i]] << ' ';
+    end();
+    begin("Int32", "contact_id", 1);
     for (unsigned int i = 0; i < n; ++i)
       out << cs.sc_contact[i] << ' ';
     end();

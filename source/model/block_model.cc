@@ -17,6 +17,7 @@ unsigned int BlockModel::add_block(const ConvexPolyhedron& shape, unsigned int g
       face_vertex.push_back(first_vertex + shape.face_vertex(f, k));
     face_loop_start.push_back(static_cast<unsigned int>(face_vertex.size()));
     face_normal.push_back(shape.face_plane(f).normal);
+    face_origin.push_back(shape.face_origin(f));
   }
   face_start.push_back(n_faces());
 

@@ -14,15 +14,18 @@ BlockModel build_blocks(const Scene& scene, BuildReport& report)
     return std::make_pair(generator.report().cuts - before.cuts,
                           generator.report().skipped_slivers - before.skipped_slivers);
   };
-  for (const JointSetSpec& set : scene.joint_sets)
-    report.joint_set_cuts.push_back(counted([&] { generator.cut_joint_set(set); }));
-  for (const JointPlaneSpec& joint : scene.joint_planes)
+  // Faces remember their joint set (+1, +2, ...) or joint (-1, -2, ...).
+  for (std::size_t i = 0; i < scene.joint_sets.size(); ++i)
+    report.joint_set_cuts.push_back(counted(
+        [&] { generator.cut_joint_set(scene.joint_sets[i], BlockModel::joint_set_origin(i)); }));
+  for (std::size_t j = 0; j < scene.joint_planes.size(); ++j)
     report.joint_cuts.push_back(counted(
         [&]
         {
+          const JointPlaneSpec& joint = scene.joint_planes[j];
           generator.cut_plane(
               Plane::through(joint.origin, normal_from_dip(joint.dip, joint.dip_direction)),
-              joint.limited ? &joint.extent : nullptr);
+              joint.limited ? &joint.extent : nullptr, BlockModel::joint_origin(j));
         }));
   for (const ExcavationSpec& excavation : scene.excavations)
     report.excavated_volume.push_back(generator.excavate(excavation.region));

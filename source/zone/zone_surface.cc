@@ -1,10 +1,31 @@
 #include <talus/zone/zone_surface.h>
 
 #include <algorithm>
+#include <cmath>
 #include <map>
 
 namespace talus
 {
+
+namespace
+{
+/// The origin of the face of block b that a boundary triangle of its zones
+/// (outward `normal`, centre `centre`) lies on: the face of the same normal
+/// whose plane passes through the centre (0 when none does).
+int face_origin_of_triangle(const BlockModel& m, unsigned int b, const Vec3& normal,
+                            const Vec3& centre)
+{
+  const double tolerance = 1e-6 * std::cbrt(m.volume[b]);
+  for (unsigned int f = m.face_start[b]; f < m.face_start[b + 1]; ++f)
+  {
+    const Vec3& on_face = m.vertex[m.face_vertex[m.face_loop_start[f]]];
+    if (m.face_normal[f].dot(normal) > 1.0 - 1e-6 &&
+        std::abs(m.face_normal[f].dot(centre - on_face)) < tolerance)
+      return m.face_origin[f];
+  }
+  return 0;
+}
+} // namespace
 
 std::vector<int> use_zone_surfaces(BlockModel& m, const TetMesh& mesh)
 {
@@ -34,6 +55,7 @@ std::vector<int> use_zone_surfaces(BlockModel& m, const TetMesh& mesh)
           out.face_vertex.push_back(m.face_vertex[k] - m.vertex_start[b] + first_vertex);
         out.face_loop_start.push_back(static_cast<unsigned int>(out.face_vertex.size()));
         out.face_normal.push_back(m.face_normal[f]);
+        out.face_origin.push_back(m.face_origin[f]);
       }
     }
     else
@@ -56,7 +78,9 @@ std::vector<int> use_zone_surfaces(BlockModel& m, const TetMesh& mesh)
         const auto& t = mesh.face_gridpoint[f];
         const auto P = [&](unsigned int g)
         { return Vec3(mesh.position[3 * g], mesh.position[3 * g + 1], mesh.position[3 * g + 2]); };
-        out.face_normal.push_back((P(t[1]) - P(t[0])).cross(P(t[2]) - P(t[0])).normalized());
+        const Vec3 normal = (P(t[1]) - P(t[0])).cross(P(t[2]) - P(t[0])).normalized();
+        out.face_normal.push_back(normal);
+        out.face_origin.push_back(face_origin_of_triangle(m, b, normal, (P(t[0]) + P(t[1]) + P(t[2])) / 3.0));
       }
     }
     out.vertex_start.push_back(out.n_vertices());

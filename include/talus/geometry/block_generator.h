@@ -52,12 +52,13 @@ class BlockGenerator
 public:
   BlockGenerator(ConvexPolyhedron start, CuttingSettings settings);
 
-  /// Cuts every block crossed by a joint of the set.
-  void cut_joint_set(const JointSetSpec& set);
+  /// Cuts every block crossed by a joint of the set; the faces made carry
+  /// `origin` (ConvexPolyhedron::face_origin).
+  void cut_joint_set(const JointSetSpec& set, int origin = 0);
 
   /// Cuts every block crossed by one plane; with `extent`, only blocks whose
-  /// centroid lies in it.
-  void cut_plane(const Plane& plane, const Box* extent = nullptr);
+  /// centroid lies in it. The faces made carry `origin`.
+  void cut_plane(const Plane& plane, const Box* extent = nullptr, int origin = 0);
 
   /// Removes the part of the model inside `region`; blocks crossing its
   /// boundary are cut so that exactly the region's volume goes. Returns the
@@ -72,8 +73,9 @@ private:
   double tolerance_for(const ConvexPolyhedron& block) const;
   /// Cuts `block` by `plane`; false (block untouched) when the plane misses
   /// it or a piece would be below the minimum volume.
+  /// The cap faces made carry `origin`.
   bool try_cut(const ConvexPolyhedron& block, const Plane& plane, ConvexPolyhedron& above,
-               ConvexPolyhedron& below);
+               ConvexPolyhedron& below, int origin = 0);
 
   std::vector<ConvexPolyhedron> blocks_;
   CuttingSettings settings_;

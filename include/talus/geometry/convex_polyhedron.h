@@ -55,6 +55,13 @@ public:
   /// Outward unit normal and offset of face f.
   const Plane& face_plane(unsigned int f) const { return face_planes_[f]; }
 
+  /// What made face f (a code of the caller's; 0 when nothing was said, as
+  /// for the starting brick): the block generator records which joint set
+  /// or joint each cut face lies on (BlockModel::face_origin).
+  int face_origin(unsigned int f) const { return face_origins_.empty() ? 0 : face_origins_[f]; }
+  /// One code per face (or none).
+  void set_face_origins(std::vector<int> origins) { face_origins_ = std::move(origins); }
+
   /// The distinct edges as vertex pairs (i < j).
   std::vector<std::pair<unsigned int, unsigned int>> edges() const;
 
@@ -87,6 +94,7 @@ private:
   std::vector<unsigned int> face_start_{0};
   std::vector<unsigned int> face_vertices_;
   std::vector<Plane> face_planes_;
+  std::vector<int> face_origins_; ///< empty: every face 0
 };
 
 } // namespace talus

@@ -18,7 +18,10 @@ struct PlaneCut
 /// Cuts `polyhedron` by `plane`. Vertices closer than `tolerance` (m) to the
 /// plane count as lying on it: they belong to both pieces and never create a
 /// sliver, so a plane through a vertex, an edge or a face leaves the block
-/// whole. Both pieces are convex; the cap face is shared exactly.
-PlaneCut cut_by_plane(const ConvexPolyhedron& polyhedron, const Plane& plane, double tolerance);
+/// whole. Both pieces are convex; the cap face is shared exactly. The
+/// pieces' faces keep the face origins of the faces they came from, and
+/// the cap takes `cap_origin`.
+PlaneCut cut_by_plane(const ConvexPolyhedron& polyhedron, const Plane& plane, double tolerance,
+                      int cap_origin = 0);
 
 } // namespace talus

@@ -1,17 +1,33 @@
 #pragma once
 
 #include <talus/contact/contact_set.h>
+#include <talus/model/block_model.h>
 
 #include <string>
+#include <vector>
 
 namespace talus
 {
 
-/// Writes every sub-contact as a point (VTK vertex cell) with the contact's
-/// normal, the normal force (N, compression positive), the shear force
-/// vector (N), the area (m^2), the state (0 elastic, 1 slipping, 2 open;
-/// +4 once failed) and the contact type (index of ContactType). In ParaView,
-/// glyphs of "normal force" show how load passes through the blocks.
-void write_contacts_vtu(const std::string& path, const ContactSet& contacts);
+/// The subsection numbers that name the joints in the contact output:
+/// `joint_set_number[i]` is N of 'Joint set N' for the scene's i-th joint
+/// set, `joint_number[j]` N of 'Joint N' for its j-th single joint.
+struct JointNumbers
+{
+  std::vector<int> joint_set_number, joint_number;
+};
+
+/// Writes every sub-contact as a point (VTK vertex cell) with: the plane's
+/// `normal`; `normal_force` (N, compression positive) and `normal_stress`
+/// (Pa, the force over the area); `shear_force` (N) and `shear_stress`
+/// (Pa), vectors; `shear_displacement` (m, the total U^s, a vector);
+/// `area` (m^2); `state` (0 elastic, 1 slipping, 2 open; +4 once failed);
+/// the contact `type` (1 vertex-face, 2 edge-edge, 3 edge-face, 4
+/// face-face, 5 vertex-edge, 6 vertex-vertex); `joint_set` and `joint` (N
+/// of the 'Joint set N' or 'Joint N' whose plane the contact lies on, 0 for
+/// none: contacts made by motion, or between faces of different joints);
+/// and `contact_id` (the contact's slot).
+void write_contacts_vtu(const std::string& path, const ContactSet& contacts,
+                        const BlockModel& model, const JointNumbers& joints);
 
 } // namespace talus

@@ -40,6 +40,13 @@ public:
   std::vector<unsigned int> face_loop_start{0}; ///< per face, n_faces + 1
   std::vector<unsigned int> face_vertex;    ///< global vertex numbers
   std::vector<Vec3> face_normal;            ///< outward unit normals
+  /// What made each face: joint_set_origin(i) for a face on a joint of the
+  /// scene's i-th joint set, joint_origin(j) for its j-th single joint, 0
+  /// for the brick's faces and excavation surfaces. A contact between two
+  /// faces of one joint lies on that joint (ContactSet::joint_origin).
+  std::vector<int> face_origin;
+  static int joint_set_origin(std::size_t i) { return static_cast<int>(i) + 1; }
+  static int joint_origin(std::size_t j) { return -static_cast<int>(j) - 1; }
 
   // Mass properties per block (unit density; multiply by density).
   std::vector<double> volume;                   ///< m^3
