@@ -2,6 +2,7 @@
 // Usage: talus scene.prm, or talus --restart checkpoint
 
 #include <talus/base/exceptions.h>
+#include <talus/base/memory.h>
 #include <talus/base/parallel_environment.h>
 #include <talus/io/block_vtu_writer.h>
 #include <talus/io/checkpoint.h>
@@ -28,6 +29,7 @@
 #include <iostream>
 #include <map>
 #include <memory>
+#include <new>
 
 namespace
 {
@@ -781,6 +783,15 @@ int main(int argc, char** argv)
   {
     std::fflush(stdout); // the summary so far, then the message
     std::fprintf(stderr, "talus: error in %s: %s\n", scene_file.c_str(), e.what());
+  }
+  catch (const std::bad_alloc&)
+  {
+    // The estimates of scene_checks.h let the model start; it needed more.
+    std::fflush(stdout); // the summary so far, then the message
+    std::fprintf(stderr,
+                 "talus: error in %s: out of memory (this machine has %s left); make the model "
+                 "smaller: a larger 'Edge length' or 'Spacing', fewer deformable groups\n",
+                 scene_file.c_str(), talus::memory_text(talus::available_memory()).c_str());
   }
   catch (const std::exception& e)
   {

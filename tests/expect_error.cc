@@ -6,6 +6,9 @@
 //   # expect exit code: N    another exit code that the run must end with
 //   # arguments: A B         arguments put before FILE (e.g. --check)
 //   # show new files         list what the run created in the working folder
+//   # address space limit: N MB   run talus under that limit (ulimit -v)
+//   # mask after: PHRASE     the word after each PHRASE shows as <masked> (a
+//                            figure of the machine, such as its free memory)
 
 #include <cstdio>
 #include <filesystem>
@@ -13,6 +16,7 @@
 #include <set>
 #include <sstream>
 #include <string>
+#include <sys/resource.h>
 #include <sys/wait.h>
 #include <unistd.h>
 #include <vector>
@@ -24,6 +28,8 @@ int main(int argc, char** argv)
   const std::string file = argv[1];
   int expected_code = 1;
   bool show_new_files = false;
+  double address_space_mb = 0.0;
+  std::vector<std::string> masked_phrases;
   std::vector<std::string> arguments{"talus"};
   {
     std::ifstream in(file);
@@ -32,6 +38,10 @@ int main(int argc, char** argv)
       const std::string code = "# expect exit code:", args = "# arguments:";
       if (line.rfind(code, 0) == 0)
         expected_code = std::stoi(line.substr(code.size()));
+      else if (line.rfind("# address space limit:", 0) == 0)
+        address_space_mb = std::stod(line.substr(22));
+      else if (line.rfind("# mask after: ", 0) == 0)
+        masked_phrases.push_back(line.substr(14));
       else if (line.rfind("# show new files", 0) == 0)
         show_new_files = true;
       else if (line.rfind(args, 0) == 0)
@@ -61,6 +71,12 @@ int main(int argc, char** argv)
     dup2(pipe_fd[1], 1);
     dup2(pipe_fd[1], 2);
     close(pipe_fd[0]);
+    if (address_space_mb > 0.0)
+    {
+      const rlimit limit{static_cast<rlim_t>(address_space_mb * 1048576.0),
+                         static_cast<rlim_t>(address_space_mb * 1048576.0)};
+      setrlimit(RLIMIT_AS, &limit);
+    }
     std::vector<char*> argv_child;
     for (std::string& a : arguments)
       argv_child.push_back(a.data());
@@ -79,6 +95,16 @@ int main(int argc, char** argv)
   const std::string folder = file.substr(0, file.find_last_of('/') + 1);
   for (std::size_t at; !folder.empty() && (at = text.find(folder)) != std::string::npos;)
     text.erase(at, folder.size());
+  for (const std::string& phrase : masked_phrases)
+    for (std::size_t at = 0; (at = text.find(phrase, at)) != std::string::npos;)
+    {
+      at += phrase.size();
+      const std::size_t begin = text.find_first_not_of(' ', at);
+      const std::size_t end = text.find_first_of(" \n", begin);
+      if (begin == std::string::npos || end == std::string::npos)
+        break;
+      text.replace(begin, end - begin, "<masked>");
+    }
   std::fputs(text.c_str(), stdout);
   if (WIFSIGNALED(status))
   {

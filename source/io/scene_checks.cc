@@ -1,3 +1,4 @@
+#include <talus/base/memory.h>
 #include <talus/io/scene_checks.h>
 #include <talus/zone/block_mesher.h>
 
@@ -90,6 +91,15 @@ void check_model_size(const Scene& scene)
                           " blocks, more than the " + number(max_blocks) +
                           " talus builds (about 1 KB of memory each)",
                       "a spacing that leaves at most " + number(max_blocks) + " blocks");
+  const double bytes =
+      blocks * (scene.solver.steps > 0 ? bytes_per_running_block : bytes_per_built_block);
+  const double room = available_memory();
+  if (!(bytes <= room) && !scene.joint_sets.empty())
+    throw scene_error(scene, scene.joint_set_sections[densest], "Spacing",
+                      "the joint sets would cut the brick into about " + number(blocks) +
+                          " blocks, which need about " + memory_text(bytes) +
+                          " of memory, and this machine has " + memory_text(room) + " left",
+                      "a spacing that leaves fewer blocks, or a machine with more memory");
 }
 
 void check_built_model(const Scene& scene, const BlockModel& model, const BuildReport& report)
@@ -174,6 +184,18 @@ void check_built_model(const Scene& scene, const BlockModel& model, const BuildR
                           number(max_zones) +
                           " talus meshes (about 620 bytes of memory each while meshing)",
                       "an edge length that makes at most " + number(max_zones) + " zones");
+  const double bytes =
+      zones * bytes_per_zone *
+      (scene.deformable.material.element == ZoneElement::tet10 ? 4.0 : 1.0);
+  const double room = available_memory();
+  if (!(bytes <= room))
+    throw scene_error(scene, "Deformable", "Edge length",
+                      number(edge) + " m would make about " + number(zones) +
+                          " zones, which need about " + memory_text(bytes) +
+                          " of memory to mesh, and this machine has " + memory_text(room) +
+                          " left",
+                      "a larger edge length, fewer deformable groups, or a machine with more "
+                      "memory");
 }
 
 void resolve_history_blocks(Scene& scene, const BlockModel& model)

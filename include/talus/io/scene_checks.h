@@ -15,6 +15,17 @@ namespace talus
 constexpr double max_blocks = 1e7;
 constexpr double max_zones = 3e7;
 
+/// Memory estimates (bytes) checked against the memory the machine has
+/// left before anything is built: a block with its contacts and
+/// sub-contacts in a run (about 1 KB for the block, 12 contacts of about
+/// 100 bytes and 40 sub-contacts of about 160 bytes, measured by
+/// benchmark_rigid_settling), a block that is only built and written, and
+/// a 4-node zone while meshing (the peak of benchmark_zone_cycle; a
+/// 10-node zone takes about four times as much).
+constexpr double bytes_per_running_block = 10e3;
+constexpr double bytes_per_built_block = 2e3;
+constexpr double bytes_per_zone = 650.0;
+
 /// An InputError about `entry` of subsection `section` (or about the whole
 /// subsection when `entry` is empty), at its line in the parameter file.
 InputError scene_error(const Scene& scene, const std::string& section, const std::string& entry,
@@ -22,7 +33,7 @@ InputError scene_error(const Scene& scene, const std::string& section, const std
 
 /// Before any block is cut: refuses joint sets that would cut the brick into
 /// more than max_blocks blocks (estimated from the number of joints of each
-/// set that cross the brick).
+/// set that cross the brick), or into more than the memory left holds.
 void check_model_size(const Scene& scene);
 
 /// Once the blocks exist, before anything is meshed or written: refuses a
@@ -30,7 +41,8 @@ void check_model_size(const Scene& scene);
 /// nothing, an excavation that removes nothing or everything, history
 /// blocks that do not exist, deformable groups with no block, a mesh file
 /// for a scene of several blocks, a zone edge length larger than every
-/// deformable block, or more zones than max_zones.
+/// deformable block, or more zones than max_zones or than the memory left
+/// holds.
 void check_built_model(const Scene& scene, const BlockModel& model, const BuildReport& report);
 
 /// Adds to `scene.solver.history_blocks` the block containing each of
