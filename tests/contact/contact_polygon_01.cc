@@ -68,8 +68,7 @@ int main()
     const std::vector<Point2> a = moved(base, turn, shift);
     const std::vector<Point2> b = moved(square, turn + tiny(random), shift);
     const double eps = contact_polygon_relative_tolerance * polygon_size(a, b);
-    const std::vector<Point2> region =
-        clip_convex(convex_hull(a, eps), convex_hull(b, eps), eps);
+    const std::vector<Point2> region = clip_convex(convex_hull(a, eps), convex_hull(b, eps), eps);
     const std::vector<double> w = vertex_areas(region);
     double error = 0.0;
     for (const double x : w)
@@ -89,8 +88,8 @@ int main()
 
   // 2. Coincident faces.
   {
-    const std::vector<Point2> face = moved({{0, 0}, {2, 0}, {2.5, 1}, {0.3, 1.4}}, 0.7,
-                                           Point2(1234.5, -987.6));
+    const std::vector<Point2> face =
+        moved({{0, 0}, {2, 0}, {2.5, 1}, {0.3, 1.4}}, 0.7, Point2(1234.5, -987.6));
     const double eps = contact_polygon_relative_tolerance * polygon_size(face, face);
     const std::vector<Point2> region = clip_convex(face, face, eps);
     std::fprintf(stderr, "coincident faces: %zu vertices, area %.12g of %.12g\n", region.size(),
@@ -111,8 +110,8 @@ int main()
                 talus_test::verdict(std::abs(w[0] + w[1] + w[2] + w[3] - area) < 1e-12 &&
                                     (c - Point2(2.0, 4.0 / 9.0)).norm() < 1e-12 &&
                                     (centroid - Point2(2.0, 4.0 / 9.0)).norm() < 1e-12));
-    std::vector<Point2> spurious = {{0, 0},     {1.3, 0},        {4, 0},     {4 - 1e-12, 1e-12},
-                                    {3, 1},     {2.2, 1 + 1e-13}, {1, 1},     {0.5, 0.5}};
+    std::vector<Point2> spurious = {{0, 0}, {1.3, 0},         {4, 0}, {4 - 1e-12, 1e-12},
+                                    {3, 1}, {2.2, 1 + 1e-13}, {1, 1}, {0.5, 0.5}};
     remove_spurious_vertices(spurious, 1e-9 * 4.0);
     std::printf("trapezoid with vertices on its edges and at a corner: they are removed: %s\n",
                 talus_test::verdict(spurious.size() == 4 &&

@@ -19,31 +19,30 @@
 void slide(bool flush)
 {
   const double g = 9.81, deg = M_PI / 180.0, slope = 40.0 * deg, phi = 20.0 * deg, t = 1.0;
-  RigidScene s("verification/block_on_incline.prm",
-               [&](talus::Scene& scene)
-               {
-                 // 1 m wide: the base is as wide as the cube. Wider: a 2 m
-                 // wide base with the cube in its middle.
-                 const double width = flush ? 1.0 : 2.0;
-                 scene.brick.hi.y() = width;
-                 scene.excavations[0].region = talus::ConvexRegion::box(
-                     {talus::Vec3(1, 0, 1), talus::Vec3(10, width, 2)});
-                 if (!flush)
-                   for (const double y : {0.0, 1.5})
-                   {
-                     talus::ExcavationSpec e = scene.excavations[0];
-                     e.region = talus::ConvexRegion::box(
-                         {talus::Vec3(0, y, 1), talus::Vec3(1, y + 0.5, 2)});
-                     scene.excavations.push_back(e);
-                   }
-                 scene.groups[0].region = {talus::Vec3(0, 0, 1), talus::Vec3(1, width, 2)};
-                 scene.solver.joint.normal_stiffness = 1e10;
-                 scene.solver.joint.shear_stiffness = 1e10;
-                 scene.solver.gravity =
-                     talus::Vec3(g * std::sin(slope), 0.0, -g * std::cos(slope));
-                 scene.solver.dynamic = true;
-                 scene.solver.local_damping = 0.0;
-               });
+  RigidScene s(
+      "verification/block_on_incline.prm",
+      [&](talus::Scene& scene)
+      {
+        // 1 m wide: the base is as wide as the cube. Wider: a 2 m
+        // wide base with the cube in its middle.
+        const double width = flush ? 1.0 : 2.0;
+        scene.brick.hi.y() = width;
+        scene.excavations[0].region =
+            talus::ConvexRegion::box({talus::Vec3(1, 0, 1), talus::Vec3(10, width, 2)});
+        if (!flush)
+          for (const double y : {0.0, 1.5})
+          {
+            talus::ExcavationSpec e = scene.excavations[0];
+            e.region = talus::ConvexRegion::box({talus::Vec3(0, y, 1), talus::Vec3(1, y + 0.5, 2)});
+            scene.excavations.push_back(e);
+          }
+        scene.groups[0].region = {talus::Vec3(0, 0, 1), talus::Vec3(1, width, 2)};
+        scene.solver.joint.normal_stiffness = 1e10;
+        scene.solver.joint.shear_stiffness = 1e10;
+        scene.solver.gravity = talus::Vec3(g * std::sin(slope), 0.0, -g * std::cos(slope));
+        scene.solver.dynamic = true;
+        scene.solver.local_damping = 0.0;
+      });
   unsigned int cube = 0;
   for (unsigned int b = 0; b < s.model.n_blocks(); ++b)
     if (s.model.group_names[s.model.group[b]] == "slider")
@@ -82,7 +81,9 @@ void slide(bool flush)
   const double a_exact = g * (std::sin(slope) - std::cos(slope) * std::tan(phi));
   const double a = 2.0 * u.x() / std::pow(s.solver->time(), 2);
   std::printf("%s base, %.0f s:\n", flush ? "flush" : "wider", t);
-  std::fprintf(stderr, "  steps %lu, slide %.9g m, lift %.3g m, drift %.3g m, pitch %.3g rad, roll and yaw %.3g rad\n",
+  std::fprintf(stderr,
+               "  steps %lu, slide %.9g m, lift %.3g m, drift %.3g m, pitch %.3g rad, roll and yaw "
+               "%.3g rad\n",
                s.solver->steps_done(), u.x(), lift, drift, pitch, turn);
   std::fprintf(stderr, "  sub-contacts %u to %u, areas %.6g to %.6g m^2\n", fewest, most, smallest,
                largest);

@@ -31,8 +31,7 @@ struct RigidScene
     solver = std::make_unique<talus::RigidSolver>(model, scene.density, scene.solver);
   }
   template <typename Edit>
-  RigidScene(const std::string& name, Edit edit)
-      : RigidScene(name, edit, [](talus::BlockModel&) {})
+  RigidScene(const std::string& name, Edit edit) : RigidScene(name, edit, [](talus::BlockModel&) {})
   {
   }
   explicit RigidScene(const std::string& name) : RigidScene(name, [](talus::Scene&) {}) {}
