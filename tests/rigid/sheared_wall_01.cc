@@ -4,8 +4,10 @@
 // above it. The upper course, pushed along at its end, slides on the upper
 // bedding joint, whose shear must then be the normal load (the course's
 // weight W = rho g V) times tan(phi); the lower course must stay put, and
-// no brick may rock: the only turn is the elastic tilt under the moment of
-// the push (of the order of 1e-6 rad).
+// no brick may rock: the only turn is the elastic pitch under the moment of
+// the push (of the order of 1e-6 rad). Before the contact region was made
+// robust to shared edges, bed contacts had up to 6 sub-contacts for their
+// rectangles and the bricks rolled by 2.2e-8 rad.
 
 #include <talus/joint/coulomb_slip.h>
 
