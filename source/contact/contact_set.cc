@@ -1,5 +1,7 @@
 #include <talus/contact/contact_set.h>
 
+#include <talus/contact/contact_polygon.h>
+
 #include <Eigen/Geometry>
 
 #include <algorithm>
@@ -15,72 +17,6 @@ namespace
 std::uint64_t pair_key(unsigned int a, unsigned int b)
 {
   return (static_cast<std::uint64_t>(a) << 32) | b;
-}
-
-using Point2 = Eigen::Vector2d;
-
-double cross2(const Point2& o, const Point2& a, const Point2& b)
-{
-  return (a - o).x() * (b - o).y() - (a - o).y() * (b - o).x();
-}
-
-/// Convex hull (counter-clockwise, no collinear points) of a few points.
-std::vector<Point2> convex_hull(std::vector<Point2> p, double tol)
-{
-  std::sort(p.begin(), p.end(),
-            [](const Point2& a, const Point2& b)
-            { return a.x() < b.x() || (a.x() == b.x() && a.y() < b.y()); });
-  if (p.size() < 3)
-    return p;
-  std::vector<Point2> h(2 * p.size());
-  std::size_t k = 0;
-  for (std::size_t i = 0; i < p.size(); ++i)
-  {
-    while (k >= 2 && cross2(h[k - 2], h[k - 1], p[i]) <= tol)
-      --k;
-    h[k++] = p[i];
-  }
-  for (std::size_t i = p.size() - 1, t = k + 1; i > 0; --i)
-  {
-    while (k >= t && cross2(h[k - 2], h[k - 1], p[i - 1]) <= tol)
-      --k;
-    h[k++] = p[i - 1];
-  }
-  h.resize(k - 1);
-  return h;
-}
-
-/// Sutherland-Hodgman: the part of `subject` inside the convex polygon `clip`
-/// (counter-clockwise). Works for a polygon, a segment or a point subject.
-std::vector<Point2> clip_convex(std::vector<Point2> subject, const std::vector<Point2>& clip)
-{
-  for (std::size_t e = 0; e < clip.size() && !subject.empty(); ++e)
-  {
-    const Point2& a = clip[e];
-    const Point2& b = clip[(e + 1) % clip.size()];
-    std::vector<Point2> out;
-    const std::size_t n = subject.size();
-    for (std::size_t i = 0; i < n; ++i)
-    {
-      const Point2& p = subject[i];
-      const Point2& q = subject[(i + 1) % n];
-      const double dp = cross2(a, b, p), dq = cross2(a, b, q);
-      if (dp >= 0.0)
-        out.push_back(p);
-      if (n > 1 && (dp >= 0.0) != (dq >= 0.0) && !(n == 2 && i == 1))
-        out.push_back(p + (q - p) * (dp / (dp - dq)));
-    }
-    subject = std::move(out);
-  }
-  return subject;
-}
-
-double polygon_area(const std::vector<Point2>& p)
-{
-  double a = 0.0;
-  for (std::size_t i = 0; i < p.size(); ++i)
-    a += p[i].x() * p[(i + 1) % p.size()].y() - p[(i + 1) % p.size()].x() * p[i].y();
-  return 0.5 * a;
 }
 
 /// The side of one block facing the common plane.
@@ -110,7 +46,7 @@ FacingSide facing_side(const BlockModel& m, unsigned int block, const Vec3& n, c
       s.deepest = sign > 0 ? std::max(s.deepest, h) : std::min(s.deepest, h);
     }
   }
-  s.hull = convex_hull(points, 1e-12 * band);
+  s.hull = convex_hull(points, contact_polygon_relative_tolerance * polygon_size(points, {}));
   // The face most nearly facing the other block, if it lies on the plane.
   double best = 0.0;
   unsigned int best_face = 0;
@@ -138,7 +74,7 @@ FacingSide facing_side(const BlockModel& m, unsigned int block, const Vec3& n, c
       const Vec3 r = m.vertex[m.face_vertex[k]] - c;
       points.emplace_back(u.dot(r), v.dot(r));
     }
-    s.hull = convex_hull(points, 1e-12 * band);
+    s.hull = convex_hull(points, contact_polygon_relative_tolerance * polygon_size(points, {}));
   }
   if (s.hull.size() >= 3 && best > 0.99)
   {
@@ -440,13 +376,14 @@ void ContactSet::build_subcontacts(unsigned int c, const BlockModel& m,
   const FacingSide sb = facing_side(m, b, n, ref, u, v, band, -1.0, rigid_b);
 
   // The contact region on the plane: where the two facing sides overlap.
+  // Faces in jointed rock share edges with their neighbours' faces: lengths
+  // below a fraction of the faces' size are round-off (contact_polygon.h).
+  const double eps = contact_polygon_relative_tolerance * polygon_size(sa.hull, sb.hull);
   std::vector<Point2> region;
-  if (sa.hull.size() >= 3 && sb.hull.size() >= 3)
-    region = clip_convex(sa.hull, sb.hull);
-  else if (sb.hull.size() >= 3)
-    region = clip_convex(sa.hull, sb.hull);
+  if (sb.hull.size() >= 3)
+    region = clip_convex(sa.hull, sb.hull, eps);
   else if (sa.hull.size() >= 3)
-    region = clip_convex(sb.hull, sa.hull);
+    region = clip_convex(sb.hull, sa.hull, eps);
   else if (sa.hull.size() == 2 && sb.hull.size() == 2)
   {
     // Edge to edge: the crossing point of the two edges (or their nearest
@@ -467,25 +404,11 @@ void ContactSet::build_subcontacts(unsigned int c, const BlockModel& m,
 
   if (region.empty())
     return;
-  std::vector<double> weight(region.size(), 0.0);
+  // Each vertex of the region carries its share of the area, centred on
+  // the region's area centroid (vertex_areas).
+  std::vector<double> weight = vertex_areas(region);
   const double area = region.size() >= 3 ? polygon_area(region) : 0.0;
-  if (region.size() >= 3 && area > 0.0)
-  {
-    // Each vertex of the region carries half of each fan triangle beside it,
-    // so the weights add up to the contact area exactly.
-    Point2 centre = Point2::Zero();
-    for (const Point2& p : region)
-      centre += p;
-    centre /= static_cast<double>(region.size());
-    for (std::size_t i = 0; i < region.size(); ++i)
-    {
-      const std::size_t j = (i + 1) % region.size();
-      const double t = 0.5 * std::abs(cross2(centre, region[i], region[j]));
-      weight[i] += 0.5 * t;
-      weight[j] += 0.5 * t;
-    }
-  }
-  else
+  if (!(region.size() >= 3 && area > 0.0))
   {
     const double point_area =
         settings.point_area_fraction * std::pow(std::min(m.volume[a], m.volume[b]), 2.0 / 3.0);

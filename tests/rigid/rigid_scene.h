@@ -17,16 +17,22 @@ struct RigidScene
   std::unique_ptr<talus::RigidSolver> solver;
 
   /// Reads parameters/<name>, applying `edit` to the scene before the
-  /// solver is built (to vary one value of a shipped scene).
-  template <typename Edit>
-  RigidScene(const std::string& name, Edit edit)
+  /// solver is built (to vary one value of a shipped scene), and
+  /// `edit_model` to the blocks once built (to move one).
+  template <typename Edit, typename EditModel>
+  RigidScene(const std::string& name, Edit edit, EditModel edit_model)
   {
     scene = talus::read_scene(std::string(SOURCE_DIR) + "/../../parameters/" + name, false);
     edit(scene);
     talus::BuildReport report;
     model = talus::build_blocks(scene, report);
     talus::resolve_group_names(scene, model);
+    edit_model(model);
     solver = std::make_unique<talus::RigidSolver>(model, scene.density, scene.solver);
+  }
+  template <typename Edit>
+  RigidScene(const std::string& name, Edit edit) : RigidScene(name, edit, [](talus::BlockModel&) {})
+  {
   }
   explicit RigidScene(const std::string& name) : RigidScene(name, [](talus::Scene&) {}) {}
 
