@@ -3,6 +3,7 @@
 #include <talus/solver/deformable_solver.h>
 #include <talus/zone/hex_mixed.h>
 #include <talus/zone/nodal_mixed.h>
+#include <talus/zone/tet10_mesh.h>
 #include <talus/zone/zone_models.h>
 
 #include <deal.II/lac/petsc_vector.h>
@@ -477,10 +478,14 @@ void DeformableSolver::zone_forces()
   external_forces(x.data(), f.data());
   // The velocities are those of the last motion (x - v dt -> x); before the
   // first motion there is none, so no strain.
-  const double strain_dt = step_ == 0 ? 0.0 : dt_;
+  zone_forces(x.data(), v.data(), f.data(), step_ == 0 ? 0.0 : dt_);
+}
+
+void DeformableSolver::zone_forces(const double* x, const double* v, double* f, double strain_dt)
+{
   if (nodal_mixed_)
   {
-    nodal_mixed_zone_forces(x.data(), v.data(), f.data(), strain_dt);
+    nodal_mixed_zone_forces(x, v, f, strain_dt);
     return;
   }
   if (mesh_.quadratic())
@@ -494,8 +499,7 @@ void DeformableSolver::zone_forces()
       for (unsigned int first = batch_start_[r]; first < batch_start_[r + 1]; first += batch10)
       {
         const unsigned int n = std::min(batch10, batch_start_[r + 1] - first);
-        tet10_strain_increments(mesh_, first, n, x.data(), v.data(), strain_dt, stress_.data(),
-                                scratch10_);
+        tet10_strain_increments(mesh_, first, n, x, v, strain_dt, stress_.data(), scratch10_);
         StressBatch batch;
         batch.size = 4 * n;
         batch.strain_increment = scratch10_.strain_increment.data();
@@ -508,7 +512,7 @@ void DeformableSolver::zone_forces()
         {
           gauss_volume_.resize(4 * n);
           for (unsigned int k = 0; k < n; ++k)
-            tet10_gauss_volumes(mesh_, first + k, x.data(), &gauss_volume_[4 * k]);
+            tet10_gauss_volumes(mesh_, first + k, x, &gauss_volume_[4 * k]);
           plastic_stress_work_ +=
               0.5 * stress_power(4 * n, batch.strain_increment, batch.stress, gauss_volume_.data());
         }
@@ -516,8 +520,7 @@ void DeformableSolver::zone_forces()
         if (plastic)
           plastic_stress_work_ +=
               0.5 * stress_power(4 * n, batch.strain_increment, batch.stress, gauss_volume_.data());
-        tet10_nodal_forces(mesh_, first, n, stress_.data(), scratch10_, f.data(),
-                           force_size_.data());
+        tet10_nodal_forces(mesh_, first, n, stress_.data(), scratch10_, f, force_size_.data());
       }
     }
     return;
@@ -533,15 +536,14 @@ void DeformableSolver::zone_forces()
     for (unsigned int first = batch_start_[r]; first < batch_start_[r + 1]; first += chunk)
     {
       const unsigned int n = std::min(chunk, batch_start_[r + 1] - first);
-      tet4_strain_increments(mesh_, first, n, x.data(), v.data(), strain_dt, stress_.data(),
-                             scratch_);
+      tet4_strain_increments(mesh_, first, n, x, v, strain_dt, stress_.data(), scratch_);
       if (hex) // eqs. 60-63
         hex_mixed_average_strain(n, scratch_.strain_increment.data(), scratch_.volume.data());
       StressBatch batch = tet4_batch(first, n, scratch_);
       update_tet4_stresses(mat, batch, scratch_.volume.data());
       if (hex) // each overlay's forces weighted 1/2
         hex_mixed_overlay_weight(n, scratch_.volume.data());
-      tet4_nodal_forces(mesh_, first, n, stress_.data(), scratch_, f.data(), force_size_.data());
+      tet4_nodal_forces(mesh_, first, n, stress_.data(), scratch_, f, force_size_.data());
     }
   }
 }
@@ -1200,11 +1202,51 @@ ImplicitElasticProblem DeformableSolver::implicit_problem() const
 {
   ImplicitElasticProblem p;
   p.mesh = &mesh_;
+  // The 4-node stiffness for the preconditioner: the tetrahedra of a
+  // hexahedral zone at half weight (each overlay fills it once), 10-node
+  // zones as their eight sub-tetrahedra on the same gridpoints.
+  const std::vector<char> in_hex = zones_in_hexes(mesh_);
+  std::shared_ptr<TetMesh> sub;
+  if (mesh_.quadratic())
+  {
+    sub = std::make_shared<TetMesh>();
+    sub->position = mesh_.position;
+    p.mesh = sub.get();
+    p.own_mesh = sub;
+  }
   for (unsigned int z = 0; z < mesh_.n_zones(); ++z)
   {
-    p.zone_bulk.push_back(materials_[material_of_zone_[z]].bulk_modulus);
-    p.zone_shear.push_back(materials_[material_of_zone_[z]].shear_modulus);
+    const ZoneMaterial& mat = materials_[material_of_zone_[z]];
+    const double weight = in_hex[z] ? 0.5 : 1.0;
+    for (unsigned int c = 0; c < (sub ? 8u : 1u); ++c)
+    {
+      p.zone_bulk.push_back(weight * mat.bulk_modulus);
+      p.zone_shear.push_back(weight * mat.shear_modulus);
+      if (!sub)
+        continue;
+      std::array<unsigned int, 4> t;
+      for (int a = 0; a < 4; ++a)
+      {
+        const unsigned int node = tet10_subcell[c][a];
+        t[a] = node < 4 ? mesh_.zone_gridpoint[z][node] : mesh_.zone_edge_gridpoint[z][node - 4];
+      }
+      sub->zone_gridpoint.push_back(t);
+    }
   }
+  // Nodal mixed discretization averages the volumetric strain at a
+  // gridpoint weighted by zone volume (eq. 69) and each zone's stress takes
+  // K times the mean of those averages: the operator is symmetric where the
+  // mixed zones around every gridpoint share one bulk modulus, else GMRES
+  // must solve.
+  std::vector<double> bulk_at(mesh_.n_gridpoints(), -1.0);
+  for (unsigned int z = 0; z < mesh_.n_zones(); ++z)
+    if (const ZoneMaterial& mat = materials_[material_of_zone_[z]]; mat.nodal_mixed)
+      for (unsigned int g : mesh_.zone_gridpoint[z])
+      {
+        if (bulk_at[g] >= 0.0 && bulk_at[g] != mat.bulk_modulus)
+          p.symmetric = false;
+        bulk_at[g] = mat.bulk_modulus;
+      }
   p.nodal_force = gravity_force_;
   for (std::size_t k = 0; k < pressed_faces_.size(); ++k)
   {
@@ -1215,6 +1257,52 @@ ImplicitElasticProblem DeformableSolver::implicit_problem() const
   }
   p.fixed = held_;
   return p;
+}
+
+void DeformableSolver::elastic_operator(const double* u, double* Ku)
+{
+  // The kernels measure a step's motion v dt on the geometry halfway
+  // through it (eq. 58) and take the nodal forces on the geometry at its
+  // end: from the initial geometry, a motion +s u and one -s u, a small s,
+  // give forces whose difference is -2 s K u with the change of geometry
+  // cancelled to second order.
+  const unsigned int n = 3 * mesh_.n_gridpoints();
+  double largest = 0.0, volume = 0.0;
+  for (unsigned int i = 0; i < n; ++i)
+    largest = std::max(largest, std::abs(u[i]));
+  std::fill(Ku, Ku + n, 0.0);
+  if (!(largest > 0.0))
+    return;
+  for (const auto& t : mesh_.zone_gridpoint)
+    volume += tet_volume(mesh_.position.data(), t);
+  const double s = 1e-6 * std::cbrt(volume / mesh_.n_zones()) / largest; // strains ~1e-6
+  // The run's state aside: elastic, unstressed zones.
+  std::vector<double> stress(stress_.size(), 0.0), force_size = force_size_;
+  std::vector<unsigned char> state(state_.size(), 0);
+  std::vector<ZoneMaterial> materials = materials_;
+  for (ZoneMaterial& m : materials_)
+    m.model = ZoneModel::elastic;
+  stress_.swap(stress);
+  state_.swap(state);
+  const double stress_work = plastic_stress_work_;
+  const bool yielded = last_step_yielded_;
+  std::vector<double> v(n), f(n);
+  for (const double sign : {1.0, -1.0})
+  {
+    for (unsigned int i = 0; i < n; ++i)
+      v[i] = sign * s * u[i];
+    std::fill(f.begin(), f.end(), 0.0);
+    std::fill(stress_.begin(), stress_.end(), 0.0);
+    zone_forces(mesh_.position.data(), v.data(), f.data(), 1.0);
+    for (unsigned int i = 0; i < n; ++i)
+      Ku[i] -= sign * f[i] / (2.0 * s);
+  }
+  stress_.swap(stress);
+  state_.swap(state);
+  materials_.swap(materials);
+  force_size_.swap(force_size);
+  plastic_stress_work_ = stress_work;
+  last_step_yielded_ = yielded;
 }
 
 void DeformableSolver::save_state(CheckpointWriter& out) const

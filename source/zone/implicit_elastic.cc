@@ -5,6 +5,7 @@
 #include <deal.II/lac/dynamic_sparsity_pattern.h>
 #include <deal.II/lac/solver_cg.h>
 #include <deal.II/lac/solver_control.h>
+#include <deal.II/lac/solver_gmres.h>
 #include <deal.II/lac/trilinos_precondition.h>
 #include <deal.II/lac/trilinos_sparse_matrix.h>
 #include <deal.II/lac/trilinos_vector.h>
@@ -214,6 +215,39 @@ void check_fixity(const ImplicitElasticProblem& p, const std::vector<unsigned in
   }
 }
 
+/// The operator of ImplicitElasticProblem::apply with the prescribed
+/// components eliminated as in the assembled matrix: K P u on the free rows
+/// (P zeroes the prescribed components), the assembled diagonal times u on
+/// the prescribed ones. Symmetric when K is.
+class MatrixFreeOperator
+{
+public:
+  MatrixFreeOperator(const std::function<void(const double*, double*)>& apply,
+                     const std::vector<char>& fixed, const std::vector<double>& fixed_diagonal)
+      : apply_(apply), fixed_(fixed), diagonal_(fixed_diagonal), in_(fixed.size()),
+        out_(fixed.size())
+  {
+  }
+  void vmult(dealii::TrilinosWrappers::MPI::Vector& dst,
+             const dealii::TrilinosWrappers::MPI::Vector& src) const
+  {
+    const double* u = src.begin();
+    for (std::size_t i = 0; i < in_.size(); ++i)
+      in_[i] = fixed_[i] ? 0.0 : u[i];
+    std::fill(out_.begin(), out_.end(), 0.0);
+    apply_(in_.data(), out_.data());
+    double* y = dst.begin();
+    for (std::size_t i = 0; i < out_.size(); ++i)
+      y[i] = fixed_[i] ? diagonal_[i] * in_[i] + diagonal_[i] * u[i] : out_[i];
+  }
+
+private:
+  const std::function<void(const double*, double*)>& apply_;
+  const std::vector<char>& fixed_;
+  const std::vector<double>& diagonal_;
+  mutable std::vector<double> in_, out_;
+};
+
 } // namespace
 
 ImplicitElasticResult solve_implicit_elastic(const ImplicitElasticProblem& p)
@@ -337,6 +371,21 @@ ImplicitElasticResult solve_implicit_elastic(const ImplicitElasticProblem& p)
       }
     }
   }
+  // The operator given: forces less its columns of the prescribed values.
+  std::vector<char> fixed_dof(p.apply ? n_dofs : 0);
+  if (p.apply)
+  {
+    std::vector<double> lifted(n_dofs, 0.0), reaction(n_dofs, 0.0);
+    bool any = false;
+    for (unsigned int i = 0; i < n_dofs; ++i)
+      if ((fixed_dof[i] = is_fixed(i)))
+        any |= (lifted[i] = prescribed(i)) != 0.0;
+    if (any)
+      p.apply(lifted.data(), reaction.data());
+    for (unsigned int i = 0; i < n_dofs; ++i)
+      if (!is_fixed(i))
+        rhs[i] = (p.nodal_force.empty() ? 0.0 : p.nodal_force[i]) - reaction[i];
+  }
   // Prescribed rows: their own diagonal (keeps the scaling of the rest)
   // with a right-hand side that makes the prescribed value the answer.
   double free_norm2 = 0.0;
@@ -408,15 +457,23 @@ ImplicitElasticResult solve_implicit_elastic(const ImplicitElasticProblem& p)
     amg.initialize(matrix, parameters);
 
     SolverControl control(p.max_iterations, p.tolerance * std::sqrt(free_norm2), false, false);
-    SolverCG<TrilinosWrappers::MPI::Vector> cg(control);
+    using Vector = TrilinosWrappers::MPI::Vector;
+    result.method = p.apply && !p.symmetric ? "GMRES" : "CG";
     try
     {
-      cg.solve(matrix, x, b, amg);
+      if (!p.apply)
+        SolverCG<Vector>(control).solve(matrix, x, b, amg);
+      else if (p.symmetric)
+        SolverCG<Vector>(control).solve(MatrixFreeOperator(p.apply, fixed_dof, fixed_diagonal), x,
+                                        b, amg);
+      else // right preconditioning: the tolerance is on the true residual
+        SolverGMRES<Vector>(control, SolverGMRES<Vector>::AdditionalData(100, true))
+            .solve(MatrixFreeOperator(p.apply, fixed_dof, fixed_diagonal), x, b, amg);
     }
     catch (const SolverControl::NoConvergence& e)
     {
       std::ostringstream what;
-      what << "implicit elastic solve: CG did not converge: relative residual "
+      what << "implicit elastic solve: " << result.method << " did not converge: relative residual "
            << e.last_residual / std::sqrt(free_norm2) << " after " << e.last_step
            << " iterations (tolerance " << p.tolerance << ", max_iterations " << p.max_iterations
            << ")";

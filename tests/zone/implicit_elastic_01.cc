@@ -9,7 +9,13 @@
 //  - patch test: a linear field prescribed on the boundary of a distorted
 //    mesh is reproduced at the interior gridpoints;
 //  - a singular system (no fixity; only u_z fixed on the base) is refused,
-//    and so is a CG run stopped before the tolerance.
+//    and so is a CG run stopped before the tolerance;
+//  - an operator given matrix-free (ImplicitElasticProblem::apply): the
+//    layered box and the patch test (prescribed values lifted through the
+//    operator) with the stiffness of the layered moduli applied element by
+//    element and the preconditioner assembled with other moduli (one
+//    layer, three times as stiff): the answer is the operator's, by CG and
+//    by GMRES (as for an operator that is not symmetric).
 // With an argument n, instead times the uniaxial case on n^3 x 6 tets.
 
 #include <talus/base/exceptions.h>
@@ -22,6 +28,8 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <functional>
+#include <iostream>
 #include <stdexcept>
 #include <string>
 
@@ -254,6 +262,139 @@ void patch()
                     1e-9);
 }
 
+/// K u of constant-strain tetrahedra (eq. 59), element by element, with
+/// per-zone moduli: a matrix-free operator for ImplicitElasticProblem.
+std::function<void(const double*, double*)>
+tet4_operator(const talus::TetMesh& m, std::vector<double> bulk, std::vector<double> shear)
+{
+  return [&m, bulk, shear](const double* u, double* Ku)
+  {
+    std::fill(Ku, Ku + m.position.size(), 0.0);
+    for (unsigned int z = 0; z < m.n_zones(); ++z)
+    {
+      const auto& t = m.zone_gridpoint[z];
+      double e[3][3], g[4][3];
+      for (unsigned int a = 0; a < 3; ++a)
+        for (unsigned int d = 0; d < 3; ++d)
+          e[a][d] = m.position[3 * t[a + 1] + d] - m.position[3 * t[0] + d];
+      // Gradients of the barycentric coordinates: rows of the inverse of
+      // the matrix whose columns are the edges.
+      const double det = e[0][0] * (e[1][1] * e[2][2] - e[1][2] * e[2][1]) -
+                         e[0][1] * (e[1][0] * e[2][2] - e[1][2] * e[2][0]) +
+                         e[0][2] * (e[1][0] * e[2][1] - e[1][1] * e[2][0]);
+      for (unsigned int a = 0; a < 3; ++a)
+        for (unsigned int d = 0; d < 3; ++d)
+        {
+          const unsigned int b = (a + 1) % 3, c = (a + 2) % 3, d1 = (d + 1) % 3, d2 = (d + 2) % 3;
+          g[a + 1][d] = (e[b][d1] * e[c][d2] - e[b][d2] * e[c][d1]) / det;
+        }
+      for (unsigned int d = 0; d < 3; ++d)
+        g[0][d] = -(g[1][d] + g[2][d] + g[3][d]);
+      double strain[3][3] = {}, trace = 0.0;
+      for (unsigned int a = 0; a < 4; ++a)
+        for (unsigned int i = 0; i < 3; ++i)
+          for (unsigned int j = 0; j < 3; ++j)
+            strain[i][j] += 0.5 * (u[3 * t[a] + i] * g[a][j] + u[3 * t[a] + j] * g[a][i]);
+      for (unsigned int i = 0; i < 3; ++i)
+        trace += strain[i][i];
+      const double G = shear[z], lambda = bulk[z] - 2.0 * G / 3.0, V = det / 6.0;
+      for (unsigned int a = 0; a < 4; ++a)
+        for (unsigned int i = 0; i < 3; ++i)
+          for (unsigned int j = 0; j < 3; ++j)
+            Ku[3 * t[a] + i] +=
+                V * (2.0 * G * strain[i][j] + (i == j ? lambda * trace : 0.0)) * g[a][j];
+    }
+  };
+}
+
+/// The layered box of uniaxial() and the patch test with the operator
+/// given matrix-free and the preconditioner of other moduli.
+void matrix_free(bool symmetric)
+{
+  const char* method = symmetric ? "matrix-free, CG" : "matrix-free, GMRES";
+  const double Lx = 1.0, Ly = 1.5, Lz = 2.0, p = 1e6;
+  const double E1 = 1e10, nu1 = 0.15, E2 = 2 * E1, nu2 = 2 * nu1;
+  {
+    const talus::TetMesh m = box(10, Lx, Ly, Lz);
+    talus::ImplicitElasticProblem prob;
+    prob.mesh = &m;
+    prob.tolerance = 1e-13;
+    prob.symmetric = symmetric;
+    std::vector<double> bulk, shear;
+    for (const auto& t : m.zone_gridpoint)
+    {
+      double zc = 0.0;
+      for (unsigned int v : t)
+        zc += 0.25 * m.position[3 * v + 2];
+      const double E = zc > 0.5 * Lz ? E2 : E1, nu = zc > 0.5 * Lz ? nu2 : nu1;
+      bulk.push_back(E / (3 * (1 - 2 * nu)));
+      shear.push_back(E / (2 * (1 + nu)));
+    }
+    prob.apply = tet4_operator(m, bulk, shear);
+    prob.zone_bulk.assign(m.n_zones(), 3.0 * E1 / (3 * (1 - 2 * nu1)));
+    prob.zone_shear.assign(m.n_zones(), 3.0 * E1 / (2 * (1 + nu1)));
+    prob.nodal_force = top_pressure(m, Lz, p);
+    prob.fixed.assign(m.n_gridpoints(), 0);
+    for (unsigned int i = 0; i < m.n_gridpoints(); ++i)
+      if (m.position[3 * i + 2] == 0.0)
+        prob.fixed[i] |= 4;
+    prob.fixed[nearest(m, 0, 0, 0)] |= 1 | 2;
+    prob.fixed[nearest(m, 0, Ly, 0)] |= 1;
+    const talus::ImplicitElasticResult r = talus::solve_implicit_elastic(prob);
+    std::cerr << method << ", layered: " << r.iterations << " iterations\n";
+    double max_error = 0.0;
+    for (unsigned int i = 0; i < m.n_gridpoints(); ++i)
+    {
+      const double* x = &m.position[3 * i];
+      const double exact[3] = {nu1 * p / E1 * x[0], nu1 * p / E1 * x[1],
+                               x[2] <= 0.5 * Lz ? -p / E1 * x[2]
+                                                : -p / E1 * 0.5 * Lz - p / E2 * (x[2] - 0.5 * Lz)};
+      for (unsigned int d = 0; d < 3; ++d)
+        max_error = std::max(max_error, std::abs(r.displacement[3 * i + d] - exact[d]));
+    }
+    std::printf("layered, %s (%s): ", method, r.method);
+    talus_test::check("max |u - exact| / (p Lz / E1) over all gridpoints",
+                      max_error / (p * Lz / E1), 0.0, 1e-9);
+  }
+  {
+    const talus::TetMesh m = box(6, 1.0, 1.0, 1.0, 0.25);
+    const double u0[3] = {1e-3, -2e-3, 0.5e-3};
+    const double A[3][3] = {{1e-3, 2e-4, -3e-4}, {-1e-4, -5e-4, 4e-4}, {3e-4, 1e-4, 2e-3}};
+    const auto exact = [&](const double* x, unsigned int d)
+    { return u0[d] + A[d][0] * x[0] + A[d][1] * x[1] + A[d][2] * x[2]; };
+    talus::ImplicitElasticProblem prob;
+    prob.mesh = &m;
+    prob.tolerance = 1e-13;
+    prob.symmetric = symmetric;
+    prob.apply = tet4_operator(m, std::vector<double>(m.n_zones(), 3.333e10),
+                               std::vector<double>(m.n_zones(), 2.5e10));
+    prob.zone_bulk.assign(m.n_zones(), 1e10);
+    prob.zone_shear.assign(m.n_zones(), 1e10);
+    prob.fixed.assign(m.n_gridpoints(), 0);
+    prob.prescribed.assign(3 * m.n_gridpoints(), 0.0);
+    for (unsigned int i = 0; i < m.n_gridpoints(); ++i)
+    {
+      const double* x = &m.position[3 * i];
+      for (unsigned int d = 0; d < 3; ++d)
+        if (x[d] == 0.0 || x[d] == 1.0)
+          prob.fixed[i] = 7;
+      for (unsigned int d = 0; d < 3 && prob.fixed[i]; ++d)
+        prob.prescribed[3 * i + d] = exact(x, d);
+    }
+    const talus::ImplicitElasticResult r = talus::solve_implicit_elastic(prob);
+    double max_error = 0.0, scale = 0.0;
+    for (unsigned int i = 0; i < 3 * m.n_gridpoints(); ++i)
+    {
+      max_error =
+          std::max(max_error, std::abs(r.displacement[i] - exact(&m.position[i - i % 3], i % 3)));
+      scale = std::max(scale, std::abs(exact(&m.position[i - i % 3], i % 3)));
+    }
+    std::printf("patch test, %s (%s): ", method, r.method);
+    talus_test::check("max |u - exact| / max |u| over all gridpoints", max_error / scale, 0.0,
+                      1e-9);
+  }
+}
+
 /// A singular system must be refused with SolverError, not solved.
 void singular(const char* what, bool fix_base_z)
 {
@@ -332,4 +473,6 @@ int main(int argc, char** argv)
   singular("no fixity", false);
   singular("only u_z fixed on the base", true);
   no_convergence();
+  matrix_free(true);
+  matrix_free(false);
 }

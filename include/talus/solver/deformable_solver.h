@@ -132,8 +132,18 @@ public:
   /// The same problem for the implicit elastic reference solve: gravity and
   /// face pressures as nodal forces on the initial geometry, held
   /// components prescribed at zero (only meaningful for elastic zones
-  /// without initial stress, held at rest).
+  /// without initial stress, held at rest), and the 4-node stiffness that
+  /// preconditions it (hexahedral zones' tetrahedra at half weight, 10-node
+  /// zones as eight sub-tetrahedra). Its `apply` is left to the caller:
+  /// elastic_operator, for the kernels' own discrete problem.
   ImplicitElasticProblem implicit_problem() const;
+  /// The linear elastic operator of the explicit kernels as they are
+  /// (4-node zones, nodal mixed discretization, hexahedral zones, 10-node
+  /// zones): Ku = K u, minus the zone forces (N) of displacements u (m),
+  /// both 3 per gridpoint, from the unstressed initial geometry with every
+  /// zone elastic; no loads, no boundary conditions. The run's state is
+  /// left as it was.
+  void elastic_operator(const double* u, double* Ku);
 
   /// Adds the zones' terms to an energy account: work of gravity and of
   /// boundaries, kinetic energy at the last whole step, damping, and (a
@@ -190,6 +200,9 @@ private:
   static double stable_time_step_of(const std::vector<double>& mass,
                                     const std::vector<double>& stiffness);
   void zone_forces();
+  /// The zone forces alone of positions x and velocities v (3 per
+  /// gridpoint) over a motion of strain_dt, added to f.
+  void zone_forces(const double* x, const double* v, double* f, double strain_dt);
   /// Gravity and face loads into f (N, 3 per gridpoint), and their sizes
   /// into force_size_: where the zone forces are added.
   void external_forces(const double* x, double* f);

@@ -1,12 +1,17 @@
 #pragma once
 
 // A reference solver, not part of the calculation cycle: the static
-// linear-elastic answer of a TetMesh computed implicitly (assembled
-// stiffness, CG with algebraic multigrid), to check the explicit solver's
-// static answer against. Same discretization as the explicit kernel in its
-// plain form: constant-strain 4-node tetrahedra, small strain, isotropic
-// elasticity (eq. 59). Kept free of deal.II/Trilinos headers.
+// linear-elastic answer of a TetMesh computed implicitly (CG with algebraic
+// multigrid), to check the explicit solver's static answer against. By
+// itself it assembles constant-strain 4-node tetrahedra, small strain,
+// isotropic elasticity (eq. 59): the explicit kernel in its plain form.
+// Given the explicit kernels' own operator (ImplicitElasticProblem::apply),
+// it solves their discrete problem instead (nodal mixed discretization,
+// hexahedral zones, 10-node zones), with the assembled 4-node stiffness as
+// the preconditioner only. Kept free of deal.II/Trilinos headers.
 
+#include <functional>
+#include <memory>
 #include <vector>
 
 #include <talus/zone/tet_mesh.h>
@@ -34,6 +39,17 @@ struct ImplicitElasticProblem
   double tolerance = 1e-10;
   /// CG gives up (and the solver throws) after this many iterations.
   unsigned int max_iterations = 10000;
+  /// When set, the operator of the problem, applied matrix-free: Ku = K u,
+  /// 3 numbers per gridpoint each, every component (the solver zeroes the
+  /// prescribed components of u before it calls, and replaces those of
+  /// Ku). The 4-node stiffness of `mesh` (with `zone_bulk`, `zone_shear`)
+  /// then only builds the AMG preconditioner, so `mesh` need only have the
+  /// same gridpoints, e.g. the sub-tetrahedra of 10-node zones.
+  std::function<void(const double* u, double* Ku)> apply;
+  /// Whether `apply` is symmetric (CG); if not, GMRES solves.
+  bool symmetric = true;
+  /// Keeps a mesh made for the problem alive (then `mesh` points to it).
+  std::shared_ptr<const TetMesh> own_mesh;
 };
 
 struct ImplicitElasticResult
@@ -41,8 +57,10 @@ struct ImplicitElasticResult
   /// Displacements, 3 per gridpoint, m; prescribed components hold exactly
   /// the prescribed values.
   std::vector<double> displacement;
-  /// CG iterations.
+  /// Iterations of the Krylov method ("CG", or "GMRES" for an operator
+  /// that is not symmetric).
   unsigned int iterations = 0;
+  const char* method = "CG";
   /// Wall time of the whole call (checks, assembly, AMG setup, CG), s.
   double seconds = 0.0;
 };
@@ -51,7 +69,10 @@ struct ImplicitElasticResult
 /// matrix, eliminates the prescribed components symmetrically (their
 /// columns move to the right-hand side, their rows keep only the diagonal)
 /// and solves with CG preconditioned by ML algebraic multigrid, which is
-/// given the six rigid-body modes as its near null space.
+/// given the six rigid-body modes as its near null space. With
+/// `problem.apply`, the same elimination on that operator (its rows of the
+/// prescribed components are the assembled matrix's), CG or GMRES on it,
+/// the AMG of the assembled matrix as preconditioner.
 ///
 /// Serial: the system lives on MPI_COMM_SELF, so under mpirun every rank
 /// solves the whole problem by itself. MPI must have been initialised by the
