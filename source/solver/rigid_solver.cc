@@ -11,6 +11,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <cstdio>
 
 namespace talus
 {
@@ -572,20 +573,36 @@ void RigidSolver::step()
   timing_.seconds_motion += seconds_since(t0);
   time_ += dt_;
   ++step_;
+  watch_energy_growth();
   if (!too_fast_.empty())
     check_reach();
-  watch_energy_growth();
 }
 
-void RigidSolver::check_reach() const
+void RigidSolver::check_reach()
 {
-  // A block that moves more than the contact tolerance in one step can
-  // pass through a neighbour between two detections (eq. 1), or meet it
-  // deep inside. It matters only where another block is within reach: the
-  // box it swept this step (from its envelope at the last detection, which
-  // holds where it started, to where it is now, widened by the tolerance)
-  // meets another block's envelope.
+  // A block that moves more than the contact tolerance in one step meets a
+  // neighbour up to that deep inside, and one that moves more than half
+  // the thickness of either block can pass through it between two
+  // detections (eq. 1). That matters only where another block is within
+  // reach: the box the block swept this step (its envelope at the last
+  // detection, which holds where it started, to where it is now, widened by
+  // the tolerance) meets the other's envelope.
   const double tol = s_.contact.tolerance;
+  // Thickness of a block: its volume over its largest face (exact for a box).
+  const auto thickness = [&](unsigned int b)
+  {
+    const ConvexPolyhedron p = m_.polyhedron(b);
+    double area = 0.0;
+    for (unsigned int f = 0; f < p.n_faces(); ++f)
+    {
+      Vec3 twice = Vec3::Zero();
+      for (unsigned int j = 0; j < p.face_size(f); ++j)
+        twice += p.vertex(p.face_vertex(f, j))
+                     .cross(p.vertex(p.face_vertex(f, (j + 1) % p.face_size(f))));
+      area = std::max(area, 0.5 * twice.norm());
+    }
+    return m_.volume[b] / area;
+  };
   for (const auto& [b, du] : too_fast_)
   {
     Box swept = envelopes_[b];
@@ -600,15 +617,37 @@ void RigidSolver::check_reach() const
                      (swept.hi.array() < envelopes_[o].lo.array()).any()))
         continue;
       const double speed = du / dt_;
-      throw DivergenceError(
-          "the run stopped at step " + std::to_string(step_) + ": block " + std::to_string(b) +
-          " moved " + number(du) + " m in one step (" + number(speed) +
-          " m/s), more than the contact tolerance " + number(tol) + " m, with block " +
-          std::to_string(o) +
-          " within its reach: it can pass through a block between two contact detections "
-          "(eq. 1); a time step of at most tolerance / speed = " +
-          number(tol / speed) +
-          " s would catch it; lower 'Time step' or 'Time step fraction', or the block's speed");
+      const std::string moved = "block " + std::to_string(b) + " moved " + number(du) +
+                                " m in one step (" + number(speed) +
+                                " m/s), more than the contact tolerance " + number(tol) +
+                                " m, with block " + std::to_string(o) + " within its reach";
+      const std::string catching = "a time step of at most tolerance / speed = " +
+                                   number(tol / speed) + " s would catch it";
+      if (du <= 0.5 * std::min(thickness(b), thickness(o)))
+      {
+        // Contacts that start deep: the balance shows what they cost.
+        if (!warned_fast_)
+          std::fprintf(stderr,
+                       "talus: warning in %s: at step %lu %s: its contacts can start up to that "
+                       "deep; %s (later such steps are not reported)\n",
+                       s_.source.c_str(), step_, moved.c_str(), catching.c_str());
+        warned_fast_ = true;
+        break;
+      }
+      // Speed beyond what the sources gave: an instability, whose cause
+      // matters more than the step that would catch it.
+      const double sources = growth_watch_.largest_sources();
+      const double kinetic = 0.5 * inertial_mass[b] * velocity[b].squaredNorm();
+      if (kinetic > 4.0 * sources + energy_floor_)
+        throw DivergenceError("the run diverged at step " + std::to_string(step_) + ": " +
+                              moved + ", with a kinetic energy of " + number(kinetic) +
+                              " J where all sources gave at most " + number(sources) + " J; " +
+                              likely_cause(b));
+      throw DivergenceError("the run stopped at step " + std::to_string(step_) + ": " + moved +
+                            ", more than half the thickness of either: it can pass through "
+                            "without a contact (eq. 1); " +
+                            catching + "; lower 'Time step' or 'Time step fraction', or the "
+                                       "block's speed");
     }
   }
 }

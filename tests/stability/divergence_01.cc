@@ -10,6 +10,8 @@
 #include <talus/model/build_blocks.h>
 #include <talus/solver/rigid_solver.h>
 
+#include "../tests.h"
+
 #include <cstdio>
 #include <string>
 

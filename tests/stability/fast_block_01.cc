@@ -4,7 +4,10 @@
 // 1.5 m below it, the run must stop at once, naming the block, its speed
 // and the step that would catch it (tolerance / speed). Flying away from
 // the floor at the same speed, nothing is within its reach: the run goes
-// on. Dropped at 5 m/s (0.5 mm per step) onto the floor it lands.
+// on. Thrown down at 200 m/s (2 cm per step, more than the tolerance but
+// less than half the cube) it is warned of (standard error) and lands,
+// its contacts starting up to 2 cm deep. Dropped at 5 m/s (0.5 mm per
+// step) it lands.
 
 #include <talus/solver/energy_account.h>
 
@@ -87,5 +90,6 @@ int main()
 {
   run("falling at 1e5 m/s", "0, 0, -1e5", 10);
   run("flying away at 1e5 m/s", "0, 0, 1e5", 10);
+  run("thrown down at 200 m/s", "0, 0, -200", 300);
   run("dropped at 5 m/s", "0, 0, -5", 4000);
 }

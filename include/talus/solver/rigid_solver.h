@@ -164,9 +164,10 @@ private:
   /// Principal inertia: block b's angular momentum in its principal frame
   /// at the last whole step (kg m^2/s), from its spin (see move_blocks).
   Vec3 body_momentum(unsigned int b) const;
-  /// Throws DivergenceError if a block of too_fast_ moved with another
-  /// block within its reach (see step()).
-  void check_reach() const;
+  /// For the blocks of too_fast_ with another block within reach: warns
+  /// once (standard error) of contacts that can start deep, and throws
+  /// DivergenceError for a move that can pass through a block.
+  void check_reach();
   /// The likely cause of a divergence at block b, for the message.
   std::string likely_cause(unsigned int b) const;
 
@@ -199,6 +200,7 @@ private:
   /// Blocks that moved more than the contact tolerance in the last step,
   /// with that move (m, eq. 1's measure).
   std::vector<std::pair<unsigned int, double>> too_fast_;
+  bool warned_fast_ = false; ///< the warning of check_reach() was given
   unsigned long step_ = 0;
   unsigned long last_output_ = 0; ///< step of the last output in run()
   bool resumed_ = false;          ///< state loaded from a checkpoint
