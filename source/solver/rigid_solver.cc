@@ -437,7 +437,7 @@ void RigidSolver::move_blocks()
       for (int d = 0; d < 3; ++d)
         md[d] = kick(w[d], mloc[d], mloc_before[d], I[d]);
       const Vec3 p = w.cwiseProduct(I);
-      Vec3 pm = p; // fixed-point iterations: each gains about dt |w|
+      Vec3 pm = p; // fixed-point iterations, each cutting the error by about dt |w|
       for (int it = 0; it < 100; ++it)
       {
         const Vec3 next = p + 0.5 * dt_ * pm.cross(pm.cwiseQuotient(I));
@@ -621,8 +621,8 @@ void RigidSolver::check_reach()
                                 " m in one step (" + number(speed) +
                                 " m/s), more than the contact tolerance " + number(tol) +
                                 " m, with block " + std::to_string(o) + " within its reach";
-      const std::string catching = "a time step of at most tolerance / speed = " +
-                                   number(tol / speed) + " s would catch it";
+      const std::string catching =
+          "a time step of at most tolerance / speed = " + number(tol / speed) + " s would catch it";
       if (du <= 0.5 * std::min(thickness(b), thickness(o)))
       {
         // Contacts that start deep: the balance shows what they cost.
@@ -639,15 +639,16 @@ void RigidSolver::check_reach()
       const double sources = growth_watch_.largest_sources();
       const double kinetic = 0.5 * inertial_mass[b] * velocity[b].squaredNorm();
       if (kinetic > 4.0 * sources + energy_floor_)
-        throw DivergenceError("the run diverged at step " + std::to_string(step_) + ": " +
-                              moved + ", with a kinetic energy of " + number(kinetic) +
+        throw DivergenceError("the run diverged at step " + std::to_string(step_) + ": " + moved +
+                              ", with a kinetic energy of " + number(kinetic) +
                               " J where all sources gave at most " + number(sources) + " J; " +
                               likely_cause(b));
       throw DivergenceError("the run stopped at step " + std::to_string(step_) + ": " + moved +
                             ", more than half the thickness of either: it can pass through "
                             "without a contact (eq. 1); " +
-                            catching + "; lower 'Time step' or 'Time step fraction', or the "
-                                       "block's speed");
+                            catching +
+                            "; lower 'Time step' or 'Time step fraction', or the "
+                            "block's speed");
     }
   }
 }

@@ -122,8 +122,8 @@ int main()
     std::fprintf(stderr,
                  "fraction %g: %zu bounces in %lu steps (dt %.3g s), heights %.6g .. %.6g m "
                  "of %.6g m, restitution %.6f, of single bounces at most %.2e from 1\n",
-                 fraction, tops.size(), solver.steps_done(), solver.dt(), tops.front(),
-                 tops.back(), drop, restitution, worst);
+                 fraction, tops.size(), solver.steps_done(), solver.dt(), tops.front(), tops.back(),
+                 drop, restitution, worst);
     std::printf("%zu bounces, restitution within 1e-3 of 1: %s\n", tops.size(),
                 talus_test::verdict(tops.size() == 20 && std::abs(restitution - 1.0) <= 1e-3));
   }

@@ -98,8 +98,8 @@ int main()
     std::fprintf(stderr,
                  "spin about the major axis, %lu steps: kinetic energy drift %.2e, angular "
                  "momentum drift %.2e (%.2e and %.2e per 1000 steps), balance error %.2e J\n",
-                 steps, d.energy, d.momentum, d.energy * 1000 / steps,
-                 d.momentum * 1000 / steps, end.error());
+                 steps, d.energy, d.momentum, d.energy * 1000 / steps, d.momentum * 1000 / steps,
+                 end.error());
     std::printf("major axis: kinetic energy drift below 1e-8 per 1000 steps: %s\n",
                 talus_test::verdict(d.energy * 1000 / steps < 1e-8));
     std::printf("major axis: angular momentum drift below 1e-8 per 1000 steps: %s\n",

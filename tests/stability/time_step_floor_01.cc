@@ -94,8 +94,9 @@ int main()
     // Resting under its weight the cube sinks m g / k (2.6e-6 m) and
     // oscillates about that by as much; anything unstable grows past it.
     const double sag = 2650.0 * 9.81 / 1e10;
-    std::fprintf(stderr, "given step 5e-4 s on the 20 x 20 floor: displacement %.3g m, "
-                         "kinetic energy %.3g J, balance error %.2g J\n",
+    std::fprintf(stderr,
+                 "given step 5e-4 s on the 20 x 20 floor: displacement %.3g m, "
+                 "kinetic energy %.3g J, balance error %.2g J\n",
                  solver.displacement[cube].norm(), e.kinetic, e.error());
     std::printf("floor 20 x 20, given step 5e-4 s: runs 2000 steps, the cube at rest: %s\n",
                 talus_test::verdict(solver.displacement[cube].norm() < 3.0 * sag));
