@@ -47,8 +47,9 @@ struct EnergyAccount
   double scale() const;
 };
 
-/// A run that has become unstable: a non-finite force or stress, or kinetic
-/// energy growing geometrically with no source. The message names the block
+/// A run that has become unstable: a non-finite force or stress, kinetic
+/// energy growing geometrically with no source, or a block moving so far in
+/// one step that it can pass through another. The message names the block
 /// or zone, the step and the likely cause; the state is that of the last
 /// good step (nothing moved after the fault was found).
 class DivergenceError : public std::runtime_error
