@@ -454,8 +454,15 @@ double solve(talus::Scene& scene, talus::BlockModel& model, talus::PvdSeries& se
                 system.mesh_report.hexes);
   if (zones)
     print_nodal_mixed(*zones);
-  std::printf("Time step:    %.6g s (eq. 87, fraction %g%s)\n", solver.dt(),
-              scene.solver.time_step_fraction, zones ? "; eq. 84 for the zones" : "");
+  if (scene.solver.time_step > 0.0 && solver.stable_time_step() < 1e300)
+    std::printf("Time step:    %.6g s (given; eq. 87 allows %.6g s%s)\n", solver.dt(),
+                solver.stable_time_step() / scene.solver.time_step_fraction,
+                zones ? "; eq. 84 for the zones" : "");
+  else if (scene.solver.time_step > 0.0)
+    std::printf("Time step:    %.6g s (given; eq. 84 for the zones)\n", solver.dt());
+  else
+    std::printf("Time step:    %.6g s (eq. 87, fraction %g%s)\n", solver.dt(),
+                scene.solver.time_step_fraction, zones ? "; eq. 84 for the zones" : "");
   PvdSeries zone_series(prefix + "_zones.pvd");
   std::unique_ptr<ZoneWriter> zone_writer;
   if (zones)

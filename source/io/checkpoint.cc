@@ -357,12 +357,14 @@ void EnergyGrowthWatch::save_state(CheckpointWriter& out) const
 {
   out.put(last_);
   out.put(growing_);
+  out.put(largest_sources_);
 }
 
 void EnergyGrowthWatch::load_state(CheckpointReader& in)
 {
   in.get(last_);
   in.get(growing_);
+  in.get(largest_sources_);
 }
 
 void CellSpace::save_state(CheckpointWriter& out) const

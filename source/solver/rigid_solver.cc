@@ -11,6 +11,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <cstdio>
 
 namespace talus
 {
@@ -181,8 +182,14 @@ RigidSolver::RigidSolver(BlockModel& blocks, double density, const SolverSetting
   for (unsigned int b = 0; b < nb; ++b)
     if (!fixed[b] && !is_deformable_[b])
     {
-      initial_stored_ += 0.5 * inertial_mass[b] * velocity[b].squaredNorm() +
-                         0.5 * inertia[b] * spin[b].squaredNorm();
+      initial_stored_ += 0.5 * inertial_mass[b] * velocity[b].squaredNorm();
+      if (s_.principal_inertia)
+      {
+        const Vec3 p = body_momentum(b); // 1/2 w . I w with the principal moments
+        initial_stored_ += 0.5 * p.dot(p.cwiseQuotient(principal_moments[b]));
+      }
+      else
+        initial_stored_ += 0.5 * inertia[b] * spin[b].squaredNorm();
       weight_size += mass[b] * s_.gravity.norm() * (all.hi - all.lo).norm();
     }
   initial_stored_ += joint_energy();
@@ -192,28 +199,33 @@ RigidSolver::RigidSolver(BlockModel& blocks, double density, const SolverSetting
 
 double RigidSolver::stable_time_step() const
 {
-  // Eq. 87: the smallest block mass against the largest contact stiffness; a
-  // contact is never stiffer than its joint stiffness times the largest face.
-  double m_min = 1e300, area_max = 0.0;
-  for (unsigned int b = 0; b < m_.n_blocks(); ++b)
-  {
-    if (is_deformable_[b])
-      continue; // its gridpoints have their own limit (eq. 84)
-    m_min = std::min(m_min, inertial_mass[b]);
-    const ConvexPolyhedron p = m_.polyhedron(b);
-    for (unsigned int f = 0; f < p.n_faces(); ++f)
+  // Eq. 87 block by block: a contact is never stiffer than its joint
+  // stiffness times the smaller face of its two blocks, so each free block
+  // is bounded by its own mass against its own largest face. A fixed block
+  // has no inertia to keep stable, and its faces (a large floor) do not
+  // enter; a model of fixed blocks only takes them all.
+  const double k = std::max(s_.joint.normal_stiffness, s_.joint.shear_stiffness);
+  double smallest = 1e300;
+  for (int pass = 0; pass < 2 && smallest == 1e300; ++pass)
+    for (unsigned int b = 0; b < m_.n_blocks(); ++b)
     {
-      Vec3 twice = Vec3::Zero();
-      for (unsigned int k = 0; k < p.face_size(f); ++k)
-        twice += p.vertex(p.face_vertex(f, k))
-                     .cross(p.vertex(p.face_vertex(f, (k + 1) % p.face_size(f))));
-      area_max = std::max(area_max, 0.5 * twice.norm());
+      if (is_deformable_[b] || (pass == 0 && fixed[b]))
+        continue; // a deformable block's gridpoints have their own limit (eq. 84)
+      const ConvexPolyhedron p = m_.polyhedron(b);
+      double area = 0.0;
+      for (unsigned int f = 0; f < p.n_faces(); ++f)
+      {
+        Vec3 twice = Vec3::Zero();
+        for (unsigned int j = 0; j < p.face_size(f); ++j)
+          twice += p.vertex(p.face_vertex(f, j))
+                       .cross(p.vertex(p.face_vertex(f, (j + 1) % p.face_size(f))));
+        area = std::max(area, 0.5 * twice.norm());
+      }
+      smallest = std::min(smallest, 2.0 * std::sqrt(inertial_mass[b] / (k * area)));
     }
-  }
-  if (m_min == 1e300)
+  if (smallest == 1e300)
     return 1e300; // no rigid block
-  const double k_max = std::max(s_.joint.normal_stiffness, s_.joint.shear_stiffness) * area_max;
-  return s_.time_step_fraction * 2.0 * std::sqrt(m_min / k_max);
+  return s_.time_step_fraction * smallest;
 }
 
 void RigidSolver::detect_contacts(bool everything)
@@ -378,6 +390,7 @@ void RigidSolver::move_blocks()
   { return damper_.kick(v, f, f_before, m, h); };
   double max_unbalanced = 0.0, sum_weight = 0.0, kinetic = 0.0;
   unsigned int n_free = 0;
+  too_fast_.clear();
   for (unsigned int b = 0; b < m_.n_blocks(); ++b)
   {
     if (fixed[b] || is_deformable_[b])
@@ -400,25 +413,45 @@ void RigidSolver::move_blocks()
     last_force_[b] = f;
     Vec3 damping_moment = Vec3::Zero();
     const Vec3 spin_before = spin[b];
+    Vec3 spin_turn = Vec3::Zero(); // principal inertia: h (w- + w+) / 2 at this step
+    double rotational_kinetic = 0.0;
     if (prescribed[b] & 8u)
       spin[b].setZero();
     else if (s_.principal_inertia)
     {
-      // Eq. 49 for rotation about the principal axes, with the gyroscopic
-      // terms of Euler's equations (eq. 45) at the old spin, damped in the
-      // principal frame.
+      // Euler's equations (eq. 45) split in two: the applied moment kicks
+      // the body angular momentum (eq. 49, damped in the principal frame),
+      // then the block turns freely for dt. The free turn is the implicit
+      // midpoint rule on the body angular momentum p, p' = p + dt pm x wm
+      // with pm = (p + p') / 2 and wm = pm / I: a rotation of p (the Cayley
+      // transform of dt wm), so |p| and 1/2 p . p / I stay exact, and the
+      // block turns by the same rotation, which keeps the angular momentum
+      // in space exact too. spin is that turn over dt.
       const Eigen::Matrix3d& Q = axes[b];
-      Vec3 w = Q.transpose() * spin[b];
+      const Vec3& I = principal_moments[b];
+      Vec3 w = body_momentum(b).cwiseQuotient(I);
+      const Vec3 w_before = w;
       const Vec3 mloc = Q.transpose() * moment[b];
       const Vec3 mloc_before = Q.transpose() * last_moment_[b];
-      const Vec3& I = principal_moments[b];
-      const Vec3 gyro(-(I[2] - I[1]) * w[2] * w[1], -(I[0] - I[2]) * w[0] * w[2],
-                      -(I[1] - I[0]) * w[1] * w[0]);
       Vec3 md;
       for (int d = 0; d < 3; ++d)
-        md[d] = kick(w[d], mloc[d] + gyro[d], mloc_before[d] + gyro[d], I[d]);
-      spin[b] = Q * w;
+        md[d] = kick(w[d], mloc[d], mloc_before[d], I[d]);
+      const Vec3 p = w.cwiseProduct(I);
+      Vec3 pm = p; // fixed-point iterations, each cutting the error by about dt |w|
+      for (int it = 0; it < 100; ++it)
+      {
+        const Vec3 next = p + 0.5 * dt_ * pm.cross(pm.cwiseQuotient(I));
+        const double change = (next - pm).norm();
+        pm = next;
+        if (change <= 1e-15 * p.norm())
+          break;
+      }
+      const Vec3 wm = pm.cwiseQuotient(I);
+      const double x = wm.norm() * dt_; // the Cayley turn is 2 atan(x / 2)
+      spin[b] = x > 0.0 ? Vec3(Q * wm * (2.0 * std::atan(0.5 * x) / x)) : Vec3::Zero();
       damping_moment = Q * md;
+      spin_turn = 0.5 * h * (Q * (w_before + w));
+      rotational_kinetic = 0.5 * p.dot(w);
     }
     else
       for (int d = 0; d < 3; ++d)
@@ -432,7 +465,7 @@ void RigidSolver::move_blocks()
     // the half steps on either side of it, h (v- + v+) / 2; a held
     // component's support supplies minus the force on it.
     const Vec3 reach = 0.5 * h * (velocity_before + velocity[b]);
-    const Vec3 turn = 0.5 * h * (spin_before + spin[b]);
+    const Vec3 turn = s_.principal_inertia ? spin_turn : Vec3(0.5 * h * (spin_before + spin[b]));
     gravity_work_ += mass[b] * s_.gravity.dot(reach);
     boundary_work_ += applied.dot(reach);
     for (int d = 0; d < 3; ++d)
@@ -444,10 +477,7 @@ void RigidSolver::move_blocks()
     kinetic += 0.5 * inertial_mass[b] * velocity[b].squaredNorm() - 0.5 * force[b].dot(dx) -
                0.5 * moment[b].dot(dtheta);
     if (s_.principal_inertia)
-    {
-      const Vec3 w = axes[b].transpose() * spin[b];
-      kinetic += 0.5 * w.cwiseProduct(principal_moments[b]).dot(w);
-    }
+      kinetic += rotational_kinetic; // unchanged by the free turn
     else
       kinetic += 0.5 * inertia[b] * spin[b].squaredNorm();
     const double angle = dtheta.norm();
@@ -472,6 +502,8 @@ void RigidSolver::move_blocks()
     moved[b] += max_du; // eq. 1
     path[b] += max_du;
     moved_beyond_tolerance_ |= moved[b] > s_.contact.tolerance;
+    if (max_du > s_.contact.tolerance)
+      too_fast_.emplace_back(b, max_du);
     force[b].setZero();
     moment[b].setZero();
   }
@@ -542,6 +574,83 @@ void RigidSolver::step()
   time_ += dt_;
   ++step_;
   watch_energy_growth();
+  if (!too_fast_.empty())
+    check_reach();
+}
+
+void RigidSolver::check_reach()
+{
+  // A block that moves more than the contact tolerance in one step meets a
+  // neighbour up to that deep inside, and one that moves more than half
+  // the thickness of either block can pass through it between two
+  // detections (eq. 1). That matters only where another block is within
+  // reach: the box the block swept this step (its envelope at the last
+  // detection, which holds where it started, to where it is now, widened by
+  // the tolerance) meets the other's envelope.
+  const double tol = s_.contact.tolerance;
+  // Thickness of a block: its volume over its largest face (exact for a box).
+  const auto thickness = [&](unsigned int b)
+  {
+    const ConvexPolyhedron p = m_.polyhedron(b);
+    double area = 0.0;
+    for (unsigned int f = 0; f < p.n_faces(); ++f)
+    {
+      Vec3 twice = Vec3::Zero();
+      for (unsigned int j = 0; j < p.face_size(f); ++j)
+        twice += p.vertex(p.face_vertex(f, j))
+                     .cross(p.vertex(p.face_vertex(f, (j + 1) % p.face_size(f))));
+      area = std::max(area, 0.5 * twice.norm());
+    }
+    return m_.volume[b] / area;
+  };
+  for (const auto& [b, du] : too_fast_)
+  {
+    Box swept = envelopes_[b];
+    for (unsigned int v = m_.vertex_start[b]; v < m_.vertex_start[b + 1]; ++v)
+    {
+      swept.lo = swept.lo.cwiseMin(m_.vertex[v] - Vec3::Constant(tol));
+      swept.hi = swept.hi.cwiseMax(m_.vertex[v] + Vec3::Constant(tol));
+    }
+    for (unsigned int o = 0; o < m_.n_blocks(); ++o)
+    {
+      if (o == b || ((swept.lo.array() > envelopes_[o].hi.array()).any() ||
+                     (swept.hi.array() < envelopes_[o].lo.array()).any()))
+        continue;
+      const double speed = du / dt_;
+      const std::string moved = "block " + std::to_string(b) + " moved " + number(du) +
+                                " m in one step (" + number(speed) +
+                                " m/s), more than the contact tolerance " + number(tol) +
+                                " m, with block " + std::to_string(o) + " within its reach";
+      const std::string catching =
+          "a time step of at most tolerance / speed = " + number(tol / speed) + " s would catch it";
+      if (du <= 0.5 * std::min(thickness(b), thickness(o)))
+      {
+        // Contacts that start deep: the balance shows what they cost.
+        if (!warned_fast_)
+          std::fprintf(stderr,
+                       "talus: warning in %s: at step %lu %s: its contacts can start up to that "
+                       "deep; %s (later such steps are not reported)\n",
+                       s_.source.c_str(), step_, moved.c_str(), catching.c_str());
+        warned_fast_ = true;
+        break;
+      }
+      // Speed beyond what the sources gave: an instability, whose cause
+      // matters more than the step that would catch it.
+      const double sources = growth_watch_.largest_sources();
+      const double kinetic = 0.5 * inertial_mass[b] * velocity[b].squaredNorm();
+      if (kinetic > 4.0 * sources + energy_floor_)
+        throw DivergenceError("the run diverged at step " + std::to_string(step_) + ": " + moved +
+                              ", with a kinetic energy of " + number(kinetic) +
+                              " J where all sources gave at most " + number(sources) + " J; " +
+                              likely_cause(b));
+      throw DivergenceError("the run stopped at step " + std::to_string(step_) + ": " + moved +
+                            ", more than half the thickness of either: it can pass through "
+                            "without a contact (eq. 1); " +
+                            catching +
+                            "; lower 'Time step' or 'Time step fraction', or the "
+                            "block's speed");
+    }
+  }
 }
 
 double RigidSolver::unbalanced_ratio() const
@@ -556,16 +665,39 @@ double RigidSolver::kinetic_energy() const
   for (unsigned int b = 0; b < m_.n_blocks(); ++b)
   {
     e += 0.5 * mass[b] * velocity[b].squaredNorm();
-    if (s_.principal_inertia)
+    if (s_.principal_inertia && !is_deformable_[b])
     {
-      const Vec3 w = axes[b].transpose() * spin[b];
-      e += 0.5 * (principal_moments[b].array() * w.array().square()).sum() * mass[b] /
-           inertial_mass[b];
+      const Vec3 p = body_momentum(b);
+      e += 0.5 * p.dot(p.cwiseQuotient(principal_moments[b])) * mass[b] / inertial_mass[b];
     }
     else
       e += 0.5 * inertia[b] * mass[b] / inertial_mass[b] * spin[b].squaredNorm();
   }
   return e;
+}
+
+Vec3 RigidSolver::body_momentum(unsigned int b) const
+{
+  const Vec3& I = principal_moments[b];
+  // At the start the spin is the angular velocity at t = 0.
+  if (step_ == 0)
+    return I.cwiseProduct(axes[b].transpose() * spin[b]);
+  // Afterwards it is the last free turn over dt (see move_blocks): undo the
+  // Cayley angle to find the midpoint velocity wm, whose axis that turn
+  // keeps, then p = pm - dt/2 wm x pm at its end.
+  const double angle = spin[b].norm() * dt_;
+  if (angle == 0.0)
+    return Vec3::Zero();
+  const Vec3 wm = axes[b].transpose() * spin[b] * (2.0 * std::tan(0.5 * angle) / angle);
+  const Vec3 pm = I.cwiseProduct(wm);
+  return pm - 0.5 * dt_ * wm.cross(pm);
+}
+
+Vec3 RigidSolver::angular_momentum(unsigned int b) const
+{
+  if (s_.principal_inertia && !is_deformable_[b])
+    return axes[b] * body_momentum(b);
+  return inertia[b] * spin[b];
 }
 
 double RigidSolver::joint_energy() const
@@ -642,8 +774,8 @@ void RigidSolver::watch_energy_growth()
     }
   const std::string growth = "the kinetic energy, " + number(kinetic) +
                              " J, has grown far beyond its sources (the work of gravity and "
-                             "boundaries and the energy at the start come to " +
-                             number(sources) + " J); ";
+                             "boundaries and the energy at the start came to at most " +
+                             number(growth_watch_.largest_sources()) + " J); ";
   if (zones_ != nullptr && zones_->largest_gridpoint_energy() > largest)
     throw DivergenceError("the run diverged at step " + std::to_string(step_) + ": " + growth +
                           zones_->divergence_site(dt_));

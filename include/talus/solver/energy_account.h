@@ -1,5 +1,6 @@
 #pragma once
 
+#include <algorithm>
 #include <stdexcept>
 #include <string>
 
@@ -46,8 +47,9 @@ struct EnergyAccount
   double scale() const;
 };
 
-/// A run that has become unstable: a non-finite force or stress, or kinetic
-/// energy growing geometrically with no source. The message names the block
+/// A run that has become unstable: a non-finite force or stress, kinetic
+/// energy growing geometrically with no source, or a block moving so far in
+/// one step that it can pass through another. The message names the block
 /// or zone, the step and the likely cause; the state is that of the last
 /// good step (nothing moved after the fault was found).
 class DivergenceError : public std::runtime_error
@@ -61,7 +63,11 @@ public:
 /// anyway). It reports when the kinetic energy exceeds what the sources
 /// could have supplied a hundred times over (which a stable run never
 /// does), or exceeds it four times over and has more than doubled at each
-/// of `checks` checks `period` steps apart.
+/// of `checks` checks `period` steps apart. What the sources could have
+/// supplied is the most they ever came to: their net work returns to zero
+/// whenever a body is back at its starting height (the top of a bounce, a
+/// rocking or oscillating block), where the scheme's small energy error
+/// would otherwise be judged against nothing.
 class EnergyGrowthWatch
 {
 public:
@@ -73,6 +79,8 @@ public:
   /// absolute value), `floor` the energy below which nothing is judged.
   bool diverging(unsigned long step, double kinetic, double sources, double floor)
   {
+    largest_sources_ = std::max(largest_sources_, sources);
+    sources = largest_sources_;
     if (kinetic > 100.0 * (sources + floor))
       return true;
     if (step % period != 0)
@@ -83,6 +91,9 @@ public:
     return growing_ >= checks;
   }
 
+  /// The most the sources have come to so far (J).
+  double largest_sources() const { return largest_sources_; }
+
   /// For checkpoints (defined with the other hooks in checkpoint.cc).
   void save_state(CheckpointWriter& out) const;
   void load_state(CheckpointReader& in);
@@ -90,6 +101,7 @@ public:
 private:
   double last_ = 0.0;
   unsigned int growing_ = 0;
+  double largest_sources_ = 0.0; ///< J
 };
 
 } // namespace talus

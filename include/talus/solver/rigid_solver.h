@@ -110,6 +110,9 @@ public:
   /// (with deformable blocks, the larger of that and the gridpoints' ratio).
   double unbalanced_ratio() const;
   double kinetic_energy() const;
+  /// Angular momentum of block b about its centroid (kg m^2/s, scaled
+  /// inertia), at the last whole step with the principal inertia.
+  Vec3 angular_momentum(unsigned int b) const;
   /// Energy bookkeeping (J): work done by gravity, elastic energy stored in
   /// the joints, dissipated by friction and by damping.
   double gravity_work() const { return gravity_work_; }
@@ -158,6 +161,13 @@ private:
   /// Every EnergyGrowthWatch::period steps: throws DivergenceError if the
   /// kinetic energy grows geometrically with no source.
   void watch_energy_growth();
+  /// Principal inertia: block b's angular momentum in its principal frame
+  /// at the last whole step (kg m^2/s), from its spin (see move_blocks).
+  Vec3 body_momentum(unsigned int b) const;
+  /// For the blocks of too_fast_ with another block within reach: warns
+  /// once (standard error) of contacts that can start deep, and throws
+  /// DivergenceError for a move that can pass through a block.
+  void check_reach();
   /// The likely cause of a divergence at block b, for the message.
   std::string likely_cause(unsigned int b) const;
 
@@ -187,6 +197,10 @@ private:
   double initial_stored_ = 0.0;         ///< J: kinetic and joint energy at the start
   double energy_floor_ = 0.0;           ///< J: below this, growth is not judged
   EnergyGrowthWatch growth_watch_;
+  /// Blocks that moved more than the contact tolerance in the last step,
+  /// with that move (m, eq. 1's measure).
+  std::vector<std::pair<unsigned int, double>> too_fast_;
+  bool warned_fast_ = false; ///< the warning of check_reach() was given
   unsigned long step_ = 0;
   unsigned long last_output_ = 0; ///< step of the last output in run()
   bool resumed_ = false;          ///< state loaded from a checkpoint
