@@ -31,13 +31,13 @@ namespace
 
 constexpr const char* usage =
     "usage: talus SCENE.prm\n"
-    "       talus --restart CHECKPOINT\n"
+    "       talus --restart CHECKPOINT [SCENE.prm]\n"
     "  Builds the block model the parameter file describes, writes it\n"
     "  for ParaView into the output folder it names, and prints a summary.\n"
     "  Shipped scenes are in the parameters/ folder.\n"
     "  --restart continues a run from its checkpoint (<Base name>_checkpoint.bin,\n"
     "  written every 'Checkpoint interval' steps and on SIGINT/SIGTERM) with the\n"
-    "  parameter file it was written for.\n";
+    "  parameter file it was written for (or SCENE.prm, the same file moved).\n";
 
 /// The checkpoint to continue from (talus --restart), or empty.
 std::string restart_from;
@@ -54,8 +54,8 @@ void restore_run(talus::Checkpoint& checkpoint)
 
 /// Writes the zones of deformable blocks at their current state as frame
 /// `frame` of the zone series.
-/// After a divergence (`with_stress` false) the stresses may hold the
-/// non-finite values found, so only the gridpoints' state is written.
+/// After a divergence (`with_stress` false) non-finite stresses are written
+/// as 0.
 void write_zone_frame(const talus::Scene& scene, const talus::TetMesh& mesh,
                       const talus::DeformableSolver& solver, talus::ZoneWriter& writer,
                       talus::PvdSeries& series, unsigned int frame, bool with_stress = true)
@@ -77,6 +77,11 @@ void write_zone_frame(const talus::Scene& scene, const talus::TetMesh& mesh,
   }
   else
     shown_zone_values(mesh, x, solver.stress(), solver.plastic_state(), stress, state);
+  // After a divergence the stresses may hold the non-finite values found:
+  // those are written as 0, so that the frame keeps the fields of the others.
+  if (!with_stress)
+    for (double& s : stress)
+      s = std::isfinite(s) ? s : 0.0;
   std::vector<ZoneField> cells{
       {"stress", 6, stress}, {"principal_stress", 3, {}}, {"plastic_state", 1, {}}};
   cells[1].values.resize(3 * state.size());
@@ -85,8 +90,6 @@ void write_zone_frame(const talus::Scene& scene, const talus::TetMesh& mesh,
     principal_stresses(&stress[6 * c], &cells[1].values[3 * c]);
     cells[2].values.push_back(state[c]);
   }
-  if (!with_stress)
-    cells.clear();
   writer.write(scene.output.directory + "/" + vtu, x,
                {{"displacement", 3, solver.displacements()}, {"velocity", 3, solver.velocities()}},
                cells, solver.time());
@@ -280,7 +283,7 @@ void solve_deformable(talus::Scene& scene, talus::BlockModel& model, const std::
                         "damping dissipation (J)", "energy balance error (J)"})
     columns.push_back(q);
   Checkpoint checkpoint(scene, model, nullptr, &solver, restart_from);
-  HistoryFile history(prefix + "_history.csv", columns);
+  HistoryFile history(prefix + "_history.csv", columns, 100, restart_from.empty());
   ProgressLine progress(scene.solver.steps);
   // A static run may stop at the target ratio only once every boundary
   // velocity with an end time has ended (s).
@@ -438,7 +441,7 @@ void solve(talus::Scene& scene, talus::BlockModel& model, talus::PvdSeries& seri
     std::printf("Warning: 'History points' follow deformable blocks; this scene has none\n");
   points.add_columns(columns);
   Checkpoint checkpoint(scene, model, &solver, zones, restart_from);
-  HistoryFile history(prefix + "_history.csv", columns);
+  HistoryFile history(prefix + "_history.csv", columns, 100, restart_from.empty());
   ProgressLine progress(scene.solver.steps);
   unsigned int frame = 0;
   PvdSeries contact_series(prefix + "_contacts.pvd");
@@ -539,9 +542,10 @@ void solve(talus::Scene& scene, talus::BlockModel& model, talus::PvdSeries& seri
 int run(const std::string& filename)
 {
   const auto start = std::chrono::steady_clock::now();
-  talus::Scene scene = talus::read_scene(filename);
+  // A restart writes into the checkpoint's folder, prepared there.
+  talus::Scene scene = talus::read_scene(filename, restart_from.empty());
   if (!restart_from.empty())
-    talus::check_checkpoint_scene(restart_from, scene);
+    talus::continue_in_checkpoint_folder(restart_from, scene);
 
   // read_scene has checked every value and prepared the output folder;
   // what needs the blocks is checked before anything is written.
@@ -605,7 +609,7 @@ int run(const std::string& filename)
 
 int main(int argc, char** argv)
 {
-  const bool restart = argc == 3 && std::strcmp(argv[1], "--restart") == 0;
+  const bool restart = (argc == 3 || argc == 4) && std::strcmp(argv[1], "--restart") == 0;
   if ((argc != 2 && !restart) || std::strcmp(argv[1], "--help") == 0 ||
       std::strcmp(argv[1], "-h") == 0)
   {
@@ -618,7 +622,8 @@ int main(int argc, char** argv)
     if (restart)
     {
       restart_from = argv[2];
-      scene_file = talus::checkpoint_parameter_file(restart_from);
+      // The parameter file may be named (a moved project); else the checkpoint's.
+      scene_file = argc == 4 ? std::string(argv[3]) : talus::checkpoint_parameter_file(restart_from);
     }
     return run(scene_file);
   }

@@ -2,9 +2,11 @@
 // would see: the message (with FILE's folder removed so that the expected
 // output does not depend on where the tests live) and how talus ended.
 // Succeeds only if talus exited normally with code 1: not 0 (input accepted),
-// not another code, not a signal (a crash).
+// not another code, not a signal (a crash). A file with the line
+// "# expected exit code N" expects N instead (3: a run that diverges).
 
 #include <cstdio>
+#include <fstream>
 #include <string>
 #include <sys/wait.h>
 #include <unistd.h>
@@ -14,6 +16,14 @@ int main(int argc, char** argv)
   if (argc != 2)
     return 2;
   const std::string file = argv[1];
+  int expected = 1;
+  {
+    std::ifstream in(file);
+    const std::string marker = "# expected exit code ";
+    for (std::string line; std::getline(in, line);)
+      if (line.rfind(marker, 0) == 0)
+        expected = std::stoi(line.substr(marker.size()));
+  }
   int pipe_fd[2];
   if (pipe(pipe_fd) != 0)
     return 2;
@@ -44,5 +54,5 @@ int main(int argc, char** argv)
     return 1;
   }
   std::printf("exit code %d\n", WEXITSTATUS(status));
-  return WEXITSTATUS(status) == 1 ? 0 : 1;
+  return WEXITSTATUS(status) == expected ? 0 : 1;
 }

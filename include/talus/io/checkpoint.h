@@ -166,6 +166,12 @@ std::uint64_t scene_fingerprint(const Scene& scene);
 /// anything is written, so that a refused restart changes no file.
 void check_checkpoint_scene(const std::string& checkpoint, const Scene& scene);
 
+/// For talus --restart: check_checkpoint_scene, a 'Steps' not below the
+/// checkpoint's step, and the scene's output folder set to the checkpoint's
+/// folder (where the frames and histories of the run are, whatever the
+/// working folder); nothing is written.
+void continue_in_checkpoint_folder(const std::string& checkpoint, Scene& scene);
+
 /// The checkpoints of one run: what to save (the solvers, the model, the
 /// histories, the VTU series and the counters of the output loop), when
 /// (every `interval` steps, and on SIGINT/SIGTERM), and restoring it all.

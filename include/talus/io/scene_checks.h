@@ -30,7 +30,8 @@ void check_model_size(const Scene& scene);
 /// nothing, an excavation that removes nothing or everything, history
 /// blocks that do not exist, deformable groups with no block, a mesh file
 /// for a scene of several blocks, a zone edge length larger than every
-/// deformable block, or more zones than max_zones.
+/// deformable block, or more zones than max_zones; fixed or loaded groups
+/// with no block. Then prints the scene's warnings ("Warning: ...").
 void check_built_model(const Scene& scene, const BlockModel& model, const BuildReport& report);
 
 } // namespace talus
