@@ -86,6 +86,8 @@ void PvdSeries::add(double time, const std::string& vtu_file)
 
 void PvdSeries::rewrite() const
 {
+  if (entries_.empty()) // a series never added to has no file
+    return;
   write_file_atomically(path_, [&](std::ostream& out) {
     out.precision(12);
     out << "<?xml version=\"1.0\"?>\n"

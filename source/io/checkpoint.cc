@@ -226,10 +226,20 @@ void check_checkpoint_scene(const std::string& checkpoint, const Scene& scene)
 void continue_in_checkpoint_folder(const std::string& checkpoint, Scene& scene)
 {
   check_checkpoint_scene(checkpoint, scene);
-  // The run's files are beside its checkpoint, wherever talus starts from
-  // ('Directory' may be relative to another working folder).
-  const std::filesystem::path folder = std::filesystem::path(checkpoint).parent_path();
-  scene.output.directory = folder.empty() ? "." : folder.string();
+  // The run goes on in the folder that holds its files: 'Directory' as
+  // given, or else (a relative 'Directory' seen from another working
+  // folder) the checkpoint's own folder. Restoring checks that the frames
+  // the checkpoint names are there.
+  const auto holds_run = [&](const std::string& folder)
+  {
+    std::error_code ec;
+    return std::filesystem::exists(
+        std::filesystem::path(folder) / (scene.output.base_name + "_history.csv"), ec);
+  };
+  const std::filesystem::path beside = std::filesystem::path(checkpoint).parent_path();
+  const std::string checkpoint_folder = beside.empty() ? "." : beside.string();
+  if (!holds_run(scene.output.directory) && holds_run(checkpoint_folder))
+    scene.output.directory = checkpoint_folder;
   prepare_output_directory(scene.output.directory);
 }
 

@@ -127,15 +127,17 @@ void check_built_model(const Scene& scene, const BlockModel& model, const BuildR
       // A region thinner than the cutting tolerance cuts nothing either.
       const double tolerance = scene.cutting.relative_tolerance *
                                (scene.brick.hi - scene.brick.lo).norm();
+      if (std::cbrt(scene.excavations[e].region.volume) < 1e3 * tolerance)
+        throw scene_error(scene, scene.excavations[e].section, "",
+                          "removes no rock: the region is too small to cut (its volume is " +
+                              number(scene.excavations[e].region.volume) +
+                              " m^3, and planes closer than the cutting tolerance, about " +
+                              number(tolerance) + " m here, count as one)",
+                          "a region much larger than the cutting tolerance ('Cutting "
+                          "tolerance' of subsection 'Model' times the block size)");
       throw scene_error(scene, scene.excavations[e].section, "",
-                        "removes no rock (the region lies outside the blocks that are left, or "
-                        "is too small to cut: its volume is " +
-                            number(scene.excavations[e].region.volume) +
-                            " m^3, and planes closer than the cutting tolerance, about " +
-                            number(tolerance) + " m here, count as one)",
-                        "a region that overlaps the model and is larger than the cutting "
-                        "tolerance ('Cutting tolerance' of subsection 'Model' times the block "
-                        "size)");
+                        "removes no rock (the region lies outside the blocks that are left)",
+                        "a region that overlaps the model");
     }
   if (model.n_blocks() == 0)
     throw scene_error(scene, scene.excavations.empty() ? "Model" : scene.excavations.back().section,

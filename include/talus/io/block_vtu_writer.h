@@ -41,7 +41,7 @@ public:
   /// their VTU files are in the PVD's folder; rewrite() writes the PVD file.
   void save_state(CheckpointWriter& out) const;
   void load_state(CheckpointReader& in);
-  /// Writes the PVD file with the entries so far.
+  /// Writes the PVD file with the entries so far (none while there are none).
   void rewrite() const;
 
 private:

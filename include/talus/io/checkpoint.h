@@ -166,10 +166,10 @@ std::uint64_t scene_fingerprint(const Scene& scene);
 /// anything is written, so that a refused restart changes no file.
 void check_checkpoint_scene(const std::string& checkpoint, const Scene& scene);
 
-/// For talus --restart: check_checkpoint_scene, a 'Steps' not below the
-/// checkpoint's step, and the scene's output folder set to the checkpoint's
-/// folder (where the frames and histories of the run are, whatever the
-/// working folder); nothing is written.
+/// For talus --restart: check_checkpoint_scene (with 'Steps' not below the
+/// checkpoint's step), and the output folder: 'Directory' if it holds the
+/// run's history, else the checkpoint's folder if that does (a restart from
+/// another working folder). Nothing is written.
 void continue_in_checkpoint_folder(const std::string& checkpoint, Scene& scene);
 
 /// The checkpoints of one run: what to save (the solvers, the model, the
