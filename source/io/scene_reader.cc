@@ -770,8 +770,10 @@ void warn_ignored(const ParameterFile& prm, const std::string& section,
     if (lines.count(key) == 0)
       continue;
     const std::string file = files.count(key) ? files.at(key) : prm.filename();
+    // The file's name as the summary shows it ("talus: scene NAME").
+    const std::string name = std::filesystem::path(file).filename().string();
     warnings.push_back(
-        InputError::at(file, lines.at(key), section, entry, "is ignored: " + why, "").what());
+        InputError::at(name, lines.at(key), section, entry, "is ignored: " + why, "").what());
   }
 }
 
