@@ -17,6 +17,7 @@
 #include <talus/zone/block_mesher.h>
 #include <talus/zone/tet10_mesh.h>
 
+#include <cerrno>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -625,7 +626,15 @@ int main(int argc, char** argv)
       // The parameter file may be named (a moved project); else the checkpoint's.
       scene_file = argc == 4 ? std::string(argv[3]) : talus::checkpoint_parameter_file(restart_from);
     }
-    return run(scene_file);
+    const int code = run(scene_file);
+    // A summary that could not be written (a full disk) is a failed run.
+    if (std::fflush(stdout) != 0 || std::ferror(stdout))
+    {
+      std::fprintf(stderr, "talus: error: standard output could not be written (%s)\n",
+                   std::strerror(errno));
+      return 1;
+    }
+    return code;
   }
   catch (const talus::RunInterrupted& e)
   {

@@ -17,6 +17,7 @@
 #include <fstream>
 #include <iterator>
 #include <sstream>
+#include <unistd.h>
 
 namespace talus
 {
@@ -31,6 +32,10 @@ volatile std::sig_atomic_t stop_signal = 0;
 
 extern "C" void on_stop_signal(int signal)
 {
+  // A second signal ends the process at once: the first one is only seen
+  // between steps, and a run stuck outside its cycle must still stop.
+  if (stop_signal != 0)
+    _exit(128 + signal);
   stop_signal = signal; // nothing else is safe in a handler
 }
 
@@ -156,6 +161,12 @@ RunInterrupted::RunInterrupted(int signal, unsigned long step, const std::string
 {
 }
 
+void restore_default_signal_handlers()
+{
+  std::signal(SIGINT, SIG_DFL);
+  std::signal(SIGTERM, SIG_DFL);
+}
+
 void install_stop_signal_handlers()
 {
   struct sigaction action = {};
@@ -260,6 +271,13 @@ Checkpoint::Checkpoint(const Scene& scene, const BlockModel& model, RigidSolver*
     check_fingerprints(in, restart_from);
   }
   install_stop_signal_handlers();
+}
+
+Checkpoint::~Checkpoint()
+{
+  // The cycle is over: a signal from now on ends the process as usual (a
+  // finalization that hangs can still be stopped).
+  restore_default_signal_handlers();
 }
 
 unsigned long Checkpoint::check_fingerprints(CheckpointReader& in, const std::string& file) const

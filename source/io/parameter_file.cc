@@ -182,9 +182,7 @@ ParameterFile::ParameterFile(const std::string& filename) : filename_(filename)
         throw InputError(where(number) + ": subsection '" + join_path(stack) +
                          "' is opened a second time (first at " + where(first->second) +
                          "); allowed: each subsection once, with all its entries");
-      if (stack.size() == 1 &&
-          std::find(sections_in_file_.begin(), sections_in_file_.end(), stack[0]) ==
-              sections_in_file_.end())
+      if (stack.size() == 1) // opened once (above), so listed once
         sections_in_file_.push_back(stack[0]);
     }
     else if (code == "end" && !stack.empty())

@@ -24,6 +24,9 @@ namespace
 
 namespace P = dealii::Patterns;
 
+/// Numbered subsections a file may have (ParameterHandler's declarations
+/// take time in the square of their number).
+constexpr std::size_t max_numbered_sections = 10000;
 /// Sides of the brick (m) whose cuts double precision handles.
 constexpr double min_brick_side = 1e-6, max_brick_side = 1e8;
 /// kg/m^3: no material is denser than this (osmium: 22,590).
@@ -808,6 +811,13 @@ Scene read_scene(const std::string& filename, bool prepare_output)
   // Numbered subsections exist exactly as the file names them.
   const std::regex numbered("(Joint set|Joint|Excavation|Group|Load|Boundary) ([0-9]+)");
   std::vector<std::tuple<std::string, long, std::string>> found; // kind, number, name
+  if (prm.sections_in_file().size() > max_numbered_sections + 16)
+    throw InputError(filename + ": the file has " +
+                     std::to_string(prm.sections_in_file().size()) +
+                     " subsections, which would take talus longer to read than to run; allowed: "
+                     "at most " + std::to_string(max_numbered_sections) +
+                     " numbered ones ('Joint set N', 'Joint N', ...; a joint set cuts many "
+                     "parallel joints with one subsection)");
   for (const std::string& s : prm.sections_in_file())
   {
     std::smatch m;
@@ -819,6 +829,14 @@ Scene read_scene(const std::string& filename, bool prepare_output)
       found.emplace_back(m[1], std::stol(m[2]), s);
     }
   }
+  // The reader's work grows with the square of the number of subsections
+  // (about 30 s at 10,000): refuse a file of more before reading it.
+  if (found.size() > max_numbered_sections)
+    throw InputError(filename + ": the file has " + std::to_string(found.size()) +
+                     " numbered subsections ('Joint set N', 'Joint N', ...), which would take "
+                     "talus longer to read than to run; allowed: at most " +
+                     std::to_string(max_numbered_sections) +
+                     " (a joint set cuts many parallel joints with one subsection)");
   // Joint set 2 is cut after Joint set 1 whatever the order in the file.
   std::sort(found.begin(), found.end());
   std::vector<std::pair<std::string, std::string>> numbered_sections; // kind, name

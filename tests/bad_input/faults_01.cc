@@ -45,14 +45,15 @@ std::string read_text(const fs::path& file)
 /// Runs talus with `args` in `folder`, with `environment` added; standard
 /// output is dropped, standard error kept.
 Result run_talus(const std::vector<std::string>& args, const fs::path& folder,
-                 const std::vector<std::string>& environment = {}, double limit_seconds = 300)
+                 const std::vector<std::string>& environment = {}, double limit_seconds = 300,
+                 const char* standard_output = "/dev/null")
 {
   const fs::path err_file = fs::absolute(folder) / "stderr.txt";
   std::fflush(stdout);
   const pid_t child = fork();
   if (child == 0)
   {
-    if (chdir(folder.c_str()) != 0 || !freopen("/dev/null", "w", stdout) ||
+    if (chdir(folder.c_str()) != 0 || !freopen(standard_output, "w", stdout) ||
         !freopen(err_file.c_str(), "w", stderr))
       _exit(126);
     for (const std::string& e : environment)
@@ -295,6 +296,28 @@ int main()
     std::printf("a temporary of a killed run is removed, one of a live run kept: %s\n",
                 verdict(r.exit_code == 0 && !fs::exists(stale) && fs::exists(live)));
     fs::remove(live);
+  }
+
+  // 20: a summary that cannot be written (a full disk) is no success.
+  {
+    const Result r = run_talus({"stack.prm"}, project, {}, 300, "/dev/full");
+    show("run with standard output on a full disk", r);
+    std::printf("a run whose summary cannot be written does not end with exit code 0: %s\n",
+                verdict(r.exit_code > 0 && contains(r.err, "standard output")));
+  }
+
+  // 18: a file of 100,001 joint sets is refused at once (reading it took
+  // ParameterHandler hours); the limit here is far above the time it takes.
+  {
+    std::ofstream file(work / "many_sets.prm");
+    file << "subsection Model\n  set Brick min = 0, 0, 0\n  set Brick max = 10, 10, 10\nend\n";
+    for (int k = 1; k <= 100001; ++k)
+      file << "subsection Joint set " << k << "\n  set Spacing = 1\nend\n";
+    file.close();
+    const Result r = run_talus({"many_sets.prm"}, work, {}, 60);
+    show("a file of 100,001 joint sets", r);
+    std::printf("a file of 100,001 joint sets is refused within a minute: %s\n",
+                verdict(r.exit_code == 1 && contains(r.err, "at most 10000")));
   }
 
   // 17: deformable runs that diverge end with the divergence message and

@@ -147,7 +147,10 @@ struct RunInterrupted : std::runtime_error
 };
 
 /// SIGINT and SIGTERM only set a flag; the cycle looks at it once a step.
+/// A second signal ends the process at once (exit code 128 + signal).
 void install_stop_signal_handlers();
+/// SIGINT and SIGTERM end the process again (after the cycle).
+void restore_default_signal_handlers();
 /// The signal received since install_stop_signal_handlers() (0: none).
 int stop_signal_received();
 
@@ -187,6 +190,11 @@ public:
   /// refused restart leaves the old run's files as they were).
   Checkpoint(const Scene& scene, const BlockModel& model, RigidSolver* rigid,
              DeformableSolver* zones, const std::string& restart_from = "");
+
+  /// Restores the default handling of SIGINT and SIGTERM.
+  ~Checkpoint();
+  Checkpoint(const Checkpoint&) = delete;
+  Checkpoint& operator=(const Checkpoint&) = delete;
 
   void add(HistoryFile& history) { histories_.push_back(&history); }
   void add(PvdSeries& series) { series_.push_back(&series); }
