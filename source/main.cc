@@ -1,5 +1,5 @@
 // talus: three-dimensional distinct element code for jointed rock.
-// Usage: talus scene.prm, or talus --restart checkpoint
+// Usage: talus scene.prm, or talus --restart checkpoint [scene.prm]
 
 #include <talus/base/exceptions.h>
 #include <talus/base/parallel_environment.h>
