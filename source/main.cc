@@ -624,7 +624,8 @@ int main(int argc, char** argv)
     {
       restart_from = argv[2];
       // The parameter file may be named (a moved project); else the checkpoint's.
-      scene_file = argc == 4 ? std::string(argv[3]) : talus::checkpoint_parameter_file(restart_from);
+      scene_file =
+          argc == 4 ? std::string(argv[3]) : talus::checkpoint_parameter_file(restart_from);
     }
     const int code = run(scene_file);
     // A summary that could not be written (a full disk) is a failed run.

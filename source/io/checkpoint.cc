@@ -192,7 +192,8 @@ std::string checkpoint_parameter_file(const std::string& checkpoint)
   if (!std::filesystem::exists(file, ec))
     throw InputError(checkpoint + ": the parameter file it was written for, " + file +
                      ", is not there (a moved project?); allowed: name the parameter file: "
-                     "talus --restart " + checkpoint + " SCENE.prm");
+                     "talus --restart " +
+                     checkpoint + " SCENE.prm");
   return file;
 }
 

@@ -2,12 +2,12 @@
 #include <talus/io/file_output.h>
 
 #include <cerrno>
+#include <csignal>
 #include <cstdio>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <system_error>
-#include <csignal>
 #include <unistd.h>
 
 namespace talus

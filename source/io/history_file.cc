@@ -1,13 +1,13 @@
+#include <talus/base/exceptions.h>
 #include <talus/io/file_output.h>
 #include <talus/io/history_file.h>
-#include <talus/base/exceptions.h>
 #include <talus/solver/energy_account.h>
 
 #include <unistd.h>
 
 #include <algorithm>
-#include <cmath>
 #include <chrono>
+#include <cmath>
 #include <cstdio>
 #include <iostream>
 #include <stdexcept>
@@ -25,7 +25,8 @@ double wall_seconds()
 
 HistoryFile::HistoryFile(const std::string& path, const std::vector<std::string>& columns,
                          unsigned int flush_every, bool write_now)
-    : path_(path), columns_(columns), n_columns_(columns.size()), flush_every_(std::max(flush_every, 1u))
+    : path_(path), columns_(columns), n_columns_(columns.size()),
+      flush_every_(std::max(flush_every, 1u))
 {
   for (std::size_t c = 0; c < columns.size(); ++c)
     text_ += (c ? "," : "") + columns[c];
@@ -56,7 +57,9 @@ void HistoryFile::record(const std::vector<double>& values)
     if (!std::isfinite(values[c]))
       throw DivergenceError(
           "the history value '" + columns_[c] + "' is " +
-          (std::isnan(values[c]) ? std::string("NaN") : values[c] > 0 ? "+inf" : "-inf") +
+          (std::isnan(values[c]) ? std::string("NaN")
+           : values[c] > 0       ? "+inf"
+                                 : "-inf") +
           (values.empty() ? std::string() : " at step " + talus::number(values[0])) +
           ": the run has left the range of double precision; likely cause: a gravity, load, "
           "force rate, pressure or velocity far beyond what the model can carry (see the "

@@ -59,9 +59,10 @@ void ParameterFile::read_text(const std::string& file, std::vector<std::string>&
   const std::string what = included ? "included file" : "parameter file";
   if (!std::filesystem::is_regular_file(file, ec))
     throw InputError(file + ": " +
-                     (!std::filesystem::exists(file, ec)        ? "no such " + what
-                      : std::filesystem::is_directory(file, ec) ? "a folder, not a file"
-                                                                : "not a regular file (a device?)") +
+                     (!std::filesystem::exists(file, ec) ? "no such " + what
+                      : std::filesystem::is_directory(file, ec)
+                          ? "a folder, not a file"
+                          : "not a regular file (a device?)") +
                      "; allowed: a readable parameter file (.prm)");
   if (std::filesystem::file_size(file, ec) > max_file_size)
     throw InputError(file + ": the " + what + " has " +
@@ -90,8 +91,7 @@ void ParameterFile::read_text(const std::string& file, std::vector<std::string>&
       unix_text.push_back('\n');
 
   std::error_code canonical_error;
-  const std::string canonical =
-      std::filesystem::weakly_canonical(file, canonical_error).string();
+  const std::string canonical = std::filesystem::weakly_canonical(file, canonical_error).string();
   open_files.push_back(canonical);
   std::istringstream lines(unix_text);
   std::string line;
@@ -120,13 +120,12 @@ void ParameterFile::read_text(const std::string& file, std::vector<std::string>&
       const std::string target_canonical =
           std::filesystem::weakly_canonical(target, canonical_error).string();
       if (std::find(open_files.begin(), open_files.end(), target_canonical) != open_files.end())
-        throw InputError(here + ": 'include " + named + "' includes " +
-                         (target_canonical == canonical ? "this file itself"
-                                                        : "a file that includes this one") +
-                         "; allowed: includes without a cycle");
+        throw InputError(
+            here + ": 'include " + named + "' includes " +
+            (target_canonical == canonical ? "this file itself" : "a file that includes this one") +
+            "; allowed: includes without a cycle");
       if (open_files.size() >= max_include_depth)
-        throw InputError(here + ": includes nest more than " +
-                         std::to_string(max_include_depth) +
+        throw InputError(here + ": includes nest more than " + std::to_string(max_include_depth) +
                          " deep; allowed: at most that many files inside one another");
       try
       {
@@ -136,10 +135,9 @@ void ParameterFile::read_text(const std::string& file, std::vector<std::string>&
       {
         // Name the include line too: the problem is in the file it names.
         if (std::string(e.what()).rfind(name + ":", 0) == 0 &&
-            std::string(e.what()).find("; allowed: a readable parameter file") !=
-                std::string::npos)
-          throw InputError(here + ": 'include " + named + "': " +
-                           std::string(e.what()).substr(name.size() + 2));
+            std::string(e.what()).find("; allowed: a readable parameter file") != std::string::npos)
+          throw InputError(here + ": 'include " + named +
+                           "': " + std::string(e.what()).substr(name.size() + 2));
         throw;
       }
       continue;
@@ -193,7 +191,8 @@ ParameterFile::ParameterFile(const std::string& filename) : filename_(filename)
       const std::string name = collapse(code.substr(4, eq == std::string::npos ? std::string::npos
                                                                                : eq - 4));
       const std::string value = eq == std::string::npos ? "" : trim(code.substr(eq + 1));
-      const auto [first, fresh] = entry_line_.emplace(std::make_pair(join_path(stack), name), number);
+      const auto [first, fresh] =
+          entry_line_.emplace(std::make_pair(join_path(stack), name), number);
       if (!fresh)
       {
         const std::string section = join_path(stack);
@@ -291,7 +290,8 @@ void ParameterFile::rethrow(const dealii::ExceptionBase& e) const
       if (!d.first.empty() && d.first.find(" / ") == std::string::npos)
         names += (names.empty() ? "" : ", ") + d.first;
     throw InputError(at + ": unknown subsection '" + trim(m[1]) + "'; allowed: " + names +
-                     " (numbered ones: 'Joint set N', 'Joint N', 'Excavation N', 'Group N', 'Load N', 'Boundary N')");
+                     " (numbered ones: 'Joint set N', 'Joint N', 'Excavation N', 'Group N', 'Load "
+                     "N', 'Boundary N')");
   }
   if (std::regex_search(text, m, std::regex("unequal numbers of 'subsection' and 'end'")))
     throw InputError(filename_ +

@@ -125,8 +125,8 @@ void check_built_model(const Scene& scene, const BlockModel& model, const BuildR
     if (!(report.excavated_volume[e] > 0.0))
     {
       // A region thinner than the cutting tolerance cuts nothing either.
-      const double tolerance = scene.cutting.relative_tolerance *
-                               (scene.brick.hi - scene.brick.lo).norm();
+      const double tolerance =
+          scene.cutting.relative_tolerance * (scene.brick.hi - scene.brick.lo).norm();
       if (std::cbrt(scene.excavations[e].region.volume) < 1e3 * tolerance)
         throw scene_error(scene, scene.excavations[e].section, "",
                           "removes no rock: the region is too small to cut (its volume is " +
@@ -152,15 +152,16 @@ void check_built_model(const Scene& scene, const BlockModel& model, const BuildR
                         "0 to " + std::to_string(model.n_blocks() - 1));
 
   // A group named by an entry must hold blocks, or the entry does nothing.
-  const auto check_has_blocks = [&](const std::string& section, const std::string& entry,
-                                    const std::string& group)
+  const auto check_has_blocks =
+      [&](const std::string& section, const std::string& entry, const std::string& group)
   {
     for (unsigned int b = 0; b < model.n_blocks(); ++b)
       if (model.group_names[model.group[b]] == group)
         return;
     throw scene_error(scene, section, entry,
-                      "the group '" + group + "' holds no block (its region selects none, or "
-                      "the cuts and excavations left none in it)",
+                      "the group '" + group +
+                          "' holds no block (its region selects none, or "
+                          "the cuts and excavations left none in it)",
                       "groups that hold blocks");
   };
   for (const std::string& g : scene.fixed_groups)

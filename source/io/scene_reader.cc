@@ -82,8 +82,8 @@ void parse_model(ParameterFile& prm, Scene& scene)
   const Vec3 sides = scene.brick.hi - scene.brick.lo;
   if (!(sides.minCoeff() >= min_brick_side && sides.maxCoeff() <= max_brick_side))
     throw prm.error("Brick max",
-                    "makes a brick of sides " + number(sides[0]) + ", " + number(sides[1]) +
-                        ", " + number(sides[2]) + " m, which double precision cannot cut reliably",
+                    "makes a brick of sides " + number(sides[0]) + ", " + number(sides[1]) + ", " +
+                        number(sides[2]) + " m, which double precision cannot cut reliably",
                     "a brick whose sides are from 1e-6 to 1e8 m");
   scene.default_group = prm.get("Default group");
   scene.cutting.relative_tolerance = prm.get_double("Cutting tolerance");
@@ -784,10 +784,10 @@ void warn_about_ignored_entries(const ParameterFile& prm, Scene& scene,
                                 const std::vector<std::pair<std::string, std::string>>& sections)
 {
   if (scene.solver.dynamic)
-    warn_ignored(prm, "Solver",
-                 {"Target ratio", "Damping", "Local damping", "Global damping ratio",
-                  "Density scaling"},
-                 "'Mode' is dynamic (undamped, every one of 'Steps')", scene.warnings);
+    warn_ignored(
+        prm, "Solver",
+        {"Target ratio", "Damping", "Local damping", "Global damping ratio", "Density scaling"},
+        "'Mode' is dynamic (undamped, every one of 'Steps')", scene.warnings);
   if (scene.deformable.groups.empty())
     warn_ignored(prm, "Deformable",
                  {"Edge length", "Mesh file", "Nodal mixed discretization", "Nodal mixed groups",
@@ -812,10 +812,10 @@ Scene read_scene(const std::string& filename, bool prepare_output)
   const std::regex numbered("(Joint set|Joint|Excavation|Group|Load|Boundary) ([0-9]+)");
   std::vector<std::tuple<std::string, long, std::string>> found; // kind, number, name
   if (prm.sections_in_file().size() > max_numbered_sections + 16)
-    throw InputError(filename + ": the file has " +
-                     std::to_string(prm.sections_in_file().size()) +
+    throw InputError(filename + ": the file has " + std::to_string(prm.sections_in_file().size()) +
                      " subsections, which would take talus longer to read than to run; allowed: "
-                     "at most " + std::to_string(max_numbered_sections) +
+                     "at most " +
+                     std::to_string(max_numbered_sections) +
                      " numbered ones ('Joint set N', 'Joint N', ...; a joint set cuts many "
                      "parallel joints with one subsection)");
   for (const std::string& s : prm.sections_in_file())

@@ -31,13 +31,12 @@ std::vector<Operation> operations(const Scene& scene, BuildReport* report)
                    [&scene, i](BlockGenerator& g)
                    {
                      const JointPlaneSpec& joint = scene.joint_planes[i];
-                     g.cut_plane(
-                         Plane::through(joint.origin, normal_from_dip(joint.dip, joint.dip_direction)),
-                         joint.limited ? &joint.extent : nullptr);
+                     g.cut_plane(Plane::through(joint.origin,
+                                                normal_from_dip(joint.dip, joint.dip_direction)),
+                                 joint.limited ? &joint.extent : nullptr);
                    }});
   for (std::size_t e = 0; e < scene.excavations.size(); ++e)
-    ops.push_back({scene.excavations[e].section,
-                   [&scene, e, report](BlockGenerator& g)
+    ops.push_back({scene.excavations[e].section, [&scene, e, report](BlockGenerator& g)
                    {
                      const double removed = g.excavate(scene.excavations[e].region);
                      if (report)
@@ -81,8 +80,8 @@ std::vector<Operation> operations(const Scene& scene, BuildReport* report)
       throw GeometryError("subsection '" + op.section +
                           "' cuts a piece too thin or too small beside the rest of the model "
                           "for the cutting tolerance (" +
-                          number(scene.cutting.relative_tolerance) + " of the block size): " +
-                          problem + "; " + help);
+                          number(scene.cutting.relative_tolerance) +
+                          " of the block size): " + problem + "; " + help);
   }
   throw found; // not reproduced: the first message is all there is
 }

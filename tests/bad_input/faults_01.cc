@@ -115,8 +115,8 @@ bool frames_present(const fs::path& folder)
         const std::string name = text.substr(at, text.find('"', at) - at);
         if (!fs::exists(folder / name))
         {
-          std::fprintf(stderr, "%s names %s, which is missing\n",
-                       entry.path().filename().c_str(), name.c_str());
+          std::fprintf(stderr, "%s names %s, which is missing\n", entry.path().filename().c_str(),
+                       name.c_str());
           all = false;
         }
       }
@@ -240,10 +240,11 @@ int main()
 
   // 21: 'Steps' below the checkpoint's step.
   {
-    write(work / "short.prm", std::string(rigid_scene).replace(
-                                  std::string(rigid_scene).find("Steps = 60"), 10, "Steps = 20"));
-    const Result r = run_talus({"--restart", checkpoint.string(), (work / "short.prm").string()},
-                               work);
+    write(work / "short.prm",
+          std::string(rigid_scene)
+              .replace(std::string(rigid_scene).find("Steps = 60"), 10, "Steps = 20"));
+    const Result r =
+        run_talus({"--restart", checkpoint.string(), (work / "short.prm").string()}, work);
     show("restart with Steps below the checkpoint's step", r);
     std::printf("'Steps' below the checkpoint's step is refused: %s\n",
                 verdict(r.exit_code == 1 && contains(r.err, "at step 30")));
@@ -255,8 +256,8 @@ int main()
     fs::create_directories(work / "elsewhere");
     const fs::path copy = work / "copy";
     fs::copy(project, copy, fs::copy_options::recursive);
-    const Result r = run_talus({"--restart", "../copy/out/stack_checkpoint.bin"},
-                               work / "elsewhere");
+    const Result r =
+        run_talus({"--restart", "../copy/out/stack_checkpoint.bin"}, work / "elsewhere");
     show("restart from another working folder", r);
     std::printf("a restart from another working folder continues in the checkpoint's folder: %s\n",
                 verdict(r.exit_code == 0 && !fs::exists(work / "elsewhere" / "out") &&
@@ -342,10 +343,10 @@ int main()
   {
     const fs::path folder = work / "deformable";
     fs::create_directories(folder);
-    write(folder / "scene.prm",
-          deformable_scene("") + "subsection Boundary 2\n  set Corner min = -1, -1, 0.9\n"
-                                 "  set Corner max = 2, 2, 1.1\n  set Condition = pressure\n"
-                                 "  set Pressure = 1e300\nend\n");
+    write(folder / "scene.prm", deformable_scene("") +
+                                    "subsection Boundary 2\n  set Corner min = -1, -1, 0.9\n"
+                                    "  set Corner max = 2, 2, 1.1\n  set Condition = pressure\n"
+                                    "  set Pressure = 1e300\nend\n");
     const Result r = run_talus({"scene.prm"}, folder);
     show("a pressure of 1e300 Pa", r);
     std::printf("a deformable run with a pressure of 1e300 Pa stops as diverged (exit code 3): "
