@@ -76,12 +76,15 @@ std::vector<Operation> operations(const Scene& scene, BuildReport* report)
   for (const Operation& op : operations(scene, nullptr))
   {
     op.apply(generator);
-    if (const std::string problem = invalid(); !problem.empty())
+    // Which face or edge came out wrong follows the rounding; the
+    // subsection and the remedy do not.
+    if (!invalid().empty())
       throw GeometryError("subsection '" + op.section +
                           "' cuts a piece too thin or too small beside the rest of the model "
                           "for the cutting tolerance (" +
                           number(scene.cutting.relative_tolerance) +
-                          " of the block size): " + problem + "; " + help);
+                          " of the block size): the piece is not a closed convex polyhedron; " +
+                          help);
   }
   throw found; // not reproduced: the first message is all there is
 }
