@@ -1,5 +1,5 @@
 // talus: three-dimensional distinct element code for jointed rock.
-// Usage: talus scene.prm, or talus --restart checkpoint
+// Usage: talus scene.prm, or talus --restart checkpoint [scene.prm]
 
 #include <talus/base/exceptions.h>
 #include <talus/base/memory.h>
@@ -22,6 +22,7 @@
 #include <talus_revision.h>
 
 #include <algorithm>
+#include <cerrno>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -38,7 +39,7 @@ namespace
 constexpr const char* usage =
     "usage: talus SCENE.prm\n"
     "       talus --check SCENE.prm\n"
-    "       talus --restart CHECKPOINT\n"
+    "       talus --restart CHECKPOINT [SCENE.prm]\n"
     "       talus --version\n"
     "  Builds the block model the parameter file describes, writes it\n"
     "  for ParaView into the output folder it names, and prints a summary.\n"
@@ -47,7 +48,7 @@ constexpr const char* usage =
     "  and writes nothing: exit code 0 when it would run, 1 when not.\n"
     "  --restart continues a run from its checkpoint (<Base name>_checkpoint.bin,\n"
     "  written every 'Checkpoint interval' steps and on SIGINT/SIGTERM) with the\n"
-    "  parameter file it was written for.\n";
+    "  parameter file it was written for (or SCENE.prm, the same file moved).\n";
 
 /// The checkpoint to continue from (talus --restart), or empty.
 std::string restart_from;
@@ -64,8 +65,8 @@ void restore_run(talus::Checkpoint& checkpoint)
 
 /// Writes the zones of deformable blocks at their current state as frame
 /// `frame` of the zone series.
-/// After a divergence (`with_stress` false) the stresses may hold the
-/// non-finite values found, so only the gridpoints' state is written.
+/// After a divergence (`with_stress` false) non-finite stresses are written
+/// as 0.
 void write_zone_frame(const talus::Scene& scene, const talus::TetMesh& mesh,
                       const talus::DeformableSolver& solver, talus::ZoneWriter& writer,
                       talus::PvdSeries& series, unsigned int frame, bool with_stress = true)
@@ -87,6 +88,11 @@ void write_zone_frame(const talus::Scene& scene, const talus::TetMesh& mesh,
   }
   else
     shown_zone_values(mesh, x, solver.stress(), solver.plastic_state(), stress, state);
+  // After a divergence the stresses may hold the non-finite values found:
+  // those are written as 0, so that the frame keeps the fields of the others.
+  if (!with_stress)
+    for (double& s : stress)
+      s = std::isfinite(s) ? s : 0.0;
   std::vector<ZoneField> cells{
       {"stress", 6, stress}, {"principal_stress", 3, {}}, {"plastic_state", 1, {}}};
   cells[1].values.resize(3 * state.size());
@@ -95,8 +101,6 @@ void write_zone_frame(const talus::Scene& scene, const talus::TetMesh& mesh,
     principal_stresses(&stress[6 * c], &cells[1].values[3 * c]);
     cells[2].values.push_back(state[c]);
   }
-  if (!with_stress)
-    cells.clear();
   writer.write(scene.output.directory + "/" + vtu, x,
                {{"displacement", 3, solver.displacements()}, {"velocity", 3, solver.velocities()}},
                cells, solver.time());
@@ -311,7 +315,7 @@ double solve_deformable(talus::Scene& scene, talus::BlockModel& model, const std
                         "damping dissipation (J)", "energy balance error (J)"})
     columns.push_back(q);
   Checkpoint checkpoint(scene, model, nullptr, &solver, restart_from);
-  HistoryFile history(prefix + "_history.csv", columns);
+  HistoryFile history(prefix + "_history.csv", columns, 100, restart_from.empty());
   ProgressLine progress(scene.solver.steps);
   // A static run may stop at the target ratio only once every boundary
   // velocity with an end time has ended (s).
@@ -489,7 +493,7 @@ double solve(talus::Scene& scene, talus::BlockModel& model, talus::PvdSeries& se
     std::printf("Warning: 'History points' follow deformable blocks; this scene has none\n");
   points.add_columns(columns);
   Checkpoint checkpoint(scene, model, &solver, zones, restart_from);
-  HistoryFile history(prefix + "_history.csv", columns);
+  HistoryFile history(prefix + "_history.csv", columns, 100, restart_from.empty());
   ProgressLine progress(scene.solver.steps);
   unsigned int frame = 0;
   PvdSeries contact_series(prefix + "_contacts.pvd");
@@ -676,9 +680,11 @@ void check_calculation(talus::Scene& scene, talus::BlockModel& model)
 int run(const std::string& filename, bool check_only = false)
 {
   const auto start = std::chrono::steady_clock::now();
-  talus::Scene scene = talus::read_scene(filename, !check_only);
+  // A restart writes into the checkpoint's folder, prepared there; a check
+  // prepares nothing.
+  talus::Scene scene = talus::read_scene(filename, restart_from.empty() && !check_only);
   if (!restart_from.empty())
-    talus::check_checkpoint_scene(restart_from, scene);
+    talus::continue_in_checkpoint_folder(restart_from, scene);
 
   // read_scene has checked every value and prepared the output folder;
   // what needs the blocks is checked before anything is written.
@@ -763,7 +769,7 @@ int main(int argc, char** argv)
     return 0;
   }
   const bool check = argc == 3 && std::strcmp(argv[1], "--check") == 0;
-  const bool restart = argc == 3 && std::strcmp(argv[1], "--restart") == 0;
+  const bool restart = (argc == 3 || argc == 4) && std::strcmp(argv[1], "--restart") == 0;
   if ((argc != 2 && !restart && !check) || std::strcmp(argv[1], "--help") == 0 ||
       std::strcmp(argv[1], "-h") == 0)
   {
@@ -778,9 +784,19 @@ int main(int argc, char** argv)
     if (restart)
     {
       restart_from = argv[2];
-      scene_file = talus::checkpoint_parameter_file(restart_from);
+      // The parameter file may be named (a moved project); else the checkpoint's.
+      scene_file =
+          argc == 4 ? std::string(argv[3]) : talus::checkpoint_parameter_file(restart_from);
     }
-    return run(scene_file);
+    const int code = run(scene_file);
+    // A summary that could not be written (a full disk) is a failed run.
+    if (std::fflush(stdout) != 0 || std::ferror(stdout))
+    {
+      std::fprintf(stderr, "talus: error: standard output could not be written (%s)\n",
+                   std::strerror(errno));
+      return 1;
+    }
+    return code;
   }
   catch (const talus::RunInterrupted& e)
   {

@@ -2,6 +2,8 @@
 
 #include <deal.II/base/mpi.h>
 
+#include <dlfcn.h>
+
 namespace talus
 {
 
@@ -11,8 +13,25 @@ struct ParallelEnvironment::Impl
   dealii::Utilities::MPI::MPI_InitFinalize mpi; ///< one thread per rank: the cycle is ours to order
 };
 
+namespace
+{
+
+/// One thread in a threaded BLAS (OpenBLAS), if the one linked is: its
+/// threads are not ours to order, and under an address-space limit (ulimit
+/// -v) one of them was seen retrying a failed allocation forever after the
+/// run had ended. Looked up at run time, so that any BLAS links.
+void single_threaded_blas()
+{
+  using SetThreads = void (*)(int);
+  for (const char* name : {"openblas_set_num_threads", "goto_set_num_threads"})
+    if (void* f = dlsym(RTLD_DEFAULT, name))
+      reinterpret_cast<SetThreads>(f)(1);
+}
+
+} // namespace
+
 ParallelEnvironment::ParallelEnvironment(int& argc, char**& argv)
-    : impl_(std::make_unique<Impl>(argc, argv))
+    : impl_((single_threaded_blas(), std::make_unique<Impl>(argc, argv)))
 {
 }
 

@@ -14,19 +14,26 @@ void CellSpace::define(const Box& bounds, unsigned int n_blocks)
   const double cell = std::cbrt(size.prod() / std::max(1u, n_blocks));
   for (int d = 0; d < 3; ++d)
   {
-    n_[d] = static_cast<unsigned int>(std::clamp(std::round(size[d] / cell), 1.0, 1024.0));
+    // A space grown to an infinite or NaN size (a run diverging) is one cell
+    // until the solver stops it: never an index out of range.
+    const double n = std::round(size[d] / cell);
+    n_[d] = static_cast<unsigned int>(std::isfinite(n) ? std::clamp(n, 1.0, 1024.0) : 1.0);
     cell_size_[d] = size[d] / n_[d];
   }
 }
 
 void CellSpace::cell_range(const Box& b, int lo[3], int hi[3]) const
 {
+  // Clamped as doubles: a NaN or huge coordinate must not reach the cast.
+  const auto cell_of = [&](double x, int d)
+  {
+    const double c = std::floor((x - bounds_.lo[d]) / cell_size_[d]);
+    return std::isnan(c) ? 0 : static_cast<int>(std::clamp(c, 0.0, n_[d] - 1.0));
+  };
   for (int d = 0; d < 3; ++d)
   {
-    lo[d] = std::clamp(static_cast<int>(std::floor((b.lo[d] - bounds_.lo[d]) / cell_size_[d])), 0,
-                       static_cast<int>(n_[d]) - 1);
-    hi[d] = std::clamp(static_cast<int>(std::floor((b.hi[d] - bounds_.lo[d]) / cell_size_[d])), 0,
-                       static_cast<int>(n_[d]) - 1);
+    lo[d] = cell_of(b.lo[d], d);
+    hi[d] = cell_of(b.hi[d], d);
   }
 }
 

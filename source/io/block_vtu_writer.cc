@@ -81,6 +81,13 @@ void write_blocks_vtu(const std::string& path, const BlockModel& m,
 void PvdSeries::add(double time, const std::string& vtu_file)
 {
   entries_.emplace_back(time, vtu_file);
+  rewrite();
+}
+
+void PvdSeries::rewrite() const
+{
+  if (entries_.empty()) // a series never added to has no file
+    return;
   write_file_atomically(path_, [&](std::ostream& out) {
     out.precision(12);
     out << "<?xml version=\"1.0\"?>\n"

@@ -17,6 +17,7 @@
 #include <fstream>
 #include <iterator>
 #include <sstream>
+#include <unistd.h>
 
 namespace talus
 {
@@ -31,6 +32,10 @@ volatile std::sig_atomic_t stop_signal = 0;
 
 extern "C" void on_stop_signal(int signal)
 {
+  // A second signal ends the process at once: the first one is only seen
+  // between steps, and a run stuck outside its cycle must still stop.
+  if (stop_signal != 0)
+    _exit(128 + signal);
   stop_signal = signal; // nothing else is safe in a handler
 }
 
@@ -48,6 +53,12 @@ void put_header_value(std::string& s, const T& v)
 /// The payload of a checkpoint file, its header checked.
 CheckpointReader read_checkpoint(const std::string& file)
 {
+  std::error_code ec;
+  if (std::filesystem::is_directory(file, ec))
+    throw InputError(file + ": a folder, not a checkpoint; allowed: a checkpoint file "
+                            "(<Base name>_checkpoint.bin in the output folder)");
+  if (std::filesystem::exists(file, ec) && !std::filesystem::is_regular_file(file, ec))
+    throw InputError(file + ": not a regular file; allowed: a checkpoint written by talus");
   std::ifstream in(file, std::ios::binary);
   if (!in)
     throw InputError(file + ": cannot read the checkpoint (no such file, or not readable)");
@@ -150,6 +161,12 @@ RunInterrupted::RunInterrupted(int signal, unsigned long step, const std::string
 {
 }
 
+void restore_default_signal_handlers()
+{
+  std::signal(SIGINT, SIG_DFL);
+  std::signal(SIGTERM, SIG_DFL);
+}
+
 void install_stop_signal_handlers()
 {
   struct sigaction action = {};
@@ -171,6 +188,12 @@ std::string checkpoint_parameter_file(const std::string& checkpoint)
   CheckpointReader in = read_checkpoint(checkpoint);
   std::string file;
   in.get(file);
+  std::error_code ec;
+  if (!std::filesystem::exists(file, ec))
+    throw InputError(checkpoint + ": the parameter file it was written for, " + file +
+                     ", is not there (a moved project?); allowed: name the parameter file: "
+                     "talus --restart " +
+                     checkpoint + " SCENE.prm");
   return file;
 }
 
@@ -196,13 +219,40 @@ void check_checkpoint_scene(const std::string& checkpoint, const Scene& scene)
   CheckpointReader in = read_checkpoint(checkpoint);
   std::string parameter_file;
   in.get(parameter_file);
-  std::uint64_t scene_hash = 0;
+  std::uint64_t scene_hash = 0, geometry_hash = 0, step = 0;
   in.get(scene_hash);
   if (scene_hash != scene_fingerprint(scene))
     throw InputError(checkpoint + ": the parameter file " + scene.parameter_file +
                      " has changed since the checkpoint was written (only 'Steps' and "
                      "'Checkpoint interval' may change); allowed: the parameter file the "
                      "checkpoint was written with");
+  in.get(geometry_hash);
+  in.get(step);
+  if (scene.solver.steps < step)
+    throw InputError(checkpoint + ": the checkpoint is at step " + std::to_string(step) +
+                     ", beyond 'Steps' = " + std::to_string(scene.solver.steps) + " of " +
+                     scene.parameter_file + "; allowed: 'Steps' of at least " +
+                     std::to_string(step) + " to continue the run");
+}
+
+void continue_in_checkpoint_folder(const std::string& checkpoint, Scene& scene)
+{
+  check_checkpoint_scene(checkpoint, scene);
+  // The run goes on in the folder that holds its files: 'Directory' as
+  // given, or else (a relative 'Directory' seen from another working
+  // folder) the checkpoint's own folder. Restoring checks that the frames
+  // the checkpoint names are there.
+  const auto holds_run = [&](const std::string& folder)
+  {
+    std::error_code ec;
+    return std::filesystem::exists(
+        std::filesystem::path(folder) / (scene.output.base_name + "_history.csv"), ec);
+  };
+  const std::filesystem::path beside = std::filesystem::path(checkpoint).parent_path();
+  const std::string checkpoint_folder = beside.empty() ? "." : beside.string();
+  if (!holds_run(scene.output.directory) && holds_run(checkpoint_folder))
+    scene.output.directory = checkpoint_folder;
+  prepare_output_directory(scene.output.directory);
 }
 
 // ---- Checkpoint ----------------------------------------------------------------
@@ -222,6 +272,13 @@ Checkpoint::Checkpoint(const Scene& scene, const BlockModel& model, RigidSolver*
     check_fingerprints(in, restart_from);
   }
   install_stop_signal_handlers();
+}
+
+Checkpoint::~Checkpoint()
+{
+  // The cycle is over: a signal from now on ends the process as usual (a
+  // finalization that hangs can still be stopped).
+  restore_default_signal_handlers();
 }
 
 unsigned long Checkpoint::check_fingerprints(CheckpointReader& in, const std::string& file) const
@@ -334,6 +391,11 @@ unsigned long Checkpoint::restore(const std::string& file)
   for (PvdSeries* s : series_)
     s->load_state(in);
   in.tag("end");
+  // Only now, with the whole checkpoint read and checked, are files touched.
+  for (HistoryFile* h : histories_)
+    h->rewrite();
+  for (PvdSeries* s : series_)
+    s->rewrite();
   return step;
 }
 
@@ -574,8 +636,6 @@ void HistoryFile::load_state(CheckpointReader& in)
   // The rows up to the checkpoint's step, exactly as they were; the rows of
   // the run beyond it (if it went on) are dropped and written again.
   text_ = std::move(text);
-  write_file_atomically(path_, [&](std::ostream& file) { file << text_; });
-  rows_on_disk_ = rows_;
 }
 
 void PvdSeries::save_state(CheckpointWriter& out) const
@@ -603,13 +663,16 @@ void PvdSeries::load_state(CheckpointReader& in)
     in.get(file);
     entries_.emplace_back(time, file);
   }
-  if (!entries_.empty())
-  {
-    // Rewrites the PVD file with the entries so far.
-    const auto last = entries_.back();
-    entries_.pop_back();
-    add(last.first, last.second);
-  }
+  // The frames written before the checkpoint must be where the PVD file
+  // will name them (a checkpoint copied away from its output folder).
+  const std::filesystem::path folder = std::filesystem::path(path_).parent_path();
+  std::error_code ec;
+  for (const auto& entry : entries_)
+    if (!std::filesystem::exists(folder / entry.second, ec))
+      throw InputError(in.file() + ": the run it continues wrote " + entry.second +
+                       ", which is not in " + (folder.empty() ? "." : folder.string()) +
+                       "; allowed: a checkpoint in the output folder of its run, beside its "
+                       "frames");
 }
 
 } // namespace talus

@@ -2,6 +2,7 @@
 #include <talus/io/file_output.h>
 
 #include <cerrno>
+#include <csignal>
 #include <cstdio>
 #include <cstring>
 #include <filesystem>
@@ -49,6 +50,32 @@ void prepare_output_directory(const std::string& directory)
                      (ec ? ec.message() : std::string("a file of that name exists")) + ")");
   if (::access(directory.c_str(), W_OK) != 0)
     throw InputError(directory + ": the output folder is not writable");
+  remove_stale_temporaries(directory);
+}
+
+unsigned int remove_stale_temporaries(const std::string& directory)
+{
+  // write_file_atomically names its temporaries <file>.tmp<pid>; one whose
+  // process is gone was left by a run killed while writing (kill -9).
+  unsigned int removed = 0;
+  std::error_code ec;
+  for (std::filesystem::directory_iterator it(directory, ec), end; !ec && it != end;
+       it.increment(ec))
+  {
+    const std::string name = it->path().filename().string();
+    const std::size_t at = name.rfind(".tmp");
+    if (at == std::string::npos || at + 4 == name.size() ||
+        name.find_first_not_of("0123456789", at + 4) != std::string::npos ||
+        name.size() - at - 4 > 9)
+      continue;
+    const pid_t pid = static_cast<pid_t>(std::stol(name.substr(at + 4)));
+    if (pid <= 0 || pid == ::getpid() || ::kill(pid, 0) == 0 || errno != ESRCH)
+      continue;
+    std::error_code remove_error;
+    if (it->is_regular_file(remove_error) && std::filesystem::remove(it->path(), remove_error))
+      ++removed;
+  }
+  return removed;
 }
 
 } // namespace talus

@@ -1,10 +1,13 @@
+#include <talus/base/exceptions.h>
 #include <talus/io/file_output.h>
 #include <talus/io/history_file.h>
+#include <talus/solver/energy_account.h>
 
 #include <unistd.h>
 
 #include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <iostream>
@@ -22,13 +25,15 @@ double wall_seconds()
 } // namespace
 
 HistoryFile::HistoryFile(const std::string& path, const std::vector<std::string>& columns,
-                         unsigned int flush_every)
-    : path_(path), n_columns_(columns.size()), flush_every_(std::max(flush_every, 1u))
+                         unsigned int flush_every, bool write_now)
+    : path_(path), columns_(columns), n_columns_(columns.size()),
+      flush_every_(std::max(flush_every, 1u))
 {
   for (std::size_t c = 0; c < columns.size(); ++c)
     text_ += (c ? "," : "") + columns[c];
   text_ += '\n';
-  write_file_atomically(path_, [&](std::ostream& out) { out << text_; });
+  if (write_now)
+    write_file_atomically(path_, [&](std::ostream& out) { out << text_; });
   last_write_ = wall_seconds();
 }
 
@@ -49,6 +54,17 @@ void HistoryFile::record(const std::vector<double>& values)
   if (values.size() != n_columns_)
     throw std::logic_error(path_ + ": a history row has " + std::to_string(values.size()) +
                            " values for " + std::to_string(n_columns_) + " columns");
+  for (std::size_t c = 0; c < values.size(); ++c)
+    if (!std::isfinite(values[c]))
+      throw DivergenceError(
+          "the history value '" + columns_[c] + "' is " +
+          (std::isnan(values[c]) ? std::string("NaN")
+           : values[c] > 0       ? "+inf"
+                                 : "-inf") +
+          (values.empty() ? std::string() : " at step " + talus::number(values[0])) +
+          ": the run has left the range of double precision; likely cause: a gravity, load, "
+          "force rate, pressure or velocity far beyond what the model can carry (see the "
+          "entries of 'Solver', 'Load N' and 'Boundary N')");
   char number[32];
   for (std::size_t c = 0; c < values.size(); ++c)
   {
@@ -63,6 +79,12 @@ void HistoryFile::record(const std::vector<double>& values)
   if (rows_ - rows_on_disk_ >= flush_every_ &&
       wall_seconds() - last_write_ >= std::max(1.0, 10.0 * write_seconds_))
     flush();
+}
+
+void HistoryFile::rewrite()
+{
+  write_file_atomically(path_, [&](std::ostream& out) { out << text_; });
+  rows_on_disk_ = rows_;
 }
 
 void HistoryFile::flush()

@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cerrno>
+#include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
@@ -46,23 +47,119 @@ std::string join_path(const std::vector<std::string>& parts)
 
 } // namespace
 
-ParameterFile::ParameterFile(const std::string& filename) : filename_(filename)
+/// Deepest nesting of 'include' (a cycle is refused before this).
+constexpr unsigned int max_include_depth = 16;
+/// Largest parameter file read (bytes): a text file of entries is far smaller.
+constexpr std::uintmax_t max_file_size = 64u << 20;
+
+void ParameterFile::read_text(const std::string& file, std::vector<std::string>& open_files)
 {
   std::error_code ec;
-  if (!std::filesystem::is_regular_file(filename, ec))
-    throw InputError(filename + ": " +
-                     (std::filesystem::exists(filename, ec) ? "not a file"
-                                                            : "no such parameter file") +
+  const bool included = !open_files.empty();
+  const std::string what = included ? "included file" : "parameter file";
+  if (!std::filesystem::is_regular_file(file, ec))
+    throw InputError(file + ": " +
+                     (!std::filesystem::exists(file, ec) ? "no such " + what
+                      : std::filesystem::is_directory(file, ec)
+                          ? "a folder, not a file"
+                          : "not a regular file (a device?)") +
                      "; allowed: a readable parameter file (.prm)");
-  std::ifstream in(filename, std::ios::binary);
+  if (std::filesystem::file_size(file, ec) > max_file_size)
+    throw InputError(file + ": the " + what + " has " +
+                     std::to_string(std::filesystem::file_size(file, ec)) +
+                     " bytes, too many for a parameter file; allowed: at most " +
+                     std::to_string(max_file_size) + " bytes");
+  std::ifstream in(file, std::ios::binary);
   if (!in)
-    throw InputError(filename + ": cannot open the parameter file (" + std::strerror(errno) +
+    throw InputError(file + ": cannot open the " + what + " (" + std::strerror(errno) +
                      "); allowed: a readable parameter file (.prm)");
   std::stringstream buffer;
   buffer << in.rdbuf();
-  text_ = buffer.str();
+  std::string text = buffer.str();
   if (in.bad())
-    throw InputError(filename + ": reading the parameter file failed");
+    throw InputError(file + ": reading the " + what + " failed");
+  // A byte-order mark (some Windows editors) and CR or CR LF line ends
+  // (old Mac, Windows) are plain text too.
+  if (text.rfind("\xEF\xBB\xBF", 0) == 0)
+    text.erase(0, 3);
+  std::string unix_text;
+  unix_text.reserve(text.size());
+  for (std::size_t i = 0; i < text.size(); ++i)
+    if (text[i] != '\r')
+      unix_text.push_back(text[i]);
+    else if (i + 1 == text.size() || text[i + 1] != '\n')
+      unix_text.push_back('\n');
+
+  std::error_code canonical_error;
+  const std::string canonical = std::filesystem::weakly_canonical(file, canonical_error).string();
+  open_files.push_back(canonical);
+  std::istringstream lines(unix_text);
+  std::string line;
+  for (unsigned int number = 1; std::getline(lines, line); ++number)
+  {
+    const std::string here = file + ":" + std::to_string(number);
+    for (const char c : line)
+      if ((static_cast<unsigned char>(c) < 32 && c != '\t') || c == 127)
+      {
+        char byte[8];
+        std::snprintf(byte, sizeof byte, "0x%02x", static_cast<unsigned char>(c));
+        throw InputError(here + ": the line holds a control character (byte " + byte +
+                         "), so this is not a text file; allowed: a parameter file of text lines");
+      }
+    const auto hash = line.find('#');
+    const std::string code = trim(hash == std::string::npos ? line : line.substr(0, hash));
+    if (code == "include" || code.rfind("include ", 0) == 0 || code.rfind("include\t", 0) == 0)
+    {
+      const std::string named = trim(code.substr(7));
+      if (named.empty())
+        throw InputError(here + ": 'include' names no file; allowed: 'include FILE'");
+      std::filesystem::path target(named);
+      if (target.is_relative())
+        target = std::filesystem::path(file).parent_path() / target;
+      const std::string name = target.string();
+      const std::string target_canonical =
+          std::filesystem::weakly_canonical(target, canonical_error).string();
+      if (std::find(open_files.begin(), open_files.end(), target_canonical) != open_files.end())
+        throw InputError(
+            here + ": 'include " + named + "' includes " +
+            (target_canonical == canonical ? "this file itself" : "a file that includes this one") +
+            "; allowed: includes without a cycle");
+      if (open_files.size() >= max_include_depth)
+        throw InputError(here + ": includes nest more than " + std::to_string(max_include_depth) +
+                         " deep; allowed: at most that many files inside one another");
+      try
+      {
+        read_text(name, open_files);
+      }
+      catch (const InputError& e)
+      {
+        // Name the include line too: the problem is in the file it names.
+        if (std::string(e.what()).rfind(name + ":", 0) == 0 &&
+            std::string(e.what()).find("; allowed: a readable parameter file") != std::string::npos)
+          throw InputError(here + ": 'include " + named +
+                           "': " + std::string(e.what()).substr(name.size() + 2));
+        throw;
+      }
+      continue;
+    }
+    text_ += line;
+    text_ += '\n';
+    origin_.emplace_back(file, number);
+  }
+  open_files.pop_back();
+}
+
+std::string ParameterFile::where(unsigned int line) const
+{
+  if (line == 0 || line > origin_.size())
+    return filename_;
+  return origin_[line - 1].first + ":" + std::to_string(origin_[line - 1].second);
+}
+
+ParameterFile::ParameterFile(const std::string& filename) : filename_(filename)
+{
+  std::vector<std::string> open_files;
+  read_text(filename, open_files);
 
   // A lenient first pass that only records where things are; the real parse
   // (and its error reporting) is ParameterHandler's.
@@ -72,24 +169,18 @@ ParameterFile::ParameterFile(const std::string& filename) : filename_(filename)
   bool any_statement = false;
   for (unsigned int number = 1; std::getline(lines, line); ++number)
   {
-    for (const char c : line)
-      if ((static_cast<unsigned char>(c) < 32 && c != '\t' && c != '\r') || c == 127)
-      {
-        char byte[8];
-        std::snprintf(byte, sizeof byte, "0x%02x", static_cast<unsigned char>(c));
-        throw InputError(filename + ":" + std::to_string(number) +
-                         ": the line holds a control character (byte " + byte +
-                         "), so this is not a text file; allowed: a parameter file of text lines");
-      }
     const auto hash = line.find('#');
     const std::string code = trim(hash == std::string::npos ? line : line.substr(0, hash));
     if (code.rfind("subsection ", 0) == 0 || code.rfind("subsection\t", 0) == 0)
     {
       stack.push_back(collapse(code.substr(10)));
-      section_line_.emplace(join_path(stack), number);
-      if (stack.size() == 1 &&
-          std::find(sections_in_file_.begin(), sections_in_file_.end(), stack[0]) ==
-              sections_in_file_.end())
+      const auto [first, fresh] = section_line_.emplace(join_path(stack), number);
+      // ParameterHandler would take the later values silently.
+      if (!fresh)
+        throw InputError(where(number) + ": subsection '" + join_path(stack) +
+                         "' is opened a second time (first at " + where(first->second) +
+                         "); allowed: each subsection once, with all its entries");
+      if (stack.size() == 1) // opened once (above), so listed once
         sections_in_file_.push_back(stack[0]);
     }
     else if (code == "end" && !stack.empty())
@@ -100,7 +191,16 @@ ParameterFile::ParameterFile(const std::string& filename) : filename_(filename)
       const std::string name = collapse(code.substr(4, eq == std::string::npos ? std::string::npos
                                                                                : eq - 4));
       const std::string value = eq == std::string::npos ? "" : trim(code.substr(eq + 1));
-      entry_line_.emplace(std::make_pair(join_path(stack), name), number);
+      const auto [first, fresh] =
+          entry_line_.emplace(std::make_pair(join_path(stack), name), number);
+      if (!fresh)
+      {
+        const std::string section = join_path(stack);
+        const auto [file, at] = origin_[number - 1];
+        throw InputError::at(file, at, section, name,
+                             "is set a second time (first at " + where(first->second) + ")",
+                             "one 'set' per entry");
+      }
       line_entry_[number] = {join_path(stack), name, value};
     }
     any_statement |= !code.empty();
@@ -154,7 +254,10 @@ void ParameterFile::rethrow(const dealii::ExceptionBase& e) const
   unsigned int line = 0;
   if (std::regex_search(text, m, std::regex("Line <([0-9]+)>")))
     line = static_cast<unsigned int>(std::stoul(m[1]));
-  const std::string where = filename_ + (line > 0 ? ":" + std::to_string(line) : "");
+  const std::string at = where(line);
+  // (file, line) of the statement, in the file that holds it (an include).
+  const std::string file = line > 0 && line <= origin_.size() ? origin_[line - 1].first : filename_;
+  const unsigned int file_line = line > 0 && line <= origin_.size() ? origin_[line - 1].second : 0;
 
   // An entry whose value does not fit its pattern: name it and say what fits.
   if (dynamic_cast<const dealii::ParameterHandler::ExcInvalidEntryForPattern*>(&e) &&
@@ -166,7 +269,7 @@ void ParameterFile::rethrow(const dealii::ExceptionBase& e) const
       for (const auto& d : declared_.at(entry[0]))
         if (d.first == entry[1])
           allowed = d.second;
-    throw InputError::at(filename_, line, entry[0], entry[1], "value '" + entry[2] + "' is invalid",
+    throw InputError::at(file, file_line, entry[0], entry[1], "value '" + entry[2] + "' is invalid",
                          allowed);
   }
   // A line that names no declared entry, or is not a statement at all.
@@ -177,7 +280,7 @@ void ParameterFile::rethrow(const dealii::ExceptionBase& e) const
     if (declared_.count(section))
       for (const auto& d : declared_.at(section))
         names += (names.empty() ? "" : ", ") + d.first;
-    throw InputError::at(filename_, line, section, m[1], "no such entry",
+    throw InputError::at(file, file_line, section, m[1], "no such entry",
                          names.empty() ? "" : "entries " + names);
   }
   if (std::regex_search(text, m, std::regex("no such subsection to be entered: ([^\n]*)")))
@@ -186,8 +289,9 @@ void ParameterFile::rethrow(const dealii::ExceptionBase& e) const
     for (const auto& d : declared_)
       if (!d.first.empty() && d.first.find(" / ") == std::string::npos)
         names += (names.empty() ? "" : ", ") + d.first;
-    throw InputError(where + ": unknown subsection '" + trim(m[1]) + "'; allowed: " + names +
-                     " (numbered ones: 'Joint set N', 'Joint N', 'Excavation N', 'Group N', 'Load N', 'Boundary N')");
+    throw InputError(at + ": unknown subsection '" + trim(m[1]) + "'; allowed: " + names +
+                     " (numbered ones: 'Joint set N', 'Joint N', 'Excavation N', 'Group N', 'Load "
+                     "N', 'Boundary N')");
   }
   if (std::regex_search(text, m, std::regex("unequal numbers of 'subsection' and 'end'")))
     throw InputError(filename_ +
@@ -200,7 +304,7 @@ void ParameterFile::rethrow(const dealii::ExceptionBase& e) const
     for (unsigned int n = 0; n < line && std::getline(lines, content); ++n)
     {
     }
-    throw InputError(where + ": cannot read the line '" + trim(content) +
+    throw InputError(at + ": cannot read the line '" + trim(content) +
                      "'; allowed: 'subsection NAME', 'set ENTRY = VALUE', 'end', comments after #");
   }
   throw InputError(filename_ + ": " + trim(text));
@@ -221,7 +325,11 @@ double ParameterFile::get_double(const std::string& name) const
 {
   // As get_doubles: a number too small for a double is taken as the nearest
   // value (ParameterHandler::get_double would refuse what its pattern took).
-  return std::strtod(handler_.get(name).c_str(), nullptr);
+  const double value = std::strtod(handler_.get(name).c_str(), nullptr);
+  if (!std::isfinite(value))
+    throw error(name, "value '" + handler_.get(name) + "' is not a finite number",
+                "a finite number");
+  return value;
 }
 
 long ParameterFile::get_integer(const std::string& name) const
@@ -240,7 +348,11 @@ std::vector<double> ParameterFile::get_doubles(const std::string& name) const
   // takes one too small for a double as the nearest value, as the pattern did.
   std::vector<double> values;
   for (const std::string& part : dealii::Utilities::split_string_list(get(name), ','))
+  {
     values.push_back(std::strtod(part.c_str(), nullptr));
+    if (!std::isfinite(values.back()))
+      throw error(name, "'" + part + "' is not a finite number", "finite numbers");
+  }
   return values;
 }
 
@@ -255,17 +367,32 @@ Vec3 ParameterFile::get_vec3(const std::string& name) const
 InputError ParameterFile::error(const std::string& name, const std::string& problem,
                                 const std::string& allowed) const
 {
-  const unsigned int line = line_of(path(), name);
-  return InputError::at(filename_, line, path(), name,
+  const unsigned int expanded = line_of(path(), name);
+  const unsigned int line = expanded > 0 ? origin_[expanded - 1].second : 0;
+  return InputError::at(expanded > 0 ? origin_[expanded - 1].first : filename_, line, path(), name,
                         line == 0 ? problem + " (default value)" : problem, allowed);
 }
 
 std::map<std::string, unsigned int> ParameterFile::lines() const
 {
-  std::map<std::string, unsigned int> lines = section_line_;
-  for (const auto& [where, line] : entry_line_)
-    lines.emplace(where.first + " / " + where.second, line);
+  std::map<std::string, unsigned int> lines;
+  for (const auto& [section, line] : section_line_)
+    lines.emplace(section, origin_[line - 1].second);
+  for (const auto& [entry, line] : entry_line_)
+    lines.emplace(entry.first + " / " + entry.second, origin_[line - 1].second);
   return lines;
+}
+
+std::map<std::string, std::string> ParameterFile::line_files() const
+{
+  std::map<std::string, std::string> files;
+  for (const auto& [section, line] : section_line_)
+    if (origin_[line - 1].first != filename_)
+      files.emplace(section, origin_[line - 1].first);
+  for (const auto& [entry, line] : entry_line_)
+    if (origin_[line - 1].first != filename_)
+      files.emplace(entry.first + " / " + entry.second, origin_[line - 1].first);
+  return files;
 }
 
 std::string ParameterFile::used_parameters() const

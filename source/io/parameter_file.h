@@ -19,7 +19,10 @@ namespace talus
 class ParameterFile
 {
 public:
-  /// Reads the file's text and notes where every subsection and entry is.
+  /// Reads the file's text (with the files it includes: 'include FILE',
+  /// relative to the including file's folder) and notes where every
+  /// subsection and entry is. A UTF-8 byte-order mark is skipped; lines may
+  /// end in LF, CR LF or CR alone.
   explicit ParameterFile(const std::string& filename);
 
   /// Names of the top-level subsections the file uses, in order of first use.
@@ -59,14 +62,22 @@ public:
   /// entry the file sets ("Joint set 1 / Spacing"), for messages about
   /// problems found after reading.
   std::map<std::string, unsigned int> lines() const;
+  /// The included file of each key of lines() that is not in the file itself.
+  std::map<std::string, std::string> line_files() const;
 
 private:
+  /// Appends `file` (and what it includes) to text_, one origin per line.
+  void read_text(const std::string& file, std::vector<std::string>& open_files);
+  /// "file:line" of a line of text_ (0: the parameter file itself).
+  std::string where(unsigned int line) const;
   std::string path() const;
   unsigned int line_of(const std::string& path, const std::string& name) const;
   [[noreturn]] void rethrow(const dealii::ExceptionBase& e) const;
 
   std::string filename_;
-  std::string text_;
+  std::string text_; ///< the file with its includes in place, lines ending in '\n'
+  /// (file, line) of each line of text_.
+  std::vector<std::pair<std::string, unsigned int>> origin_;
   dealii::ParameterHandler handler_;
   std::vector<std::string> current_;
   std::vector<std::string> sections_in_file_;

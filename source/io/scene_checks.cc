@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstdio>
 
 namespace talus
 {
@@ -17,14 +18,19 @@ InputError scene_error(const Scene& scene, const std::string& section, const std
     const auto it = scene.lines.find(key);
     return it == scene.lines.end() ? 0u : it->second;
   };
+  const auto file_of = [&](const std::string& key)
+  {
+    const auto it = scene.line_files.find(key);
+    return it == scene.line_files.end() ? scene.parameter_file : it->second;
+  };
   if (!entry.empty())
   {
     const unsigned int line = line_of(section + " / " + entry);
-    return InputError::at(scene.parameter_file, line, section, entry,
+    return InputError::at(file_of(section + " / " + entry), line, section, entry,
                           line == 0 ? problem + " (default value)" : problem, allowed);
   }
   const unsigned int line = line_of(section);
-  return InputError(scene.parameter_file + (line > 0 ? ":" + std::to_string(line) : "") +
+  return InputError(file_of(section) + (line > 0 ? ":" + std::to_string(line) : "") +
                     ": subsection '" + section + "': " + problem +
                     (allowed.empty() ? "" : "; allowed: " + allowed));
 }
@@ -49,6 +55,8 @@ double joints_across(const JointSetSpec& set, const Box& box)
   const double count = (hi - lo) / set.spacing + 1.0;
   return set.count > 0 ? std::min(count, static_cast<double>(set.count)) : count;
 }
+
+void check_deformable_blocks(const Scene& scene, const BlockModel& model);
 
 } // namespace
 
@@ -125,9 +133,22 @@ void check_built_model(const Scene& scene, const BlockModel& model, const BuildR
 
   for (std::size_t e = 0; e < scene.excavations.size(); ++e)
     if (!(report.excavated_volume[e] > 0.0))
+    {
+      // A region thinner than the cutting tolerance cuts nothing either.
+      const double tolerance =
+          scene.cutting.relative_tolerance * (scene.brick.hi - scene.brick.lo).norm();
+      if (std::cbrt(scene.excavations[e].region.volume) < 1e3 * tolerance)
+        throw scene_error(scene, scene.excavations[e].section, "",
+                          "removes no rock: the region is too small to cut (its volume is " +
+                              number(scene.excavations[e].region.volume) +
+                              " m^3, and planes closer than the cutting tolerance, about " +
+                              number(tolerance) + " m here, count as one)",
+                          "a region much larger than the cutting tolerance ('Cutting "
+                          "tolerance' of subsection 'Model' times the block size)");
       throw scene_error(scene, scene.excavations[e].section, "",
                         "removes no rock (the region lies outside the blocks that are left)",
                         "a region that overlaps the model");
+    }
   if (model.n_blocks() == 0)
     throw scene_error(scene, scene.excavations.empty() ? "Model" : scene.excavations.back().section,
                       "", "no block is left: the excavations remove the whole model",
@@ -140,8 +161,37 @@ void check_built_model(const Scene& scene, const BlockModel& model, const BuildR
                             std::to_string(model.n_blocks()) + " blocks)",
                         "0 to " + std::to_string(model.n_blocks() - 1));
 
-  if (scene.deformable.groups.empty())
-    return;
+  // A group named by an entry must hold blocks, or the entry does nothing.
+  const auto check_has_blocks =
+      [&](const std::string& section, const std::string& entry, const std::string& group)
+  {
+    for (unsigned int b = 0; b < model.n_blocks(); ++b)
+      if (model.group_names[model.group[b]] == group)
+        return;
+    throw scene_error(scene, section, entry,
+                      "the group '" + group +
+                          "' holds no block (its region selects none, or "
+                          "the cuts and excavations left none in it)",
+                      "groups that hold blocks");
+  };
+  for (const std::string& g : scene.fixed_groups)
+    check_has_blocks("Solver", "Fixed groups", g);
+  for (std::size_t l = 0; l < scene.load_groups.size(); ++l)
+    check_has_blocks(scene.load_sections.at(l), "Group", scene.load_groups[l]);
+
+  if (!scene.deformable.groups.empty())
+    check_deformable_blocks(scene, model);
+  // Every check passed: what is legal but surely not meant.
+  for (const std::string& w : scene.warnings)
+    std::printf("Warning: %s\n", w.c_str());
+}
+
+namespace
+{
+
+/// The checks of check_built_model on deformable blocks.
+void check_deformable_blocks(const Scene& scene, const BlockModel& model)
+{
   std::vector<unsigned int> deformable;
   for (unsigned int b = 0; b < model.n_blocks(); ++b)
     if (std::find(scene.deformable.groups.begin(), scene.deformable.groups.end(),
@@ -229,5 +279,7 @@ void resolve_history_blocks(Scene& scene, const BlockModel& model)
       blocks.push_back(b);
   }
 }
+
+} // namespace
 
 } // namespace talus

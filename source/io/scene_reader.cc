@@ -24,6 +24,14 @@ namespace
 
 namespace P = dealii::Patterns;
 
+/// Numbered subsections a file may have (ParameterHandler's declarations
+/// take time in the square of their number).
+constexpr std::size_t max_numbered_sections = 10000;
+/// Sides of the brick (m) whose cuts double precision handles.
+constexpr double min_brick_side = 1e-6, max_brick_side = 1e8;
+/// kg/m^3: no material is denser than this (osmium: 22,590).
+constexpr double max_density = 1e5;
+
 const std::string vec3_allowed = "three numbers separated by commas, e.g. 0, 0, 0";
 
 P::List vec3_pattern()
@@ -69,6 +77,14 @@ void parse_model(ParameterFile& prm, Scene& scene)
 {
   prm.enter("Model");
   scene.brick = read_box(prm, "Brick min", "Brick max");
+  // Cutting planes, volumes and the cutting tolerance need the sides and
+  // their cubes well inside double precision.
+  const Vec3 sides = scene.brick.hi - scene.brick.lo;
+  if (!(sides.minCoeff() >= min_brick_side && sides.maxCoeff() <= max_brick_side))
+    throw prm.error("Brick max",
+                    "makes a brick of sides " + number(sides[0]) + ", " + number(sides[1]) + ", " +
+                        number(sides[2]) + " m, which double precision cannot cut reliably",
+                    "a brick whose sides are from 1e-6 to 1e8 m");
   scene.default_group = prm.get("Default group");
   scene.cutting.relative_tolerance = prm.get_double("Cutting tolerance");
   scene.cutting.minimum_volume = prm.get_double("Minimum block volume");
@@ -80,7 +96,8 @@ void parse_model(ParameterFile& prm, Scene& scene)
 void declare_material(ParameterFile& prm)
 {
   prm.enter("Material");
-  prm.declare("Density", "2600", P::Double(), "a number > 0 (kg/m^3)", "Rock density (kg/m^3).");
+  prm.declare("Density", "2600", P::Double(), "a number > 0 and at most 1e5 (kg/m^3)",
+              "Rock density (kg/m^3).");
   prm.leave();
 }
 
@@ -89,7 +106,12 @@ void parse_material(ParameterFile& prm, Scene& scene)
   prm.enter("Material");
   scene.density = prm.get_double("Density");
   if (!(scene.density > 0.0))
-    throw prm.error("Density", "must be positive", "a number > 0 (kg/m^3)");
+    throw prm.error("Density", "must be positive", "a number > 0 and at most 1e5 (kg/m^3)");
+  // Far beyond any rock (osmium, the densest element, is 22,590 kg/m^3): the
+  // automatic time step grows with the mass and the joints cannot carry it.
+  if (scene.density > max_density)
+    throw prm.error("Density", "is denser than any material (" + number(scene.density) + " kg/m^3)",
+                    "a number > 0 and at most 1e5 (kg/m^3)");
   prm.leave();
 }
 
@@ -280,6 +302,7 @@ void parse_load(ParameterFile& prm, const std::string& section, Scene& scene)
   load.initial_spin = prm.get_vec3("Initial spin");
   scene.solver.loads.push_back(load);
   scene.load_groups.push_back(group);
+  scene.load_sections.push_back(section);
   prm.leave();
 }
 
@@ -747,6 +770,49 @@ void parse_solver(ParameterFile& prm, Scene& scene)
   prm.leave();
 }
 
+/// Warnings about entries that the file sets and the run ignores (legal,
+/// but surely not meant); check_built_model prints them.
+void warn_ignored(const ParameterFile& prm, const std::string& section,
+                  const std::vector<std::string>& entries, const std::string& why,
+                  std::vector<std::string>& warnings)
+{
+  const std::map<std::string, unsigned int> lines = prm.lines();
+  const std::map<std::string, std::string> files = prm.line_files();
+  for (const std::string& entry : entries)
+  {
+    const std::string key = section + " / " + entry;
+    if (lines.count(key) == 0)
+      continue;
+    const std::string file = files.count(key) ? files.at(key) : prm.filename();
+    // The file's name as the summary shows it ("talus: scene NAME").
+    const std::string name = std::filesystem::path(file).filename().string();
+    warnings.push_back(
+        InputError::at(name, lines.at(key), section, entry, "is ignored: " + why, "").what());
+  }
+}
+
+void warn_about_ignored_entries(const ParameterFile& prm, Scene& scene,
+                                const std::vector<std::pair<std::string, std::string>>& sections)
+{
+  if (scene.solver.dynamic)
+    warn_ignored(
+        prm, "Solver",
+        {"Target ratio", "Damping", "Local damping", "Global damping ratio", "Density scaling"},
+        "'Mode' is dynamic (undamped, every one of 'Steps')", scene.warnings);
+  if (scene.deformable.groups.empty())
+    warn_ignored(prm, "Deformable",
+                 {"Edge length", "Mesh file", "Nodal mixed discretization", "Nodal mixed groups",
+                  "Element", "Implicit check", "Zone model", "Young's modulus", "Poisson's ratio",
+                  "Friction angle", "Dilation angle", "Cohesion", "Tensile strength",
+                  "Stiffness ratio groups", "Stiffness ratio"},
+                 "'Groups' names no deformable block", scene.warnings);
+  std::size_t load = 0;
+  for (const auto& [kind, name] : sections)
+    if (kind == "Load" && !scene.solver.loads[load++].prescribe_velocity)
+      warn_ignored(prm, name, {"Velocity", "Held components", "Hold rotation"},
+                   "'Prescribe velocity' is false", scene.warnings);
+}
+
 } // namespace
 
 Scene read_scene(const std::string& filename, bool prepare_output)
@@ -756,6 +822,13 @@ Scene read_scene(const std::string& filename, bool prepare_output)
   // Numbered subsections exist exactly as the file names them.
   const std::regex numbered("(Joint set|Joint|Excavation|Group|Load|Boundary) ([0-9]+)");
   std::vector<std::tuple<std::string, long, std::string>> found; // kind, number, name
+  if (prm.sections_in_file().size() > max_numbered_sections + 16)
+    throw InputError(filename + ": the file has " + std::to_string(prm.sections_in_file().size()) +
+                     " subsections, which would take talus longer to read than to run; allowed: "
+                     "at most " +
+                     std::to_string(max_numbered_sections) +
+                     " numbered ones ('Joint set N', 'Joint N', ...; a joint set cuts many "
+                     "parallel joints with one subsection)");
   for (const std::string& s : prm.sections_in_file())
   {
     std::smatch m;
@@ -767,6 +840,14 @@ Scene read_scene(const std::string& filename, bool prepare_output)
       found.emplace_back(m[1], std::stol(m[2]), s);
     }
   }
+  // The reader's work grows with the square of the number of subsections
+  // (about 30 s at 10,000): refuse a file of more before reading it.
+  if (found.size() > max_numbered_sections)
+    throw InputError(filename + ": the file has " + std::to_string(found.size()) +
+                     " numbered subsections ('Joint set N', 'Joint N', ...), which would take "
+                     "talus longer to read than to run; allowed: at most " +
+                     std::to_string(max_numbered_sections) +
+                     " (a joint set cuts many parallel joints with one subsection)");
   // Joint set 2 is cut after Joint set 1 whatever the order in the file.
   std::sort(found.begin(), found.end());
   std::vector<std::pair<std::string, std::string>> numbered_sections; // kind, name
@@ -825,8 +906,10 @@ Scene read_scene(const std::string& filename, bool prepare_output)
     else if (kind == "Boundary")
       parse_boundary(prm, name, scene);
   parse_deformable(prm, scene);
+  warn_about_ignored_entries(prm, scene, numbered_sections);
   scene.used_parameters = prm.used_parameters();
   scene.lines = prm.lines();
+  scene.line_files = prm.line_files();
   check_model_size(scene);
 
   // Last, once every value is known to be good: nothing is created on disk

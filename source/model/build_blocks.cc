@@ -1,34 +1,116 @@
 #include <talus/model/build_blocks.h>
 
+#include <talus/base/exceptions.h>
+
+#include <functional>
+#include <string>
+#include <vector>
+
 namespace talus
 {
+
+namespace
+{
+
+/// The cutting operations of a scene in the order they are made: joint
+/// sets, single joints, excavations, each with the subsection it comes from.
+/// The faces a joint set or joint makes remember it (BlockModel::face_origin).
+struct Operation
+{
+  std::string section;
+  std::function<void(BlockGenerator&)> apply;
+};
+
+std::vector<Operation> operations(const Scene& scene, BuildReport* report)
+{
+  std::vector<Operation> ops;
+  for (std::size_t i = 0; i < scene.joint_sets.size(); ++i)
+    ops.push_back({i < scene.joint_set_sections.size() ? scene.joint_set_sections[i] : "Joint set",
+                   [&scene, i](BlockGenerator& g)
+                   { g.cut_joint_set(scene.joint_sets[i], BlockModel::joint_set_origin(i)); }});
+  for (std::size_t i = 0; i < scene.joint_planes.size(); ++i)
+    ops.push_back({i < scene.joint_plane_sections.size() ? scene.joint_plane_sections[i] : "Joint",
+                   [&scene, i](BlockGenerator& g)
+                   {
+                     const JointPlaneSpec& joint = scene.joint_planes[i];
+                     g.cut_plane(Plane::through(joint.origin,
+                                                normal_from_dip(joint.dip, joint.dip_direction)),
+                                 joint.limited ? &joint.extent : nullptr,
+                                 BlockModel::joint_origin(i));
+                   }});
+  for (std::size_t e = 0; e < scene.excavations.size(); ++e)
+    ops.push_back({scene.excavations[e].section, [&scene, e, report](BlockGenerator& g)
+                   {
+                     const double removed = g.excavate(scene.excavations[e].region);
+                     if (report)
+                       report->excavated_volume.push_back(removed);
+                   }});
+  return ops;
+}
+
+/// A block came out invalid: cuts the brick again, checking every block
+/// after each operation, and throws a GeometryError that names the first
+/// operation that made an invalid block and what would help.
+[[noreturn]] void explain_invalid_block(const Scene& scene, const GeometryError& found)
+{
+  BlockGenerator generator(ConvexPolyhedron::box(scene.brick.lo, scene.brick.hi), scene.cutting);
+  const auto invalid = [&generator]() -> std::string
+  {
+    const std::vector<ConvexPolyhedron>& blocks = generator.blocks();
+    for (std::size_t i = 0; i < blocks.size(); ++i)
+      try
+      {
+        blocks[i].validate("block " + std::to_string(i), 1e-6);
+      }
+      catch (const GeometryError& e)
+      {
+        return e.what();
+      }
+    return "";
+  };
+  const std::string help =
+      "what would help: a larger 'Minimum block volume' in subsection 'Model' (a cut that would "
+      "leave a smaller piece is then not made), a larger 'Cutting tolerance' there, or moving "
+      "the plane away from the faces and corners it nearly touches";
+  if (const std::string problem = invalid(); !problem.empty())
+    throw GeometryError("subsection 'Model': the brick is not a valid block (" + problem +
+                        "); allowed: a brick of a size double precision can hold (each side "
+                        "from 1e-6 to 1e8 m)");
+  for (const Operation& op : operations(scene, nullptr))
+  {
+    op.apply(generator);
+    // Which face or edge came out wrong follows the rounding; the
+    // subsection and the remedy do not.
+    if (!invalid().empty())
+      throw GeometryError("subsection '" + op.section +
+                          "' cuts a piece too thin or too small beside the rest of the model "
+                          "for the cutting tolerance (" +
+                          number(scene.cutting.relative_tolerance) +
+                          " of the block size): the piece is not a closed convex polyhedron; " +
+                          help);
+  }
+  throw found; // not reproduced: the first message is all there is
+}
+
+} // namespace
 
 BlockModel build_blocks(const Scene& scene, BuildReport& report)
 {
   BlockGenerator generator(ConvexPolyhedron::box(scene.brick.lo, scene.brick.hi), scene.cutting);
   // Cuts made and refused by one operation.
-  const auto counted = [&generator](auto cut)
+  const std::size_t n_sets = scene.joint_sets.size(), n_joints = scene.joint_planes.size();
+  const std::vector<Operation> ops = operations(scene, &report);
+  for (std::size_t k = 0; k < ops.size(); ++k)
   {
     const CuttingReport before = generator.report();
-    cut();
-    return std::make_pair(generator.report().cuts - before.cuts,
-                          generator.report().skipped_slivers - before.skipped_slivers);
-  };
-  // Faces remember their joint set (+1, +2, ...) or joint (-1, -2, ...).
-  for (std::size_t i = 0; i < scene.joint_sets.size(); ++i)
-    report.joint_set_cuts.push_back(counted(
-        [&] { generator.cut_joint_set(scene.joint_sets[i], BlockModel::joint_set_origin(i)); }));
-  for (std::size_t j = 0; j < scene.joint_planes.size(); ++j)
-    report.joint_cuts.push_back(counted(
-        [&]
-        {
-          const JointPlaneSpec& joint = scene.joint_planes[j];
-          generator.cut_plane(
-              Plane::through(joint.origin, normal_from_dip(joint.dip, joint.dip_direction)),
-              joint.limited ? &joint.extent : nullptr, BlockModel::joint_origin(j));
-        }));
-  for (const ExcavationSpec& excavation : scene.excavations)
-    report.excavated_volume.push_back(generator.excavate(excavation.region));
+    ops[k].apply(generator);
+    const auto cuts = std::make_pair(generator.report().cuts - before.cuts,
+                                     generator.report().skipped_slivers - before.skipped_slivers);
+    if (k < n_sets)
+      report.joint_set_cuts.push_back(cuts);
+    else if (k < n_sets + n_joints)
+      report.joint_cuts.push_back(cuts);
+  }
   report.cutting = generator.report();
 
   BlockModel model;
@@ -40,7 +122,14 @@ BlockModel build_blocks(const Scene& scene, BuildReport& report)
   const std::vector<ConvexPolyhedron>& blocks = generator.blocks();
   for (std::size_t i = 0; i < blocks.size(); ++i)
   {
-    blocks[i].validate("block " + std::to_string(i), 1e-6);
+    try
+    {
+      blocks[i].validate("block " + std::to_string(i), 1e-6);
+    }
+    catch (const GeometryError& e)
+    {
+      explain_invalid_block(scene, e);
+    }
     const unsigned int b = model.add_block(blocks[i], default_group);
     for (std::size_t r = 0; r < scene.groups.size(); ++r)
       if (scene.groups[r].region.contains(model.centroid[b]))

@@ -257,6 +257,18 @@ TetMesh read_gmsh_block(const std::string& path, unsigned int block, MeshOrder o
   std::ifstream in(path);
   if (!in)
     throw InputError(path + ": cannot open the mesh file");
+  {
+    // "$MeshFormat", then "version file-type data-size": file-type 1 is
+    // gmsh's binary format, which deal.II's reader takes for broken text.
+    std::string format, version;
+    int file_type = 0;
+    if (std::getline(in, format) && format.rfind("$MeshFormat", 0) == 0 && (in >> version) &&
+        (in >> file_type) && file_type == 1)
+      throw InputError(path + ": a binary gmsh file (format " + version +
+                       "); save the mesh as ASCII (gmsh: without -bin, or Mesh.Binary = 0)");
+    in.clear();
+    in.seekg(0);
+  }
   dealii::Triangulation<3> tria;
   try
   {

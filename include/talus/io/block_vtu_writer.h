@@ -37,9 +37,12 @@ public:
   /// rewrites the PVD file.
   void add(double time, const std::string& vtu_file);
 
-  /// Checkpoints: the entries so far (loading rewrites the PVD file).
+  /// Checkpoints: the entries so far. Loading takes them and checks that
+  /// their VTU files are in the PVD's folder; rewrite() writes the PVD file.
   void save_state(CheckpointWriter& out) const;
   void load_state(CheckpointReader& in);
+  /// Writes the PVD file with the entries so far (none while there are none).
+  void rewrite() const;
 
 private:
   std::string path_;

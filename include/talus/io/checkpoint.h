@@ -147,7 +147,10 @@ struct RunInterrupted : std::runtime_error
 };
 
 /// SIGINT and SIGTERM only set a flag; the cycle looks at it once a step.
+/// A second signal ends the process at once (exit code 128 + signal).
 void install_stop_signal_handlers();
+/// SIGINT and SIGTERM end the process again (after the cycle).
+void restore_default_signal_handlers();
 /// The signal received since install_stop_signal_handlers() (0: none).
 int stop_signal_received();
 
@@ -166,6 +169,12 @@ std::uint64_t scene_fingerprint(const Scene& scene);
 /// anything is written, so that a refused restart changes no file.
 void check_checkpoint_scene(const std::string& checkpoint, const Scene& scene);
 
+/// For talus --restart: check_checkpoint_scene (with 'Steps' not below the
+/// checkpoint's step), and the output folder: 'Directory' if it holds the
+/// run's history, else the checkpoint's folder if that does (a restart from
+/// another working folder). Nothing is written.
+void continue_in_checkpoint_folder(const std::string& checkpoint, Scene& scene);
+
 /// The checkpoints of one run: what to save (the solvers, the model, the
 /// histories, the VTU series and the counters of the output loop), when
 /// (every `interval` steps, and on SIGINT/SIGTERM), and restoring it all.
@@ -181,6 +190,11 @@ public:
   /// refused restart leaves the old run's files as they were).
   Checkpoint(const Scene& scene, const BlockModel& model, RigidSolver* rigid,
              DeformableSolver* zones, const std::string& restart_from = "");
+
+  /// Restores the default handling of SIGINT and SIGTERM.
+  ~Checkpoint();
+  Checkpoint(const Checkpoint&) = delete;
+  Checkpoint& operator=(const Checkpoint&) = delete;
 
   void add(HistoryFile& history) { histories_.push_back(&history); }
   void add(PvdSeries& series) { series_.push_back(&series); }

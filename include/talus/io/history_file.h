@@ -20,14 +20,18 @@ class HistoryFile
 {
 public:
   /// Writes the header row at once: a run stopped later leaves a valid file.
+  /// A restart (`write_now` false) leaves the file alone: a checkpoint that
+  /// is refused must not change it, and restoring one rewrites it.
   HistoryFile(const std::string& path, const std::vector<std::string>& columns,
-              unsigned int flush_every = 100);
+              unsigned int flush_every = 100, bool write_now = true);
   /// Writes the rows not yet on disk.
   ~HistoryFile();
   HistoryFile(const HistoryFile&) = delete;
   HistoryFile& operator=(const HistoryFile&) = delete;
 
-  /// Appends one row; `values` must match the columns in number.
+  /// Appends one row; `values` must match the columns in number. A value
+  /// that is not finite (a run that overflowed) throws DivergenceError
+  /// naming its column, and the row is not kept.
   void record(const std::vector<double>& values);
 
   /// Writes every row recorded so far to disk now (e.g. with a checkpoint).
@@ -35,14 +39,18 @@ public:
 
   unsigned int n_rows() const { return rows_; }
 
-  /// Checkpoints: the file's text so far; loading rewrites the file with it
-  /// (no row after the checkpoint's step, none twice) and appends from there.
+  /// Checkpoints: the file's text so far; loading takes it (no row after the
+  /// checkpoint's step, none twice) and appends from there. The file is
+  /// rewritten by rewrite(), once the whole checkpoint has been read.
   void save_state(CheckpointWriter& out);
   void load_state(CheckpointReader& in);
+  /// Writes the whole file now.
+  void rewrite();
 
 private:
   std::string path_;
   std::string text_; ///< the whole file: header and every row
+  std::vector<std::string> columns_;
   std::size_t n_columns_;
   unsigned int flush_every_;
   unsigned int rows_ = 0;

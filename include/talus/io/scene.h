@@ -103,6 +103,7 @@ struct Scene
   /// solver.history_blocks (resolve_history_blocks).
   std::vector<Vec3> history_block_points;
   std::vector<std::string> load_groups;  ///< group name of each solver.loads entry
+  std::vector<std::string> load_sections; ///< "Load N" of each solver.loads entry
   DeformableSpec deformable;
   std::vector<GridpointCondition> gridpoint_conditions; ///< from 'Boundary N' (velocity)
   std::vector<FacePressure> face_pressures;             ///< from 'Boundary N' (pressure)
@@ -115,6 +116,11 @@ struct Scene
   /// each entry it sets ("Joint set 1 / Spacing"), for messages about
   /// problems found once the blocks exist (scene_error).
   std::map<std::string, unsigned int> lines;
+  /// The included file that holds a key of `lines`, when not parameter_file.
+  std::map<std::string, std::string> line_files;
+  /// Input that is legal but surely not meant (an entry the run ignores),
+  /// as "file:line: entry ...: ..."; printed by check_built_model.
+  std::vector<std::string> warnings;
 };
 
 /// Reads and checks a parameter file. Throws InputError with file, line,

@@ -42,7 +42,8 @@ void check_model_size(const Scene& scene);
 /// blocks that do not exist, deformable groups with no block, a mesh file
 /// for a scene of several blocks, a zone edge length larger than every
 /// deformable block, or more zones than max_zones or than the memory left
-/// holds.
+/// holds; fixed or loaded groups with no block. Then prints the scene's
+/// warnings ("Warning: ...").
 void check_built_model(const Scene& scene, const BlockModel& model, const BuildReport& report);
 
 /// Adds to `scene.solver.history_blocks` the block containing each of
