@@ -248,6 +248,8 @@ void check_deformable_blocks(const Scene& scene, const BlockModel& model)
                       "memory");
 }
 
+} // namespace
+
 void resolve_history_blocks(Scene& scene, const BlockModel& model)
 {
   std::vector<unsigned int>& blocks = scene.solver.history_blocks;
@@ -279,7 +281,5 @@ void resolve_history_blocks(Scene& scene, const BlockModel& model)
       blocks.push_back(b);
   }
 }
-
-} // namespace
 
 } // namespace talus
