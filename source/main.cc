@@ -237,6 +237,7 @@ void solve_deformable(talus::Scene& scene, talus::BlockModel& model, const std::
     make_quadratic(mesh);
   if (from_file)
     mesh_report = measure_mesh(mesh);
+  check_boundary_selections(scene, model, mesh);
   std::printf(
       "Zones:        %u %s, %u gridpoints, %u boundary faces (%s; largest edge %.4g m, "
       "smallest height %.4g m), zone volume %.9g m^3\n",
@@ -323,7 +324,7 @@ void solve_deformable(talus::Scene& scene, talus::BlockModel& model, const std::
       points.add_values(row, solver);
       for (const ReactionReport& r : scene.reactions)
       {
-        const Vec3 f = -solver.support_force(r.region);
+        const Vec3 f = -solver.support_force(r.region, r.held);
         row.insert(row.end(), {f[0], f[1], f[2]});
       }
       EnergyAccount e;
@@ -369,7 +370,7 @@ void solve_deformable(talus::Scene& scene, talus::BlockModel& model, const std::
     std::printf("Plastic zones: %u of %u\n", yielding, mesh.n_zones());
   for (const ReactionReport& r : scene.reactions)
   {
-    const Vec3 f = -solver.support_force(r.region);
+    const Vec3 f = -solver.support_force(r.region, r.held);
     std::printf("Reaction of %s on the body: %.9g, %.9g, %.9g N\n", r.name.c_str(), f[0], f[1],
                 f[2]);
   }
@@ -396,6 +397,7 @@ void solve(talus::Scene& scene, talus::BlockModel& model, talus::PvdSeries& seri
     parallel = std::make_unique<ParallelEnvironment>(argc, argv);
   }
   BlockSystem system = build_block_system(scene, model);
+  check_boundary_selections(scene, model, system.mesh);
   RigidSolver& solver = *system.solver;
   const TetMesh& mesh = system.mesh;
   DeformableSolver* zones = system.zones.get();

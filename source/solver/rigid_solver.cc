@@ -512,10 +512,15 @@ void RigidSolver::step()
   }
   else
     contact_forces();
+  if (!face_loads_.empty())
+    face_loads_.add(m_, force, moment, velocity, spin);
   timing_.seconds_forces += seconds_since(t0);
   t0 = std::chrono::steady_clock::now();
   check_finite_forces();
   move_blocks();
+  if (!face_loads_.empty()) // their work is the boundaries', as that of 'Load N'
+    face_loads_.account(fixed, velocity, spin, step_ == 0 ? 0.5 * dt_ : dt_, dt_, boundary_work_,
+                        kinetic_whole_step_);
   if (zones_ != nullptr)
   {
     zones_->move();

@@ -3,6 +3,7 @@
 #include <talus/base/exceptions.h>
 #include <talus/io/scene.h>
 #include <talus/model/build_blocks.h>
+#include <talus/zone/tet_mesh.h>
 
 #include <string>
 
@@ -32,5 +33,13 @@ void check_model_size(const Scene& scene);
 /// for a scene of several blocks, a zone edge length larger than every
 /// deformable block, or more zones than max_zones.
 void check_built_model(const Scene& scene, const BlockModel& model, const BuildReport& report);
+
+/// Once the deformable blocks are meshed (`mesh`: their zones, empty when
+/// every block is rigid), before the run: refuses a 'Boundary N' that
+/// selects nothing - a fixed, velocity or load boundary whose box holds no
+/// gridpoint, a pressure or traction boundary whose box holds the centroid
+/// of no boundary face of the zones and no part of a rigid block's face -
+/// naming it.
+void check_boundary_selections(const Scene& scene, const BlockModel& model, const TetMesh& mesh);
 
 } // namespace talus

@@ -7,6 +7,7 @@
 #include <talus/model/initial_stress.h>
 #include <talus/solver/damper.h>
 #include <talus/solver/energy_account.h>
+#include <talus/solver/rigid_face_loads.h>
 
 #include <Eigen/Core>
 
@@ -88,6 +89,16 @@ public:
   /// solver moves them, and their contacts act on their gridpoints.
   RigidSolver(BlockModel& blocks, double density, const SolverSettings& settings,
               DeformableSolver* zones = nullptr, std::vector<int> vertex_gridpoint = {});
+
+  /// Pressures and tractions of 'Boundary N' on the faces of the rigid
+  /// blocks (rigid_face_loads.h), from the faces as they are now.
+  void set_face_loads(const std::vector<FacePressure>& loads)
+  {
+    std::vector<char> rigid(m_.n_blocks());
+    for (unsigned int b = 0; b < m_.n_blocks(); ++b)
+      rigid[b] = !is_deformable_[b];
+    face_loads_ = RigidFaceLoads(m_, rigid, loads);
+  }
 
   /// Stable time step of eq. 87 for this model (s).
   double stable_time_step() const;
@@ -187,6 +198,7 @@ private:
   double initial_stored_ = 0.0;         ///< J: kinetic and joint energy at the start
   double energy_floor_ = 0.0;           ///< J: below this, growth is not judged
   EnergyGrowthWatch growth_watch_;
+  RigidFaceLoads face_loads_; ///< pressures and tractions on rigid blocks' faces
   unsigned long step_ = 0;
   unsigned long last_output_ = 0; ///< step of the last output in run()
   bool resumed_ = false;          ///< state loaded from a checkpoint
