@@ -146,8 +146,9 @@ RigidSolver::RigidSolver(BlockModel& blocks, double density, const SolverSetting
         const double area = 0.5 * (m_.vertex[m_.face_vertex[q + 1]] - x0)
                                       .cross(m_.vertex[m_.face_vertex[q + 2]] - x0)
                                       .norm();
-        for (int j = 0; j < 3; ++j)
-          joint_stiffness[vertex_gridpoint_[m_.face_vertex[q + j]]] += k * area / 3.0;
+        for (int j = 0; j < 3; ++j) // each corner's share as its contact spring has it
+          joint_stiffness[vertex_gridpoint_[m_.face_vertex[q + j]]] +=
+              k * area * (m_.face_corner_share.empty() ? 1.0 / 3.0 : m_.face_corner_share[f][j]);
       }
     if (s_.time_step <= 0.0 && (s_.dynamic || !s_.density_scaling))
       dt_ = std::min(dt_, zones_->stable_time_step(joint_stiffness));

@@ -40,6 +40,11 @@ public:
   std::vector<unsigned int> face_loop_start{0}; ///< per face, n_faces + 1
   std::vector<unsigned int> face_vertex;    ///< global vertex numbers
   std::vector<Vec3> face_normal;            ///< outward unit normals
+  /// Triangular faces of deformable blocks only (empty otherwise): the
+  /// share of the face's area each of its three corners carries in
+  /// contacts (a third each, but for hexahedral zones the mean of both
+  /// overlays' splits of a boundary quadrilateral; see use_zone_surfaces).
+  std::vector<std::array<double, 3>> face_corner_share;
 
   // Mass properties per block (unit density; multiply by density).
   std::vector<double> volume;                   ///< m^3
