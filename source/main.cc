@@ -272,6 +272,7 @@ double solve_deformable(talus::Scene& scene, talus::BlockModel& model, const std
   MeshReport mesh_report;
   TetMesh mesh = single_block_zones(scene, model, mesh_report);
   const bool from_file = !scene.deformable.mesh_file.empty();
+  check_boundary_selections(scene, model, mesh);
   std::printf(
       "Zones:        %u %s, %u gridpoints, %u boundary faces (%s; largest edge %.4g m, "
       "smallest height %.4g m), zone volume %.9g m^3\n",
@@ -345,7 +346,7 @@ double solve_deformable(talus::Scene& scene, talus::BlockModel& model, const std
     points.add_values(row, solver);
     for (const ReactionReport& r : scene.reactions)
     {
-      const Vec3 f = -solver.support_force(r.region);
+      const Vec3 f = -solver.support_force(r.region, r.held);
       row.insert(row.end(), {f[0], f[1], f[2]});
     }
     EnergyAccount e;
@@ -415,7 +416,7 @@ double solve_deformable(talus::Scene& scene, talus::BlockModel& model, const std
     std::printf("Plastic zones: %u of %u\n", yielding, mesh.n_zones());
   for (const ReactionReport& r : scene.reactions)
   {
-    const Vec3 f = -solver.support_force(r.region);
+    const Vec3 f = -solver.support_force(r.region, r.held);
     std::printf("Reaction of %s on the body: %.9g, %.9g, %.9g N\n", r.name.c_str(), f[0], f[1],
                 f[2]);
   }
@@ -444,6 +445,7 @@ double solve(talus::Scene& scene, talus::BlockModel& model, talus::PvdSeries& se
     parallel = std::make_unique<ParallelEnvironment>(argc, argv);
   }
   BlockSystem system = build_block_system(scene, model);
+  check_boundary_selections(scene, model, system.mesh);
   RigidSolver& solver = *system.solver;
   const TetMesh& mesh = system.mesh;
   DeformableSolver* zones = system.zones.get();
@@ -658,6 +660,7 @@ void check_calculation(talus::Scene& scene, talus::BlockModel& model)
   {
     MeshReport report;
     const TetMesh mesh = single_block_zones(scene, model, report);
+    check_boundary_selections(scene, model, mesh);
     ZoneMaterials materials = zone_materials(scene, model, mesh);
     const DeformableSolver solver(mesh, std::move(materials.materials),
                                   std::move(materials.of_zone), scene.solver,
@@ -669,6 +672,7 @@ void check_calculation(talus::Scene& scene, talus::BlockModel& model)
   }
   resolve_group_names(scene, model);
   const BlockSystem system = build_block_system(scene, model);
+  check_boundary_selections(scene, model, system.mesh);
   if (system.zones)
     std::printf("Zones:        %u in %u deformable blocks, %u gridpoints\n",
                 system.mesh_report.zones, system.mesh_report.blocks, system.mesh_report.gridpoints);

@@ -437,7 +437,10 @@ void ContactSet::build_subcontacts(unsigned int c, const BlockModel& m,
     double nearest = 1e300;
     for (unsigned int f = m.face_start[blk]; f < m.face_start[blk + 1]; ++f)
     {
-      if (sign * m.face_normal[f].dot(n) <= 0.0)
+      // A face seen edge-on (a side of the block, its normal turned a
+      // hair towards the plane by the motion) projects onto a sliver whose
+      // barycentric weights are meaningless: facing means facing.
+      if (sign * m.face_normal[f].dot(n) <= 0.1)
         continue;
       const unsigned int k = m.face_loop_start[f];
       const Point2 p0 = project(m.vertex[m.face_vertex[k]]),
@@ -505,12 +508,14 @@ void ContactSet::build_subcontacts(unsigned int c, const BlockModel& m,
           continue;
         const unsigned int k = m.face_loop_start[f];
         const Vec3& x0 = m.vertex[m.face_vertex[k]];
-        const double third = (m.vertex[m.face_vertex[k + 1]] - x0)
-                                 .cross(m.vertex[m.face_vertex[k + 2]] - x0)
-                                 .norm() /
-                             6.0;
+        const double area =
+            0.5 *
+            (m.vertex[m.face_vertex[k + 1]] - x0).cross(m.vertex[m.face_vertex[k + 2]] - x0).norm();
+        // Each corner the area the zones would take its load from (a third,
+        // or for hexahedral zones the mean of both overlays' splits).
         for (int j = 0; j < 3; ++j)
-          vertex_area[m.face_vertex[k + j] - m.vertex_start[blk]] += third;
+          vertex_area[m.face_vertex[k + j] - m.vertex_start[blk]] +=
+              area * (m.face_corner_share.empty() ? 1.0 / 3.0 : m.face_corner_share[f][j]);
       }
       for (unsigned int vtx = m.vertex_start[blk]; vtx < m.vertex_start[blk + 1]; ++vtx)
       {

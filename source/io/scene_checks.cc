@@ -1,5 +1,6 @@
 #include <talus/base/memory.h>
 #include <talus/io/scene_checks.h>
+#include <talus/solver/rigid_face_loads.h>
 #include <talus/zone/block_mesher.h>
 
 #include <algorithm>
@@ -279,6 +280,59 @@ void resolve_history_blocks(Scene& scene, const BlockModel& model)
     const unsigned int b = found < model.n_blocks() ? found : nearest;
     if (std::find(blocks.begin(), blocks.end(), b) == blocks.end())
       blocks.push_back(b);
+  }
+}
+
+void check_boundary_selections(const Scene& scene, const BlockModel& model, const TetMesh& mesh)
+{
+  // As the solvers select: gridpoints and zone face centroids by their
+  // initial positions, the parts of rigid blocks' faces in the box.
+  const auto holds = [](const Box& box, const double* p)
+  { return box.contains(Vec3(p[0], p[1], p[2])); };
+  for (std::size_t i = 0; i < scene.gridpoint_conditions.size(); ++i)
+  {
+    const Box& box = scene.gridpoint_conditions[i].region;
+    bool any = false;
+    for (unsigned int g = 0; g < mesh.n_gridpoints() && !any; ++g)
+      any = holds(box, &mesh.position[3 * g]);
+    if (!any)
+      throw scene_error(
+          scene, scene.gridpoint_condition_sections[i], "",
+          mesh.n_gridpoints() == 0
+              ? "selects nothing: fixed, velocity and load boundaries act on the gridpoints of "
+                "deformable blocks, and this scene has none"
+              : "selects nothing: no gridpoint of a deformable block lies in its box ('Corner "
+                "min' to 'Corner max')",
+          "a box around gridpoints of deformable blocks (rigid blocks are held with 'Fixed "
+          "groups' of subsection 'Solver', or moved and loaded with 'Load N')");
+  }
+  std::vector<char> rigid(model.n_blocks(), 1);
+  for (unsigned int b = 0; b < model.n_blocks(); ++b)
+    for (const std::string& g : scene.deformable.groups)
+      if (model.group_names[model.group[b]] == g)
+        rigid[b] = 0;
+  const auto face_in = [&](const Box& box, const std::array<unsigned int, 3>& face)
+  {
+    double c[3] = {0, 0, 0};
+    for (unsigned int g : face)
+      for (int d = 0; d < 3; ++d)
+        c[d] += mesh.position[3 * g + d] / 3.0;
+    return holds(box, c);
+  };
+  for (std::size_t i = 0; i < scene.face_pressures.size(); ++i)
+  {
+    const Box& box = scene.face_pressures[i].region;
+    bool any = !face_patches_in(model, rigid, box).empty();
+    for (const auto& face : mesh.face_gridpoint)
+      any = any || face_in(box, face);
+    for (const auto& face : mesh.second_overlay_face_gridpoint)
+      any = any || face_in(box, face);
+    if (!any)
+      throw scene_error(scene, scene.face_pressure_sections[i], "",
+                        "selects nothing: no part of a rigid block's face lies in its box "
+                        "('Corner min' to 'Corner max'), and no boundary face of a deformable "
+                        "block's zones has its centroid in it",
+                        "a box around the faces to load (it may be thin, around a plane face)");
   }
 }
 

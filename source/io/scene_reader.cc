@@ -489,7 +489,8 @@ void declare_boundary(ParameterFile& prm, const std::string& section)
 {
   prm.enter(section);
   declare_box(prm, "Corner min", "Corner max",
-              "the region (gridpoints or face centroids of deformable blocks)");
+              "the region (gridpoints or face centroids of deformable blocks, parts of rigid "
+              "blocks' faces)");
   prm.declare(
       "Condition", "fixed", P::Selection("fixed|velocity|pressure|traction|load"),
       "fixed, velocity, pressure, traction or load",
@@ -506,8 +507,8 @@ void declare_boundary(ParameterFile& prm, const std::string& section)
               "velocity: the gridpoints move at 'Velocity' until this model time, then stay "
               "held where they are (s).");
   prm.declare("Report reaction", "false", P::Bool(), "true or false",
-              "fixed or velocity: the force the held gridpoints take goes to the history and the "
-              "summary (N).");
+              "fixed or velocity: the force the held gridpoints take on this boundary's 'Held "
+              "components' goes to the history and the summary (N).");
   prm.declare("Pressure", "0", P::Double(), "a number (Pa; positive pushes into the block)",
               "Normal pressure on the boundary faces whose centroid lies in the region (Pa).");
   prm.leave();
@@ -518,6 +519,9 @@ void parse_boundary(ParameterFile& prm, const std::string& section, Scene& scene
   prm.enter(section);
   const Box region = read_box(prm, "Corner min", "Corner max");
   const std::string condition = prm.get("Condition");
+  (condition == "pressure" || condition == "traction" ? scene.face_pressure_sections
+                                                      : scene.gridpoint_condition_sections)
+      .push_back(section);
   if (condition == "pressure")
     scene.face_pressures.push_back(FacePressure{region, prm.get_double("Pressure"), Vec3::Zero()});
   else if (condition == "traction")
@@ -545,7 +549,7 @@ void parse_boundary(ParameterFile& prm, const std::string& section, Scene& scene
     }
     scene.gridpoint_conditions.push_back(c);
     if (prm.get_bool("Report reaction"))
-      scene.reactions.push_back(ReactionReport{section, region});
+      scene.reactions.push_back(ReactionReport{section, region, {c.held[0], c.held[1], c.held[2]}});
   }
   if (prm.get_bool("Report reaction") && condition != "fixed" && condition != "velocity")
     throw prm.error("Report reaction", "needs held gridpoints",

@@ -109,6 +109,7 @@ BlockSystem build_block_system(const Scene& scene, BlockModel& model)
     settings.initial_stress = &scene.initial_stress; // the joints there at the start carry it
   s.solver = std::make_unique<RigidSolver>(model, scene.density, settings, s.zones.get(),
                                            s.vertex_gridpoint);
+  s.solver->set_face_loads(scene.face_pressures); // rigid blocks' faces; zones have theirs
   return s;
 }
 

@@ -1173,7 +1173,7 @@ void DeformableSolver::hold_gridpoint(unsigned int g, const Vec3& v)
   }
 }
 
-Vec3 DeformableSolver::support_force(const Box& region) const
+Vec3 DeformableSolver::support_force(const Box& region, const bool held[3]) const
 {
   // The unbalanced force of the last step at held gridpoints is what the
   // support must supply, reversed.
@@ -1182,7 +1182,7 @@ Vec3 DeformableSolver::support_force(const Box& region) const
   for (unsigned int g = 0; g < mesh_.n_gridpoints(); ++g)
     if (held_[g] != 0 && inside(region, &mesh_.position[3 * g]))
       for (int d = 0; d < 3; ++d)
-        if (held_[g] & (1u << d))
+        if (held[d] && (held_[g] & (1u << d)))
           sum[d] += f[3 * g + d];
   return sum;
 }

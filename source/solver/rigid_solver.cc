@@ -147,8 +147,9 @@ RigidSolver::RigidSolver(BlockModel& blocks, double density, const SolverSetting
         const double area = 0.5 * (m_.vertex[m_.face_vertex[q + 1]] - x0)
                                       .cross(m_.vertex[m_.face_vertex[q + 2]] - x0)
                                       .norm();
-        for (int j = 0; j < 3; ++j)
-          joint_stiffness[vertex_gridpoint_[m_.face_vertex[q + j]]] += k * area / 3.0;
+        for (int j = 0; j < 3; ++j) // each corner's share as its contact spring has it
+          joint_stiffness[vertex_gridpoint_[m_.face_vertex[q + j]]] +=
+              k * area * (m_.face_corner_share.empty() ? 1.0 / 3.0 : m_.face_corner_share[f][j]);
       }
     if (s_.time_step <= 0.0 && (s_.dynamic || !s_.density_scaling))
       dt_ = std::min(dt_, zones_->stable_time_step(joint_stiffness));
@@ -544,10 +545,15 @@ void RigidSolver::step()
   }
   else
     contact_forces();
+  if (!face_loads_.empty())
+    face_loads_.add(m_, force, moment, velocity, spin);
   timing_.seconds_forces += seconds_since(t0);
   t0 = std::chrono::steady_clock::now();
   check_finite_forces();
   move_blocks();
+  if (!face_loads_.empty()) // their work is the boundaries', as that of 'Load N'
+    face_loads_.account(fixed, velocity, spin, step_ == 0 ? 0.5 * dt_ : dt_, dt_, boundary_work_,
+                        kinetic_whole_step_);
   if (zones_ != nullptr)
   {
     zones_->move();

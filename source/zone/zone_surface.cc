@@ -1,6 +1,7 @@
 #include <talus/zone/zone_surface.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <map>
 
@@ -25,6 +26,110 @@ int face_origin_of_triangle(const BlockModel& m, unsigned int b, const Vec3& nor
   }
   return 0;
 }
+
+double triangle_area(const TetMesh& mesh, unsigned int a, unsigned int b, unsigned int c)
+{
+  const auto P = [&](unsigned int g)
+  { return Vec3(mesh.position[3 * g], mesh.position[3 * g + 1], mesh.position[3 * g + 2]); };
+  return 0.5 * (P(b) - P(a)).cross(P(c) - P(a)).norm();
+}
+
+/// Per face of the new block model (`mesh_face_of`: its boundary face of
+/// the mesh, for deformable blocks), the share of its area that each corner
+/// carries in contacts. A contact spring at a gridpoint must stand for the
+/// area whose load the zones would take there: a third of each triangle of
+/// 4-node zones. A hexahedral zone is two overlays, each taking half a
+/// load, and the overlays split a boundary quadrilateral p q r s along
+/// opposite diagonals (p-r: triangles pqr, prs; q-s: pqs, qrs), so a corner
+/// stands for half the thirds of both splits: a quarter of a square each,
+/// where the first overlay's triangles alone (the block's faces) would
+/// give the diagonal's corners a third and the others a sixth. Those
+/// areas are put on the first overlay's triangles: q and s wholly on the
+/// triangle that holds them, p and r on both in proportion to area.
+std::vector<std::array<double, 3>>
+contact_corner_shares(const TetMesh& mesh, unsigned int n_faces,
+                      const std::map<unsigned int, unsigned int>& mesh_face_of)
+{
+  std::vector<std::array<double, 3>> share(n_faces, {{1.0 / 3.0, 1.0 / 3.0, 1.0 / 3.0}});
+  if (mesh.quadratic())
+  {
+    // 10-node zones: a uniform load on a 6-node face goes wholly to its
+    // midpoints, a third of the face each; of the face's four
+    // sub-triangles, a corner one gives half its area to each of its two
+    // midpoints and nothing to the zone vertex, the middle one a third to
+    // each (as the face loads of the deformable solver).
+    std::vector<char> is_vertex(mesh.n_gridpoints(), 0);
+    for (const auto& t : mesh.zone_gridpoint)
+      for (unsigned int g : t)
+        is_vertex[g] = 1;
+    for (const auto& [face, f] : mesh_face_of)
+      for (int j = 0; j < 3; ++j)
+        if (is_vertex[mesh.face_gridpoint[f][j]])
+        {
+          share[face] = {{0.5, 0.5, 0.5}};
+          share[face][j] = 0.0;
+        }
+    return share;
+  }
+  if (mesh.n_hexes() == 0)
+    return share;
+  // The two first-overlay triangles of each boundary quadrilateral: those
+  // of one hexahedron with the same normal.
+  std::map<std::pair<unsigned int, std::array<long, 3>>, std::vector<unsigned int>> quads;
+  for (const auto& [face, f] : mesh_face_of)
+  {
+    const unsigned int z = mesh.face_zone[f];
+    const auto after = std::upper_bound(mesh.hex_first_zone.begin(), mesh.hex_first_zone.end(), z);
+    if (after == mesh.hex_first_zone.begin() ||
+        z >= *(after - 1) + TetMesh::tets_per_hex) // not a hexahedral zone
+      continue;
+    const auto& t = mesh.face_gridpoint[f];
+    const auto P = [&](unsigned int g)
+    { return Vec3(mesh.position[3 * g], mesh.position[3 * g + 1], mesh.position[3 * g + 2]); };
+    const Vec3 n = (P(t[1]) - P(t[0])).cross(P(t[2]) - P(t[0])).normalized();
+    const std::array<long, 3> key{
+        {std::lround(1e6 * n[0]), std::lround(1e6 * n[1]), std::lround(1e6 * n[2])}};
+    quads[{static_cast<unsigned int>(after - mesh.hex_first_zone.begin() - 1), key}].push_back(
+        face);
+  }
+  for (const auto& [key, faces] : quads)
+  {
+    if (faces.size() != 2)
+      continue;
+    const auto& t1 = mesh.face_gridpoint[mesh_face_of.at(faces[0])];
+    const auto& t2 = mesh.face_gridpoint[mesh_face_of.at(faces[1])];
+    // q: the corner of t1 not in t2; s: that of t2 not in t1.
+    int iq = -1, is = -1;
+    for (int j = 0; j < 3; ++j)
+    {
+      if (std::find(t2.begin(), t2.end(), t1[j]) == t2.end())
+        iq = j;
+      if (std::find(t1.begin(), t1.end(), t2[j]) == t1.end())
+        is = j;
+    }
+    if (iq < 0 || is < 0)
+      continue;
+    const unsigned int q = t1[iq], s = t2[is], p = t1[(iq + 1) % 3], r = t1[(iq + 2) % 3];
+    const double a1 = triangle_area(mesh, p, q, r), a2 = triangle_area(mesh, p, r, s);
+    const double a3 = triangle_area(mesh, p, q, s), a4 = triangle_area(mesh, q, r, s);
+    const auto corner = [](double mine, double other_split)
+    { return 0.5 * (mine + other_split) / 3.0; };
+    const double area_p = corner(a1 + a2, a3), area_r = corner(a1 + a2, a4);
+    const double area_q = corner(a1, a3 + a4), area_s = corner(a2, a3 + a4);
+    for (int k = 0; k < 2; ++k)
+    {
+      const auto& t = k == 0 ? t1 : t2;
+      const double a = k == 0 ? a1 : a2;
+      std::array<double, 3>& w = share[faces[k]];
+      for (int j = 0; j < 3; ++j)
+        w[j] = t[j] == p   ? area_p / (a1 + a2)
+               : t[j] == r ? area_r / (a1 + a2)
+               : t[j] == q ? area_q / a
+                           : area_s / a;
+    }
+  }
+  return share;
+}
 } // namespace
 
 std::vector<int> use_zone_surfaces(BlockModel& m, const TetMesh& mesh)
@@ -36,6 +141,7 @@ std::vector<int> use_zone_surfaces(BlockModel& m, const TetMesh& mesh)
 
   BlockModel out;
   out.group_names = m.group_names;
+  std::map<unsigned int, unsigned int> mesh_face_of; // face of `out` -> boundary face of the mesh
   std::vector<int> vertex_gridpoint;
   for (unsigned int b = 0; b < m.n_blocks(); ++b)
   {
@@ -63,6 +169,7 @@ std::vector<int> use_zone_surfaces(BlockModel& m, const TetMesh& mesh)
       std::map<unsigned int, unsigned int> local; // gridpoint -> vertex
       for (unsigned int f : it->second)
       {
+        mesh_face_of[out.n_faces()] = f;
         for (unsigned int g : mesh.face_gridpoint[f])
         {
           auto [pos, fresh] = local.emplace(g, out.n_vertices());
@@ -100,6 +207,7 @@ std::vector<int> use_zone_surfaces(BlockModel& m, const TetMesh& mesh)
     out.inertia.push_back(m.inertia[b]);
     out.group.push_back(m.group[b]);
   }
+  out.face_corner_share = contact_corner_shares(mesh, out.n_faces(), mesh_face_of);
   m = std::move(out);
   return vertex_gridpoint;
 }

@@ -50,7 +50,8 @@ int main(int argc, char** argv)
       if (std::abs(s.mesh.position[3 * g + 2]) < 1e-9 && s.mesh.position[3 * g] > 1.0 + 1e-9)
         first_free = std::min(first_free, s.mesh.position[3 * g]);
     const double thickness = s.scene.brick.hi.y() - s.scene.brick.lo.y();
-    const double force = s.solver->support_force(s.scene.reactions[0].region)[2]; // N, upward
+    const talus::ReactionReport& reaction = s.scene.reactions[0];
+    const double force = s.solver->support_force(reaction.region, reaction.held)[2]; // N, upward
     const double pressure = force / (0.5 * (1.0 + first_free) * thickness);
     std::printf("%s, %u zones: %s\n", mixed ? "nodal mixed discretization" : "plain 4-node zones",
                 s.mesh_report.zones,

@@ -65,11 +65,14 @@ struct DeformableSpec
 };
 
 /// A 'Boundary N' of held gridpoints whose reaction (the force the
-/// support takes, N) goes to the history and the summary.
+/// support takes, N) goes to the history and the summary: on the
+/// components this boundary holds only (a roller of another boundary in
+/// its box takes the other components).
 struct ReactionReport
 {
   std::string name; ///< "Boundary N"
   Box region;
+  bool held[3] = {true, true, true}; ///< its 'Held components'
 };
 
 struct OutputSettings
@@ -108,6 +111,8 @@ struct Scene
   std::vector<GridpointCondition> gridpoint_conditions; ///< from 'Boundary N' (velocity)
   std::vector<FacePressure> face_pressures;             ///< from 'Boundary N' (pressure)
   std::vector<ReactionReport> reactions;                ///< 'Boundary N' with 'Report reaction'
+  /// "Boundary N" of each gridpoint condition and of each face pressure.
+  std::vector<std::string> gridpoint_condition_sections, face_pressure_sections;
   bool has_initial_stress = false;
   InitialStress initial_stress;
   /// The parameters as used, every entry with its value (defaults included).

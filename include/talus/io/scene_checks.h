@@ -3,6 +3,7 @@
 #include <talus/base/exceptions.h>
 #include <talus/io/scene.h>
 #include <talus/model/build_blocks.h>
+#include <talus/zone/tet_mesh.h>
 
 #include <string>
 
@@ -50,5 +51,13 @@ void check_built_model(const Scene& scene, const BlockModel& model, const BuildR
 /// `scene.history_block_points` (the block with the nearest centroid when
 /// no block contains it), once each, after the numbered ones.
 void resolve_history_blocks(Scene& scene, const BlockModel& model);
+
+/// Once the deformable blocks are meshed (`mesh`: their zones, empty when
+/// every block is rigid), before the run: refuses a 'Boundary N' that
+/// selects nothing - a fixed, velocity or load boundary whose box holds no
+/// gridpoint, a pressure or traction boundary whose box holds the centroid
+/// of no boundary face of the zones and no part of a rigid block's face -
+/// naming it.
+void check_boundary_selections(const Scene& scene, const BlockModel& model, const TetMesh& mesh);
 
 } // namespace talus

@@ -47,6 +47,11 @@ public:
   std::vector<int> face_origin;
   static int joint_set_origin(std::size_t i) { return static_cast<int>(i) + 1; }
   static int joint_origin(std::size_t j) { return -static_cast<int>(j) - 1; }
+  /// Triangular faces of deformable blocks only (empty otherwise): the
+  /// share of the face's area each of its three corners carries in
+  /// contacts (a third each, but for hexahedral zones the mean of both
+  /// overlays' splits of a boundary quadrilateral; see use_zone_surfaces).
+  std::vector<std::array<double, 3>> face_corner_share;
 
   // Mass properties per block (unit density; multiply by density).
   std::vector<double> volume;                   ///< m^3

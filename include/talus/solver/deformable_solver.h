@@ -2,6 +2,7 @@
 
 #include <talus/geometry/plane.h>
 #include <talus/model/initial_stress.h>
+#include <talus/solver/rigid_face_loads.h> // FacePressure
 #include <talus/solver/rigid_solver.h>
 #include <talus/zone/implicit_elastic.h>
 #include <talus/zone/stress_batch.h>
@@ -38,16 +39,6 @@ struct GridpointCondition
   /// components stay where they are (a displacement applied, then held
   /// while the run settles to a static answer).
   double velocity_until = std::numeric_limits<double>::infinity();
-};
-
-/// A load on the boundary faces whose centroid lies in a region: a normal
-/// pressure (Pa, positive pushing into the block) and a traction (Pa, a
-/// force per unit area in global axes).
-struct FacePressure
-{
-  Box region;
-  double pressure = 0.0;
-  Vec3 traction = Vec3::Zero();
 };
 
 /// The explicit cycle of deformable blocks: zone forces from the stresses
@@ -187,7 +178,10 @@ public:
 
   /// Reaction: the sum of the internal forces on the gridpoints of a region
   /// whose motion is held (N); equal and opposite to what the support takes.
-  Vec3 support_force(const Box& region) const;
+  /// Only the components `held` counts (a boundary's own 'Held components';
+  /// another boundary's roller in the region holds the others); a component
+  /// not held is zero.
+  Vec3 support_force(const Box& region, const bool held[3]) const;
 
   /// Checkpoints: gridpoint positions, velocities, forces and inertial
   /// masses (density-scaled), zone stresses and plastic states, damping,

@@ -7,6 +7,7 @@
 #include <talus/model/initial_stress.h>
 #include <talus/solver/damper.h>
 #include <talus/solver/energy_account.h>
+#include <talus/solver/rigid_face_loads.h>
 
 #include <Eigen/Core>
 
@@ -88,6 +89,16 @@ public:
   /// solver moves them, and their contacts act on their gridpoints.
   RigidSolver(BlockModel& blocks, double density, const SolverSettings& settings,
               DeformableSolver* zones = nullptr, std::vector<int> vertex_gridpoint = {});
+
+  /// Pressures and tractions of 'Boundary N' on the faces of the rigid
+  /// blocks (rigid_face_loads.h), from the faces as they are now.
+  void set_face_loads(const std::vector<FacePressure>& loads)
+  {
+    std::vector<char> rigid(m_.n_blocks());
+    for (unsigned int b = 0; b < m_.n_blocks(); ++b)
+      rigid[b] = !is_deformable_[b];
+    face_loads_ = RigidFaceLoads(m_, rigid, loads);
+  }
 
   /// Stable time step of eq. 87 for this model (s).
   double stable_time_step() const;
@@ -201,6 +212,7 @@ private:
   /// with that move (m, eq. 1's measure).
   std::vector<std::pair<unsigned int, double>> too_fast_;
   bool warned_fast_ = false; ///< the warning of check_reach() was given
+  RigidFaceLoads face_loads_; ///< pressures and tractions on rigid blocks' faces
   unsigned long step_ = 0;
   unsigned long last_output_ = 0; ///< step of the last output in run()
   bool resumed_ = false;          ///< state loaded from a checkpoint
