@@ -76,7 +76,7 @@ std::vector<std::array<unsigned int, 4>> shown_tetrahedra(const TetMesh& mesh)
       for (int k = 0; k < 6; ++k)
         node[4 + k] = mesh.zone_edge_gridpoint[z][k];
       for (const auto& sub : tet10_subcell)
-        cells.push_back({node[sub[0]], node[sub[1]], node[sub[2]], node[sub[3]]});
+        cells.push_back({{node[sub[0]], node[sub[1]], node[sub[2]], node[sub[3]]}});
     }
     return cells;
   }

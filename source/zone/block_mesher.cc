@@ -98,9 +98,9 @@ void mesh_one_block(const BlockModel& m, unsigned int b, double edge,
     const unsigned int first = m.face_loop_start[f], n = m.face_loop_start[f + 1] - first;
     for (unsigned int k = 1; k + 1 < n; ++k)
     {
-      std::array<unsigned int, 4> t{m.face_vertex[first] - m.vertex_start[b],
+      std::array<unsigned int, 4> t{{m.face_vertex[first] - m.vertex_start[b],
                                     m.face_vertex[first + k] - m.vertex_start[b],
-                                    m.face_vertex[first + k + 1] - m.vertex_start[b], centre};
+                                    m.face_vertex[first + k + 1] - m.vertex_start[b], centre}};
       const auto P = [&](unsigned int i)
       { return Vec3(vertices[t[i]][0], vertices[t[i]][1], vertices[t[i]][2]); };
       if (signed_volume(P(0), P(1), P(2), P(3)) < 0.0)
@@ -133,8 +133,8 @@ void check_one_closed_body(const TetMesh& mesh, const std::string& path)
   for (unsigned int z = 0; z < mesh.n_zones(); ++z)
     for (const auto& f : face_of)
     {
-      std::array<unsigned int, 3> key{mesh.zone_gridpoint[z][f[0]], mesh.zone_gridpoint[z][f[1]],
-                                      mesh.zone_gridpoint[z][f[2]]};
+      std::array<unsigned int, 3> key{{mesh.zone_gridpoint[z][f[0]], mesh.zone_gridpoint[z][f[1]],
+                                      mesh.zone_gridpoint[z][f[2]]}};
       std::sort(key.begin(), key.end());
       if (key[0] == key[1] || key[1] == key[2])
         throw InputError(path + ": tetrahedron " + std::to_string(z + 1) + " uses one node twice");
@@ -230,9 +230,9 @@ void append_tetrahedra(TetMesh& mesh, const dealii::Triangulation<3>& tria, unsi
   for (std::size_t z = first_zone; z < mesh.zone_gridpoint.size(); ++z)
     for (int f = 0; f < 4; ++f)
     {
-      std::array<unsigned int, 3> key{mesh.zone_gridpoint[z][face_of[f][0]],
+      std::array<unsigned int, 3> key{{mesh.zone_gridpoint[z][face_of[f][0]],
                                       mesh.zone_gridpoint[z][face_of[f][1]],
-                                      mesh.zone_gridpoint[z][face_of[f][2]]};
+                                      mesh.zone_gridpoint[z][face_of[f][2]]}};
       std::sort(key.begin(), key.end());
       auto [it, fresh] = seen.emplace(key, std::make_pair(static_cast<unsigned int>(z), f));
       if (!fresh)
@@ -242,8 +242,8 @@ void append_tetrahedra(TetMesh& mesh, const dealii::Triangulation<3>& tria, unsi
   {
     const auto& t = mesh.zone_gridpoint[where.first];
     // Face f of the zone is opposite its vertex f: turn it to face away.
-    std::array<unsigned int, 3> face{t[face_of[where.second][0]], t[face_of[where.second][1]],
-                                     t[face_of[where.second][2]]};
+    std::array<unsigned int, 3> face{{t[face_of[where.second][0]], t[face_of[where.second][1]],
+                                     t[face_of[where.second][2]]}};
     const Vec3 n = (P(face[1]) - P(face[0])).cross(P(face[2]) - P(face[0]));
     if (n.dot(P(face[0]) - P(t[where.second])) < 0.0)
       std::swap(face[1], face[2]);
@@ -367,7 +367,7 @@ TetMesh mesh_in_generator_order(const BlockModel& m, const std::vector<unsigned 
                          std::to_string(m.face_start[b + 1] - m.face_start[b]) +
                          " faces) is not one; allowed: tet4 for blocks of other shapes");
       const std::vector<unsigned int> n = brick_divisions(box, edge_length);
-      append_hex_mixed_brick(mesh, box, {n[0], n[1], n[2]}, b);
+      append_hex_mixed_brick(mesh, box, {{n[0], n[1], n[2]}}, b);
       continue;
     }
     dealii::Triangulation<3> one;
@@ -424,9 +424,9 @@ double count_zones(const BlockModel& m, const std::vector<unsigned int>& which, 
       const unsigned int first = m.face_loop_start[f], n = m.face_loop_start[f + 1] - first;
       for (unsigned int k = 1; k + 1 < n; ++k)
       {
-        const std::array<Vec3, 4> t{m.vertex[m.face_vertex[first]],
+        const std::array<Vec3, 4> t{{m.vertex[m.face_vertex[first]],
                                     m.vertex[m.face_vertex[first + k]],
-                                    m.vertex[m.face_vertex[first + k + 1]], c};
+                                    m.vertex[m.face_vertex[first + k + 1]], c}};
         for (int i = 0; i < 4; ++i)
           for (int j = i + 1; j < 4; ++j)
             longest = std::max(longest, (t[i] - t[j]).norm());

@@ -32,9 +32,9 @@ void boundary_faces(const TetMesh& mesh, unsigned int first, unsigned int last, 
     for (unsigned int z = hex + offset; z < hex + offset + 5; ++z)
       for (int f = 0; f < 4; ++f)
       {
-        std::array<unsigned int, 3> key{mesh.zone_gridpoint[z][face_of[f][0]],
+        std::array<unsigned int, 3> key{{mesh.zone_gridpoint[z][face_of[f][0]],
                                         mesh.zone_gridpoint[z][face_of[f][1]],
-                                        mesh.zone_gridpoint[z][face_of[f][2]]};
+                                        mesh.zone_gridpoint[z][face_of[f][2]]}};
         std::sort(key.begin(), key.end());
         auto [it, fresh] = seen.emplace(key, std::make_pair(z, f));
         if (!fresh)
@@ -43,8 +43,8 @@ void boundary_faces(const TetMesh& mesh, unsigned int first, unsigned int last, 
   for (const auto& [key, where] : seen)
   {
     const auto& t = mesh.zone_gridpoint[where.first];
-    std::array<unsigned int, 3> face{t[face_of[where.second][0]], t[face_of[where.second][1]],
-                                     t[face_of[where.second][2]]};
+    std::array<unsigned int, 3> face{{t[face_of[where.second][0]], t[face_of[where.second][1]],
+                                     t[face_of[where.second][2]]}};
     const Vec3 n = (P(face[1]) - P(face[0])).cross(P(face[2]) - P(face[0]));
     if (n.dot(P(face[0]) - P(t[where.second])) < 0.0)
       std::swap(face[1], face[2]);
@@ -93,8 +93,8 @@ void append_hex_mixed_brick(TetMesh& mesh, const Box& box, const std::array<unsi
              {corner0_even ? even_split : odd_split, corner0_even ? odd_split : even_split})
           for (int t = 0; t < 5; ++t)
           {
-            std::array<unsigned int, 4> tet{corner[split[t][0]], corner[split[t][1]],
-                                            corner[split[t][2]], corner[split[t][3]]};
+            std::array<unsigned int, 4> tet{{corner[split[t][0]], corner[split[t][1]],
+                                            corner[split[t][2]], corner[split[t][3]]}};
             if ((P(tet[1]) - P(tet[0])).dot((P(tet[2]) - P(tet[0])).cross(P(tet[3]) - P(tet[0]))) <
                 0.0)
               std::swap(tet[1], tet[2]);
