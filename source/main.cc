@@ -263,6 +263,19 @@ talus::TetMesh single_block_zones(const talus::Scene& scene, const talus::BlockM
   return mesh;
 }
 
+/// PETSc and MPI for the zones of a scene with deformable blocks (none
+/// without): talus is serial, so they are started for this process alone.
+std::unique_ptr<talus::ParallelEnvironment> zone_environment(const talus::Scene& scene)
+{
+  if (scene.deformable.groups.empty())
+    return nullptr;
+  int argc = 1;
+  char name[] = "talus";
+  char* args[] = {name, nullptr};
+  char** argv = args;
+  return std::make_unique<talus::ParallelEnvironment>(argc, argv);
+}
+
 /// Runs a scene of deformable blocks: meshes them, then the explicit zone
 /// cycle with output and histories; returns the unbalanced-force ratio
 /// reached.
@@ -286,11 +299,7 @@ double solve_deformable(talus::Scene& scene, talus::BlockModel& model, const std
     std::printf("Hexahedra:    %u (mixed discretization: the tetrahedra are their two overlays of "
                 "five)\n",
                 mesh_report.hexes);
-  int argc = 1;
-  char name[] = "talus";
-  char* args[] = {name, nullptr};
-  char** argv = args;
-  ParallelEnvironment parallel(argc, argv);
+  const std::unique_ptr<ParallelEnvironment> parallel = zone_environment(scene);
   ZoneMaterials materials = zone_materials(scene, model, mesh);
   DeformableSolver solver(mesh, std::move(materials.materials), std::move(materials.of_zone),
                           scene.solver, scene.gridpoint_conditions, scene.face_pressures,
@@ -435,15 +444,7 @@ double solve(talus::Scene& scene, talus::BlockModel& model, talus::PvdSeries& se
   resolve_group_names(scene, model);
   // Deformable blocks among rigid ones: their zones, and their surfaces as
   // their shapes for the contacts.
-  std::unique_ptr<ParallelEnvironment> parallel;
-  if (!scene.deformable.groups.empty())
-  {
-    int argc = 1;
-    char name[] = "talus";
-    char* args[] = {name, nullptr};
-    char** argv = args;
-    parallel = std::make_unique<ParallelEnvironment>(argc, argv);
-  }
+  const std::unique_ptr<ParallelEnvironment> parallel = zone_environment(scene);
   BlockSystem system = build_block_system(scene, model);
   check_boundary_selections(scene, model, system.mesh);
   RigidSolver& solver = *system.solver;
@@ -610,8 +611,8 @@ void print_history_blocks(const talus::Scene& scene, const talus::BlockModel& mo
   {
     const std::string& group = model.group_names[model.group[b]];
     const talus::Vec3& c = model.centroid[b];
-    std::printf("History block %u: group %s, centroid %.6g, %.6g, %.6g m\n", b, group.c_str(),
-                c[0], c[1], c[2]);
+    std::printf("History block %u: group %s, centroid %.6g, %.6g, %.6g m\n", b, group.c_str(), c[0],
+                c[1], c[2]);
     if (std::find(scene.fixed_groups.begin(), scene.fixed_groups.end(), group) !=
         scene.fixed_groups.end())
       std::printf("Warning: history block %u is in the fixed group %s: its displacement and "
@@ -647,15 +648,7 @@ void check_calculation(talus::Scene& scene, talus::BlockModel& model)
   using namespace talus;
   if (scene.solver.steps == 0)
     return;
-  std::unique_ptr<ParallelEnvironment> parallel;
-  if (!scene.deformable.groups.empty())
-  {
-    int argc = 1;
-    char name[] = "talus";
-    char* args[] = {name, nullptr};
-    char** argv = args;
-    parallel = std::make_unique<ParallelEnvironment>(argc, argv);
-  }
+  const std::unique_ptr<ParallelEnvironment> parallel = zone_environment(scene);
   if (!scene.deformable.groups.empty() && model.n_blocks() == 1)
   {
     MeshReport report;

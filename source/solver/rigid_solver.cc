@@ -18,6 +18,23 @@ namespace talus
 
 namespace
 {
+/// Area of block b's largest face (m^2): what bounds the stiffness of its
+/// contacts (eq. 87) and, over the volume, its thickness.
+double largest_face_area(const BlockModel& m, unsigned int b)
+{
+  double area = 0.0;
+  for (unsigned int f = m.face_start[b]; f < m.face_start[b + 1]; ++f)
+  {
+    Vec3 twice = Vec3::Zero();
+    const unsigned int first = m.face_loop_start[f], n = m.face_loop_start[f + 1] - first;
+    for (unsigned int j = 0; j < n; ++j)
+      twice +=
+          m.vertex[m.face_vertex[first + j]].cross(m.vertex[m.face_vertex[first + (j + 1) % n]]);
+    area = std::max(area, 0.5 * twice.norm());
+  }
+  return area;
+}
+
 double seconds_since(std::chrono::steady_clock::time_point t)
 {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - t).count();
@@ -212,17 +229,8 @@ double RigidSolver::stable_time_step() const
     {
       if (is_deformable_[b] || (pass == 0 && fixed[b]))
         continue; // a deformable block's gridpoints have their own limit (eq. 84)
-      const ConvexPolyhedron p = m_.polyhedron(b);
-      double area = 0.0;
-      for (unsigned int f = 0; f < p.n_faces(); ++f)
-      {
-        Vec3 twice = Vec3::Zero();
-        for (unsigned int j = 0; j < p.face_size(f); ++j)
-          twice += p.vertex(p.face_vertex(f, j))
-                       .cross(p.vertex(p.face_vertex(f, (j + 1) % p.face_size(f))));
-        area = std::max(area, 0.5 * twice.norm());
-      }
-      smallest = std::min(smallest, 2.0 * std::sqrt(inertial_mass[b] / (k * area)));
+      smallest =
+          std::min(smallest, 2.0 * std::sqrt(inertial_mass[b] / (k * largest_face_area(m_, b))));
     }
   if (smallest == 1e300)
     return 1e300; // no rigid block
@@ -595,20 +603,7 @@ void RigidSolver::check_reach()
   // the tolerance) meets the other's envelope.
   const double tol = s_.contact.tolerance;
   // Thickness of a block: its volume over its largest face (exact for a box).
-  const auto thickness = [&](unsigned int b)
-  {
-    const ConvexPolyhedron p = m_.polyhedron(b);
-    double area = 0.0;
-    for (unsigned int f = 0; f < p.n_faces(); ++f)
-    {
-      Vec3 twice = Vec3::Zero();
-      for (unsigned int j = 0; j < p.face_size(f); ++j)
-        twice += p.vertex(p.face_vertex(f, j))
-                     .cross(p.vertex(p.face_vertex(f, (j + 1) % p.face_size(f))));
-      area = std::max(area, 0.5 * twice.norm());
-    }
-    return m_.volume[b] / area;
-  };
+  const auto thickness = [&](unsigned int b) { return m_.volume[b] / largest_face_area(m_, b); };
   for (const auto& [b, du] : too_fast_)
   {
     Box swept = envelopes_[b];
@@ -793,16 +788,7 @@ void RigidSolver::watch_energy_growth()
 std::string RigidSolver::likely_cause(unsigned int b) const
 {
   // Eq. 87 for this block alone, with its largest face.
-  double area = 0.0;
-  const ConvexPolyhedron p = m_.polyhedron(b);
-  for (unsigned int f = 0; f < p.n_faces(); ++f)
-  {
-    Vec3 twice = Vec3::Zero();
-    for (unsigned int k = 0; k < p.face_size(f); ++k)
-      twice +=
-          p.vertex(p.face_vertex(f, k)).cross(p.vertex(p.face_vertex(f, (k + 1) % p.face_size(f))));
-    area = std::max(area, 0.5 * twice.norm());
-  }
+  const double area = largest_face_area(m_, b);
   const double k = std::max(s_.joint.normal_stiffness, s_.joint.shear_stiffness);
   const double limit = 2.0 * std::sqrt(inertial_mass[b] / (k * area));
   const std::string numbers =
