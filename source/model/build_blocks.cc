@@ -131,8 +131,14 @@ BlockModel build_blocks(const Scene& scene, BuildReport& report)
       explain_invalid_block(scene, e);
     }
     const unsigned int b = model.add_block(blocks[i], default_group);
+    // A centroid on a group box's face counts as inside, within a tolerance
+    // far above round-off: whether it lies a hair inside or outside would
+    // otherwise follow how the CPU rounds (a block centred on x = 0 and a
+    // box from x = 0 joined the group or not with and without fused
+    // multiply-adds).
+    const double on_face = 1e-9 * scene.brick.diagonal();
     for (std::size_t r = 0; r < scene.groups.size(); ++r)
-      if (scene.groups[r].region.contains(model.centroid[b]))
+      if (scene.groups[r].region.contains(model.centroid[b], on_face))
       {
         model.group[b] = group_of_region[r];
         break;
