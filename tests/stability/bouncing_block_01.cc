@@ -25,31 +25,7 @@ namespace
 {
 std::string drop_scene(double fraction)
 {
-  return "subsection Model\n"
-         "  set Brick min = 0, 0, 0\n"
-         "  set Brick max = 1, 1, 2.05\n"
-         "end\n"
-         "subsection Material\n"
-         "  set Density = 2650\n"
-         "end\n"
-         "subsection Joint 1\n"
-         "  set Dip = 0\n"
-         "  set Origin = 0, 0, 1\n"
-         "end\n"
-         "subsection Excavation 1\n"
-         "  set Corner min = -1, -1, 1\n"
-         "  set Corner max = 2, 2, 1.05\n"
-         "end\n"
-         "subsection Group 1\n"
-         "  set Name = floor\n"
-         "  set Corner min = 0, 0, 0\n"
-         "  set Corner max = 1, 1, 1\n"
-         "end\n"
-         "subsection Group 2\n"
-         "  set Name = cube\n"
-         "  set Corner min = 0, 0, 1.05\n"
-         "  set Corner max = 1, 1, 2.05\n"
-         "end\n"
+  return cube_above_floor(0.05) +
          // A flat landing is unstable to the least tilt: a cube that rocks
          // through the contact leaves it turning (the tilt grows about 200
          // times a bounce), and its rebound heights are no longer those of

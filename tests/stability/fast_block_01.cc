@@ -21,31 +21,7 @@ namespace
 {
 std::string thrown(const std::string& velocity)
 {
-  return "subsection Model\n"
-         "  set Brick min = 0, 0, 0\n"
-         "  set Brick max = 1, 1, 3.5\n"
-         "end\n"
-         "subsection Material\n"
-         "  set Density = 2650\n"
-         "end\n"
-         "subsection Joint 1\n"
-         "  set Dip = 0\n"
-         "  set Origin = 0, 0, 1\n"
-         "end\n"
-         "subsection Excavation 1\n"
-         "  set Corner min = -1, -1, 1\n"
-         "  set Corner max = 2, 2, 2.5\n"
-         "end\n"
-         "subsection Group 1\n"
-         "  set Name = floor\n"
-         "  set Corner min = 0, 0, 0\n"
-         "  set Corner max = 1, 1, 1\n"
-         "end\n"
-         "subsection Group 2\n"
-         "  set Name = cube\n"
-         "  set Corner min = 0, 0, 2.5\n"
-         "  set Corner max = 1, 1, 3.5\n"
-         "end\n"
+  return cube_above_floor(1.5) +
          "subsection Load 1\n"
          "  set Group = cube\n"
          "  set Initial velocity = " +

@@ -9,6 +9,7 @@
 
 #include <cstdio>
 #include <memory>
+#include <sstream>
 #include <string>
 
 struct TextScene
@@ -30,3 +31,47 @@ struct TextScene
     solver = std::make_unique<talus::RigidSolver>(model, scene.density, scene.solver);
   }
 };
+
+/// The first subsections of a scene of a 1 m cube (group `cube`) held
+/// `gap` m above a fixed 1 m cube (group `floor`): a brick
+/// cut by a horizontal joint at z = 1 with the layer [1, 1 + gap]
+/// excavated; density 2650 kg/m^3. A test appends its loads and solver.
+inline std::string cube_above_floor(double gap)
+{
+  std::ostringstream top, cube_bottom;
+  top << 2.0 + gap;
+  cube_bottom << 1.0 + gap;
+  return "subsection Model\n"
+         "  set Brick min = 0, 0, 0\n"
+         "  set Brick max = 1, 1, " +
+         top.str() +
+         "\n"
+         "end\n"
+         "subsection Material\n"
+         "  set Density = 2650\n"
+         "end\n"
+         "subsection Joint 1\n"
+         "  set Dip = 0\n"
+         "  set Origin = 0, 0, 1\n"
+         "end\n"
+         "subsection Excavation 1\n"
+         "  set Corner min = -1, -1, 1\n"
+         "  set Corner max = 2, 2, " +
+         cube_bottom.str() +
+         "\n"
+         "end\n"
+         "subsection Group 1\n"
+         "  set Name = floor\n"
+         "  set Corner min = 0, 0, 0\n"
+         "  set Corner max = 1, 1, 1\n"
+         "end\n"
+         "subsection Group 2\n"
+         "  set Name = cube\n"
+         "  set Corner min = 0, 0, " +
+         cube_bottom.str() +
+         "\n"
+         "  set Corner max = 1, 1, " +
+         top.str() +
+         "\n"
+         "end\n";
+}
