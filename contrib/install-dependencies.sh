@@ -7,6 +7,7 @@ packages=(
   libdeal.ii-dev   # meshes, finite elements, parameter files, PETSc/Trilinos/MPI through deal.II
   libeigen3-dev    # small dense algebra: inertia tensors, local frames
   libcgal-dev      # exact geometric predicates
+  libgmsh-dev      # gmsh's C++ API: tetrahedral meshes of the deformable blocks
   libopenmpi-dev openmpi-bin  # MPI
   numdiff          # compares test output with tolerances (deal.II's test macros need it)
   cmake g++ make

@@ -1,0 +1,286 @@
+#include <talus/base/exceptions.h>
+#include <talus/zone/convex_block_mesher.h>
+
+#include <gmsh.h>
+
+#include <algorithm>
+#include <cmath>
+#include <map>
+#include <stdexcept>
+#include <string>
+
+namespace talus
+{
+
+namespace
+{
+int sessions = 0; // GmshSession objects alive (gmsh's state is global)
+
+double signed_volume(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& d)
+{
+  return (b - a).dot((c - a).cross(d - a)) / 6.0;
+}
+
+/// Why gmsh failed, in one line.
+std::string gmsh_reason(const std::exception* e)
+{
+  std::string why;
+  try
+  {
+    gmsh::logger::getLastError(why);
+  }
+  catch (...)
+  {
+  }
+  if (why.empty() && e != nullptr)
+    why = e->what();
+  std::replace(why.begin(), why.end(), '\n', ' ');
+  return why.empty() ? std::string("gmsh gave no reason") : why;
+}
+
+/// The closest point to p on the segment a-b.
+Vec3 onto_segment(const Vec3& p, const Vec3& a, const Vec3& b)
+{
+  const Vec3 ab = b - a;
+  const double t = std::clamp((p - a).dot(ab) / ab.squaredNorm(), 0.0, 1.0);
+  return a + t * ab;
+}
+} // namespace
+
+GmshSession::GmshSession()
+{
+  if (sessions++ > 0)
+    return;
+  owner = true;
+  gmsh::initialize(0, nullptr, false);
+  // Quiet, and errors as exceptions rather than messages.
+  gmsh::option::setNumber("General.Terminal", 0);
+  gmsh::option::setNumber("General.Verbosity", 0);
+  gmsh::option::setNumber("General.AbortOnError", 2);
+  gmsh::option::setNumber("General.NumThreads", 1);
+  // Sizes come from the callback only (not from the points or curvature).
+  gmsh::option::setNumber("Mesh.MeshSizeFromPoints", 0);
+  gmsh::option::setNumber("Mesh.MeshSizeFromCurvature", 0);
+  gmsh::option::setNumber("Mesh.MeshSizeExtendFromBoundary", 0);
+  gmsh::option::setNumber("Mesh.Algorithm", 6);   // frontal-Delaunay faces
+  gmsh::option::setNumber("Mesh.Algorithm3D", 1); // Delaunay volume
+  gmsh::option::setNumber("Mesh.Optimize", 1);    // gmsh's sliver removal
+}
+
+GmshSession::~GmshSession()
+{
+  --sessions;
+  if (owner)
+    gmsh::finalize();
+}
+
+double radius_ratio(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& d)
+{
+  const double v = std::abs(signed_volume(a, b, c, d));
+  const double area = 0.5 * ((b - a).cross(c - a).norm() + (b - a).cross(d - a).norm() +
+                             (c - a).cross(d - a).norm() + (c - b).cross(d - b).norm());
+  if (!(v > 0.0) || !(area > 0.0))
+    return 0.0;
+  const double r_in = 3.0 * v / area;
+  // Circumradius: |A|/(12 V) with A the sum of the squared edge lengths
+  // times the cross products (Cayley–Menger in vector form).
+  const Vec3 u = b - a, w = c - a, t = d - a;
+  const Vec3 centre_offset =
+      (u.squaredNorm() * w.cross(t) + w.squaredNorm() * t.cross(u) + t.squaredNorm() * u.cross(w)) /
+      (2.0 * u.dot(w.cross(t)));
+  const double r_circ = centre_offset.norm();
+  return 3.0 * r_in / r_circ;
+}
+
+double regular_tetrahedra_in(double volume, double edge_length)
+{
+  return volume / (edge_length * edge_length * edge_length * std::sqrt(2.0) / 12.0);
+}
+
+namespace
+{
+/// What one block became in gmsh's model: its entity tags.
+struct BlockEntities
+{
+  unsigned int block;
+  int first_point; ///< corner v is point first_point + v
+  std::vector<std::pair<unsigned int, unsigned int>> line_ends; ///< corners, per line
+  int first_line;                                               ///< line l is tag first_line + l
+  std::vector<int> surfaces;                                    ///< one per face, in face order
+  int volume;
+};
+
+/// Adds block b to gmsh's current model (built-in kernel), with tags after
+/// those already used.
+BlockEntities add_block(const BlockModel& m, unsigned int b, int& next_point, int& next_line)
+{
+  BlockEntities e;
+  e.block = b;
+  const unsigned int v0 = m.vertex_start[b], nv = m.vertex_start[b + 1] - v0;
+  e.first_point = next_point;
+  for (unsigned int v = 0; v < nv; ++v)
+  {
+    const Vec3& p = m.vertex[v0 + v];
+    gmsh::model::geo::addPoint(p.x(), p.y(), p.z(), 0.0, next_point++);
+  }
+  e.first_line = next_line;
+  std::map<std::pair<unsigned int, unsigned int>, int> line_of;
+  for (unsigned int f = m.face_start[b]; f < m.face_start[b + 1]; ++f)
+  {
+    std::vector<int> loop;
+    const unsigned int first = m.face_loop_start[f], n = m.face_loop_start[f + 1] - first;
+    for (unsigned int k = 0; k < n; ++k)
+    {
+      const unsigned int p = m.face_vertex[first + k] - v0,
+                         q = m.face_vertex[first + (k + 1) % n] - v0;
+      const auto key = std::minmax(p, q);
+      auto it = line_of.find(key);
+      if (it == line_of.end())
+      {
+        gmsh::model::geo::addLine(e.first_point + static_cast<int>(key.first),
+                                  e.first_point + static_cast<int>(key.second), next_line);
+        e.line_ends.push_back(key);
+        it = line_of.emplace(key, next_line++).first;
+      }
+      loop.push_back(p == key.first ? it->second : -it->second);
+    }
+    e.surfaces.push_back(gmsh::model::geo::addPlaneSurface({gmsh::model::geo::addCurveLoop(loop)}));
+  }
+  e.volume = gmsh::model::geo::addVolume({gmsh::model::geo::addSurfaceLoop(e.surfaces)});
+  return e;
+}
+
+/// The zones gmsh made in one block's volume, with gridpoints put back
+/// exactly on the corner, edge or face gmsh classified them on.
+BlockTetrahedra take_block(const BlockModel& m, const BlockEntities& e)
+{
+  const unsigned int v0 = m.vertex_start[e.block];
+  BlockTetrahedra out;
+  std::vector<std::size_t> elements, corners, tags;
+  std::vector<double> xyz, parametric;
+  gmsh::model::mesh::getElementsByType(4, elements, corners, e.volume); // 4-node tetrahedra
+  std::map<std::size_t, unsigned int> local;
+  out.tet.resize(elements.size());
+  for (std::size_t z = 0; z < elements.size(); ++z)
+    for (int i = 0; i < 4; ++i)
+    {
+      const auto [it, fresh] =
+          local.emplace(corners[4 * z + i], static_cast<unsigned int>(local.size()));
+      out.tet[z][i] = it->second;
+    }
+  out.point.resize(local.size());
+  gmsh::model::mesh::getNodes(tags, xyz, parametric, 3, e.volume, true, false);
+  for (std::size_t i = 0; i < tags.size(); ++i)
+  {
+    const auto it = local.find(tags[i]);
+    if (it != local.end())
+      out.point[it->second] = Vec3(xyz[3 * i], xyz[3 * i + 1], xyz[3 * i + 2]);
+  }
+  const auto snap = [&](int dim, int tag, const auto& onto)
+  {
+    gmsh::model::mesh::getNodes(tags, xyz, parametric, dim, tag, false, false);
+    for (std::size_t t : tags)
+    {
+      const auto it = local.find(t);
+      if (it != local.end())
+        out.point[it->second] = onto(out.point[it->second]);
+    }
+  };
+  for (unsigned int v = v0; v < m.vertex_start[e.block + 1]; ++v)
+    snap(0, e.first_point + static_cast<int>(v - v0), [&](const Vec3&) { return m.vertex[v]; });
+  for (std::size_t l = 0; l < e.line_ends.size(); ++l)
+  {
+    const Vec3 &a = m.vertex[v0 + e.line_ends[l].first], &c = m.vertex[v0 + e.line_ends[l].second];
+    snap(1, e.first_line + static_cast<int>(l),
+         [&](const Vec3& p) { return onto_segment(p, a, c); });
+  }
+  for (std::size_t s = 0; s < e.surfaces.size(); ++s)
+  {
+    const unsigned int f = m.face_start[e.block] + static_cast<unsigned int>(s);
+    const Vec3& n = m.face_normal[f];
+    const Vec3& on_plane = m.vertex[m.face_vertex[m.face_loop_start[f]]];
+    snap(2, e.surfaces[s], [&](const Vec3& p) -> Vec3 { return p - n * n.dot(p - on_plane); });
+  }
+  for (auto& t : out.tet)
+    if (signed_volume(out.point[t[0]], out.point[t[1]], out.point[t[2]], out.point[t[3]]) < 0.0)
+      std::swap(t[1], t[2]);
+  return out;
+}
+
+/// Meshes the blocks in one gmsh model; throws InputError (naming the first
+/// block when there is one) if gmsh fails.
+std::vector<BlockTetrahedra> mesh_batch(const BlockModel& m, const unsigned int* blocks,
+                                        std::size_t count, const EdgeLengthAt& size)
+{
+  std::vector<BlockTetrahedra> out;
+  try
+  {
+    gmsh::model::add("blocks");
+    int next_point = 1, next_line = 1;
+    std::vector<BlockEntities> entities;
+    for (std::size_t i = 0; i < count; ++i)
+      entities.push_back(add_block(m, blocks[i], next_point, next_line));
+    gmsh::model::geo::synchronize();
+    gmsh::model::mesh::setSizeCallback([&size](int, int, double x, double y, double z)
+                                       { return size(Vec3(x, y, z)); });
+    gmsh::model::mesh::generate(3);
+    for (const BlockEntities& e : entities)
+    {
+      out.push_back(take_block(m, e));
+      if (out.back().tet.empty())
+        throw std::runtime_error("gmsh made no zones");
+    }
+    gmsh::model::mesh::removeSizeCallback();
+    gmsh::model::remove();
+  }
+  catch (const std::exception& e)
+  {
+    const std::string why = gmsh_reason(&e);
+    gmsh::clear();
+    throw InputError("block " + std::to_string(blocks[0]) + " could not be meshed: " + why);
+  }
+  catch (...)
+  {
+    const std::string why = gmsh_reason(nullptr);
+    gmsh::clear();
+    throw InputError("block " + std::to_string(blocks[0]) + " could not be meshed: " + why);
+  }
+  return out;
+}
+} // namespace
+
+BlockTetrahedra mesh_convex_block(const BlockModel& m, unsigned int b, const EdgeLengthAt& size)
+{
+  GmshSession session;
+  return std::move(mesh_batch(m, &b, 1, size)[0]);
+}
+
+std::vector<BlockTetrahedra> mesh_convex_blocks(const BlockModel& m,
+                                                const std::vector<unsigned int>& blocks,
+                                                const EdgeLengthAt& size, std::size_t batch)
+{
+  GmshSession session;
+  std::vector<BlockTetrahedra> out;
+  out.reserve(blocks.size());
+  for (std::size_t first = 0; first < blocks.size(); first += batch)
+  {
+    const std::size_t count = std::min(batch, blocks.size() - first);
+    std::vector<BlockTetrahedra> some;
+    try
+    {
+      some = mesh_batch(m, blocks.data() + first, count, size);
+    }
+    catch (const InputError&)
+    {
+      // Find the block gmsh cannot mesh, one at a time.
+      some.clear();
+      for (std::size_t i = first; i < first + count; ++i)
+        some.push_back(mesh_convex_block(m, blocks[i], size));
+    }
+    for (auto& t : some)
+      out.push_back(std::move(t));
+  }
+  return out;
+}
+
+} // namespace talus
