@@ -63,7 +63,7 @@ GmshSession::GmshSession()
   gmsh::option::setNumber("Mesh.MeshSizeFromCurvature", 0);
   gmsh::option::setNumber("Mesh.MeshSizeExtendFromBoundary", 0);
   gmsh::option::setNumber("Mesh.Algorithm", 6);   // frontal-Delaunay faces
-  gmsh::option::setNumber("Mesh.Algorithm3D", 1); // Delaunay volume
+  gmsh::option::setNumber("Mesh.Algorithm3D", 10); // HXT Delaunay volume
   gmsh::option::setNumber("Mesh.Optimize", 1);    // gmsh's sliver removal
 }
 
