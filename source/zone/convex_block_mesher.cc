@@ -62,9 +62,9 @@ GmshSession::GmshSession()
   gmsh::option::setNumber("Mesh.MeshSizeFromPoints", 0);
   gmsh::option::setNumber("Mesh.MeshSizeFromCurvature", 0);
   gmsh::option::setNumber("Mesh.MeshSizeExtendFromBoundary", 0);
-  gmsh::option::setNumber("Mesh.Algorithm", 6);   // frontal-Delaunay faces
+  gmsh::option::setNumber("Mesh.Algorithm", 6);    // frontal-Delaunay faces
   gmsh::option::setNumber("Mesh.Algorithm3D", 10); // HXT Delaunay volume
-  gmsh::option::setNumber("Mesh.Optimize", 1);    // gmsh's sliver removal
+  gmsh::option::setNumber("Mesh.Optimize", 1);     // gmsh's sliver removal
 }
 
 GmshSession::~GmshSession()
@@ -97,12 +97,27 @@ double regular_tetrahedra_in(double volume, double edge_length)
   return volume / (edge_length * edge_length * edge_length * std::sqrt(2.0) / 12.0);
 }
 
+PolyhedralSurface block_surface(const BlockModel& m, unsigned int b)
+{
+  PolyhedralSurface s;
+  const unsigned int v0 = m.vertex_start[b];
+  s.vertex.assign(m.vertex.begin() + v0, m.vertex.begin() + m.vertex_start[b + 1]);
+  for (unsigned int f = m.face_start[b]; f < m.face_start[b + 1]; ++f)
+  {
+    std::vector<unsigned int> loop;
+    for (unsigned int k = m.face_loop_start[f]; k < m.face_loop_start[f + 1]; ++k)
+      loop.push_back(m.face_vertex[k] - v0);
+    s.face.push_back(std::move(loop));
+    s.face_normal.push_back(m.face_normal[f]);
+  }
+  return s;
+}
+
 namespace
 {
-/// What one block became in gmsh's model: its entity tags.
-struct BlockEntities
+/// What one body became in gmsh's model: its entity tags.
+struct BodyEntities
 {
-  unsigned int block;
   int first_point; ///< corner v is point first_point + v
   std::vector<std::pair<unsigned int, unsigned int>> line_ends; ///< corners, per line
   int first_line;                                               ///< line l is tag first_line + l
@@ -110,29 +125,23 @@ struct BlockEntities
   int volume;
 };
 
-/// Adds block b to gmsh's current model (built-in kernel), with tags after
+/// Adds a body to gmsh's current model (built-in kernel), with tags after
 /// those already used.
-BlockEntities add_block(const BlockModel& m, unsigned int b, int& next_point, int& next_line)
+BodyEntities add_body(const PolyhedralSurface& body, int& next_point, int& next_line)
 {
-  BlockEntities e;
-  e.block = b;
-  const unsigned int v0 = m.vertex_start[b], nv = m.vertex_start[b + 1] - v0;
+  BodyEntities e;
   e.first_point = next_point;
-  for (unsigned int v = 0; v < nv; ++v)
-  {
-    const Vec3& p = m.vertex[v0 + v];
+  for (const Vec3& p : body.vertex)
     gmsh::model::geo::addPoint(p.x(), p.y(), p.z(), 0.0, next_point++);
-  }
   e.first_line = next_line;
   std::map<std::pair<unsigned int, unsigned int>, int> line_of;
-  for (unsigned int f = m.face_start[b]; f < m.face_start[b + 1]; ++f)
+  for (const std::vector<unsigned int>& face : body.face)
   {
     std::vector<int> loop;
-    const unsigned int first = m.face_loop_start[f], n = m.face_loop_start[f + 1] - first;
-    for (unsigned int k = 0; k < n; ++k)
+    const std::size_t n = face.size();
+    for (std::size_t k = 0; k < n; ++k)
     {
-      const unsigned int p = m.face_vertex[first + k] - v0,
-                         q = m.face_vertex[first + (k + 1) % n] - v0;
+      const unsigned int p = face[k], q = face[(k + 1) % n];
       const auto key = std::minmax(p, q);
       auto it = line_of.find(key);
       if (it == line_of.end())
@@ -150,11 +159,10 @@ BlockEntities add_block(const BlockModel& m, unsigned int b, int& next_point, in
   return e;
 }
 
-/// The zones gmsh made in one block's volume, with gridpoints put back
+/// The zones gmsh made in one body's volume, with gridpoints put back
 /// exactly on the corner, edge or face gmsh classified them on.
-BlockTetrahedra take_block(const BlockModel& m, const BlockEntities& e)
+BlockTetrahedra take_body(const PolyhedralSurface& body, const BodyEntities& e)
 {
-  const unsigned int v0 = m.vertex_start[e.block];
   BlockTetrahedra out;
   std::vector<std::size_t> elements, corners, tags;
   std::vector<double> xyz, parametric;
@@ -186,20 +194,19 @@ BlockTetrahedra take_block(const BlockModel& m, const BlockEntities& e)
         out.point[it->second] = onto(out.point[it->second]);
     }
   };
-  for (unsigned int v = v0; v < m.vertex_start[e.block + 1]; ++v)
-    snap(0, e.first_point + static_cast<int>(v - v0), [&](const Vec3&) { return m.vertex[v]; });
+  for (std::size_t v = 0; v < body.vertex.size(); ++v)
+    snap(0, e.first_point + static_cast<int>(v), [&](const Vec3&) { return body.vertex[v]; });
   for (std::size_t l = 0; l < e.line_ends.size(); ++l)
   {
-    const Vec3 &a = m.vertex[v0 + e.line_ends[l].first], &c = m.vertex[v0 + e.line_ends[l].second];
+    const Vec3 &a = body.vertex[e.line_ends[l].first], &c = body.vertex[e.line_ends[l].second];
     snap(1, e.first_line + static_cast<int>(l),
          [&](const Vec3& p) { return onto_segment(p, a, c); });
   }
-  for (std::size_t s = 0; s < e.surfaces.size(); ++s)
+  for (std::size_t f = 0; f < e.surfaces.size(); ++f)
   {
-    const unsigned int f = m.face_start[e.block] + static_cast<unsigned int>(s);
-    const Vec3& n = m.face_normal[f];
-    const Vec3& on_plane = m.vertex[m.face_vertex[m.face_loop_start[f]]];
-    snap(2, e.surfaces[s], [&](const Vec3& p) -> Vec3 { return p - n * n.dot(p - on_plane); });
+    const Vec3& n = body.face_normal[f];
+    const Vec3& on_plane = body.vertex[body.face[f][0]];
+    snap(2, e.surfaces[f], [&](const Vec3& p) -> Vec3 { return p - n * n.dot(p - on_plane); });
   }
   for (auto& t : out.tet)
     if (signed_volume(out.point[t[0]], out.point[t[1]], out.point[t[2]], out.point[t[3]]) < 0.0)
@@ -207,26 +214,26 @@ BlockTetrahedra take_block(const BlockModel& m, const BlockEntities& e)
   return out;
 }
 
-/// Meshes the blocks in one gmsh model; throws InputError (naming the first
-/// block when there is one) if gmsh fails.
-std::vector<BlockTetrahedra> mesh_batch(const BlockModel& m, const unsigned int* blocks,
-                                        std::size_t count, const EdgeLengthAt& size)
+/// Meshes the bodies in one gmsh model; throws InputError naming `what` if
+/// gmsh fails.
+std::vector<BlockTetrahedra> mesh_batch(const std::vector<PolyhedralSurface>& bodies,
+                                        const EdgeLengthAt& size, const std::string& what)
 {
   std::vector<BlockTetrahedra> out;
   try
   {
-    gmsh::model::add("blocks");
+    gmsh::model::add("bodies");
     int next_point = 1, next_line = 1;
-    std::vector<BlockEntities> entities;
-    for (std::size_t i = 0; i < count; ++i)
-      entities.push_back(add_block(m, blocks[i], next_point, next_line));
+    std::vector<BodyEntities> entities;
+    for (const PolyhedralSurface& body : bodies)
+      entities.push_back(add_body(body, next_point, next_line));
     gmsh::model::geo::synchronize();
     gmsh::model::mesh::setSizeCallback([&size](int, int, double x, double y, double z)
                                        { return size(Vec3(x, y, z)); });
     gmsh::model::mesh::generate(3);
-    for (const BlockEntities& e : entities)
+    for (std::size_t i = 0; i < bodies.size(); ++i)
     {
-      out.push_back(take_block(m, e));
+      out.push_back(take_body(bodies[i], entities[i]));
       if (out.back().tet.empty())
         throw std::runtime_error("gmsh made no zones");
     }
@@ -237,22 +244,28 @@ std::vector<BlockTetrahedra> mesh_batch(const BlockModel& m, const unsigned int*
   {
     const std::string why = gmsh_reason(&e);
     gmsh::clear();
-    throw InputError("block " + std::to_string(blocks[0]) + " could not be meshed: " + why);
+    throw InputError(what + " could not be meshed: " + why);
   }
   catch (...)
   {
     const std::string why = gmsh_reason(nullptr);
     gmsh::clear();
-    throw InputError("block " + std::to_string(blocks[0]) + " could not be meshed: " + why);
+    throw InputError(what + " could not be meshed: " + why);
   }
   return out;
 }
 } // namespace
 
+BlockTetrahedra mesh_polyhedron(const PolyhedralSurface& body, const EdgeLengthAt& size)
+{
+  GmshSession session;
+  return std::move(mesh_batch({body}, size, "the body")[0]);
+}
+
 BlockTetrahedra mesh_convex_block(const BlockModel& m, unsigned int b, const EdgeLengthAt& size)
 {
   GmshSession session;
-  return std::move(mesh_batch(m, &b, 1, size)[0]);
+  return std::move(mesh_batch({block_surface(m, b)}, size, "block " + std::to_string(b))[0]);
 }
 
 std::vector<BlockTetrahedra> mesh_convex_blocks(const BlockModel& m,
@@ -265,10 +278,13 @@ std::vector<BlockTetrahedra> mesh_convex_blocks(const BlockModel& m,
   for (std::size_t first = 0; first < blocks.size(); first += batch)
   {
     const std::size_t count = std::min(batch, blocks.size() - first);
+    std::vector<PolyhedralSurface> bodies;
+    for (std::size_t i = first; i < first + count; ++i)
+      bodies.push_back(block_surface(m, blocks[i]));
     std::vector<BlockTetrahedra> some;
     try
     {
-      some = mesh_batch(m, blocks.data() + first, count, size);
+      some = mesh_batch(bodies, size, "block " + std::to_string(blocks[first]));
     }
     catch (const InputError&)
     {

@@ -4,6 +4,7 @@
 
 #include <array>
 #include <functional>
+#include <string>
 #include <vector>
 
 namespace talus
@@ -19,6 +20,24 @@ struct BlockTetrahedra
   std::vector<Vec3> point;                      ///< m
   std::vector<std::array<unsigned int, 4>> tet; ///< positively oriented
 };
+
+/// A closed polyhedral surface: the body a mesher fills with zones. Faces
+/// are planar loops of vertex numbers, counter-clockwise seen from outside;
+/// a face may be non-convex (a body need not be convex), but has no holes.
+struct PolyhedralSurface
+{
+  std::vector<Vec3> vertex;                    ///< m
+  std::vector<std::vector<unsigned int>> face; ///< vertex loops
+  std::vector<Vec3> face_normal;               ///< outward unit normals
+};
+
+/// Block b's surface.
+PolyhedralSurface block_surface(const BlockModel& blocks, unsigned int block);
+
+/// Meshes any closed polyhedral body as mesh_convex_block does (for bodies
+/// that are not blocks of a model: verification slabs with openings).
+/// Throws InputError when gmsh cannot mesh it.
+BlockTetrahedra mesh_polyhedron(const PolyhedralSurface& body, const EdgeLengthAt& edge_length);
 
 /// Meshes one convex block of `blocks` into quality tetrahedra whose edges
 /// are about `edge_length(x)` long, with gmsh's Delaunay mesher (through its
