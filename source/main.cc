@@ -238,6 +238,56 @@ double largest_gridpoint_displacement(const talus::DeformableSolver& solver)
   return largest;
 }
 
+/// How the zones' edge length was asked for, for the summary.
+std::string edge_length_text(const talus::EdgeLengthField& f)
+{
+  using talus::number;
+  if (!f.graded())
+    return "edge length " + number(f.coarse) + " m";
+  return "edge length " + number(f.fine) + " m at the fine region, growing to " +
+         number(f.coarse) + " m at " + number(f.distance) + " m from it";
+}
+
+/// The summary's lines on the zones' shapes: the radius ratio (1 for a
+/// regular tetrahedron), where the poor zones are, and the gridpoint that
+/// sets the stable step of eq. 84 with its worst zone.
+void print_mesh_quality(const talus::MeshReport& r, const talus::TetMesh& mesh,
+                        const talus::DeformableSolver& zones)
+{
+  using namespace talus;
+  if (r.zones == 0)
+    return;
+  std::printf("Quality:      radius ratio min %.2g (a zone of block %u), 1 %% %.2g, median %.2g; "
+              "%u zones below 0.1",
+              r.quality_min, r.worst_block, r.quality_1, r.quality_median, r.poor_zones);
+  if (!r.poor_blocks.empty())
+  {
+    std::printf(" in block");
+    for (std::size_t i = 0; i < r.poor_blocks.size(); ++i)
+      std::printf("%s %u (%u)", i == 0 ? "" : ",", r.poor_blocks[i].first,
+                  r.poor_blocks[i].second);
+  }
+  std::printf("\n");
+  const unsigned int g = zones.time_step_gridpoint();
+  double worst = 2.0, height = 1e300;
+  const auto P = [&](unsigned int i)
+  { return Vec3(mesh.position[3 * i], mesh.position[3 * i + 1], mesh.position[3 * i + 2]); };
+  for (const auto& t : mesh.zone_gridpoint)
+    if (std::find(t.begin(), t.end(), g) != t.end())
+    {
+      worst = std::min(worst, radius_ratio(P(t[0]), P(t[1]), P(t[2]), P(t[3])));
+      const double v = std::abs((P(t[1]) - P(t[0])).dot((P(t[2]) - P(t[0])).cross(P(t[3]) - P(t[0]))));
+      for (int k = 0; k < 4; ++k)
+      {
+        const Vec3 a = P(t[(k + 1) % 4]), b = P(t[(k + 2) % 4]), c = P(t[(k + 3) % 4]);
+        height = std::min(height, v / (b - a).cross(c - a).norm());
+      }
+    }
+  std::printf("Step set by:  the gridpoint at (%.4g, %.4g, %.4g) m of block %u (eq. 84): its "
+              "zones' worst radius ratio %.2g, smallest height %.3g m\n",
+              P(g).x(), P(g).y(), P(g).z(), mesh.gridpoint_block[g], worst, height);
+}
+
 /// The summary's line on nodal mixed discretization, when some zones have
 /// it.
 void print_nodal_mixed(const talus::DeformableSolver& solver)
@@ -293,7 +343,7 @@ double solve_deformable(talus::Scene& scene, talus::BlockModel& model, const std
       mesh_report.gridpoints, mesh_report.boundary_faces,
       from_file ? ("from " + std::filesystem::path(scene.deformable.mesh_file).filename().string())
                       .c_str()
-                : ("edge length " + number(scene.deformable.edge_length) + " m").c_str(),
+                : edge_length_text(scene.deformable.edge_length).c_str(),
       mesh_report.largest_edge, mesh_report.smallest_height, mesh_report.zone_volume);
   if (mesh_report.hexes > 0)
     std::printf("Hexahedra:    %u (mixed discretization: the tetrahedra are their two overlays of "
@@ -304,6 +354,7 @@ double solve_deformable(talus::Scene& scene, talus::BlockModel& model, const std
   DeformableSolver solver(mesh, std::move(materials.materials), std::move(materials.of_zone),
                           scene.solver, scene.gridpoint_conditions, scene.face_pressures,
                           scene.has_initial_stress ? &scene.initial_stress : nullptr);
+  print_mesh_quality(mesh_report, mesh, solver);
   print_nodal_mixed(solver);
   std::printf("Time step:    %.6g s (eq. 84%s)\n", solver.dt(),
               !scene.solver.dynamic && scene.solver.density_scaling ? ", density scaling: unit step"
@@ -452,15 +503,18 @@ double solve(talus::Scene& scene, talus::BlockModel& model, talus::PvdSeries& se
   DeformableSolver* zones = system.zones.get();
   if (zones)
     std::printf(
-        "Zones:        %u tetrahedra in %u deformable blocks, %u gridpoints (edge length %g m)\n",
+        "Zones:        %u tetrahedra in %u deformable blocks, %u gridpoints (%s)\n",
         system.mesh_report.zones, system.mesh_report.blocks, system.mesh_report.gridpoints,
-        scene.deformable.edge_length);
+        edge_length_text(scene.deformable.edge_length).c_str());
   if (zones && system.mesh_report.hexes > 0)
     std::printf("Hexahedra:    %u (mixed discretization: the tetrahedra are their two overlays of "
                 "five)\n",
                 system.mesh_report.hexes);
   if (zones)
+  {
+    print_mesh_quality(system.mesh_report, mesh, *zones);
     print_nodal_mixed(*zones);
+  }
   if (scene.solver.time_step > 0.0 && solver.stable_time_step() < 1e300)
     std::printf("Time step:    %.6g s (given; eq. 87 allows %.6g s%s)\n", solver.dt(),
                 solver.stable_time_step() / scene.solver.time_step_fraction,

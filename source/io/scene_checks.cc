@@ -221,26 +221,33 @@ void check_deformable_blocks(const Scene& scene, const BlockModel& model)
     }
     largest_extent = std::max(largest_extent, (box.hi - box.lo).maxCoeff());
   }
-  const double edge = scene.deformable.edge_length;
-  if (edge > largest_extent)
+  const EdgeLengthField& field = scene.deformable.edge_length;
+  const double edge = field.smallest();
+  if (!field.graded() && edge > largest_extent)
     throw scene_error(scene, "Deformable", "Edge length",
                       number(edge) +
                           " m is larger than every deformable block (the largest spans " +
                           number(largest_extent) + " m)",
                       "a number > 0 and at most " + number(largest_extent) + " (m)");
-  const double zones = count_zones(model, deformable, edge);
+  // Hexahedral zones count as their ten tetrahedra (two overlays of five).
+  const double zones =
+      count_zones(model, deformable, field) *
+      (scene.deformable.material.element == ZoneElement::hex_mixed ? 2.0 : 1.0);
+  const char* entry = field.graded() ? "Fine edge length" : "Edge length";
   if (!(zones <= max_zones))
-    throw scene_error(scene, "Deformable", "Edge length",
+    throw scene_error(scene, "Deformable", entry,
                       number(edge) + " m would make " + number(zones) + " zones, more than the " +
                           number(max_zones) +
                           " talus meshes (about 620 bytes of memory each while meshing)",
                       "an edge length that makes at most " + number(max_zones) + " zones");
-  const double bytes =
-      zones * bytes_per_zone *
-      (scene.deformable.material.element == ZoneElement::tet10 ? 4.0 : 1.0);
+  const bool quadratic = scene.deformable.material.element == ZoneElement::tet10;
+  const double bytes = zones * bytes_per_zone * (quadratic ? 4.0 : 1.0);
+  std::printf("Meshing:      about %.3g %s in %zu deformable block%s, about %s of memory\n",
+              zones, quadratic ? "10-node zones" : "zones", deformable.size(),
+              deformable.size() == 1 ? "" : "s", memory_text(bytes).c_str());
   const double room = available_memory();
   if (!(bytes <= room))
-    throw scene_error(scene, "Deformable", "Edge length",
+    throw scene_error(scene, "Deformable", entry,
                       number(edge) + " m would make about " + number(zones) +
                           " zones, which need about " + memory_text(bytes) +
                           " of memory to mesh, and this machine has " + memory_text(room) +

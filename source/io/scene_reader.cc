@@ -313,7 +313,17 @@ void declare_deformable(ParameterFile& prm)
   prm.enter("Deformable");
   prm.declare("Groups", "", P::List(P::Anything()), "group names separated by commas",
               "Blocks of these groups are deformable (meshed into tetrahedral zones).");
-  prm.declare("Edge length", "1", P::Double(), "a number > 0 (m)", "Target zone edge length (m).");
+  prm.declare("Edge length", "1", P::Double(), "a number > 0 (m)",
+              "Target zone edge length (m); with grading, the length away from the fine region.");
+  prm.declare("Fine edge length", "0", P::Double(), "a number >= 0 and < 'Edge length' (m)",
+              "Zone edge length at the fine region (the excavations, or 'Fine box'), growing "
+              "linearly to 'Edge length' at 'Grading distance' from it; 0: no grading.");
+  prm.declare("Grading distance", "10", P::Double(), "a number > 0 (m)",
+              "Distance from the fine region over which the edge length grows (m).");
+  prm.declare("Fine region", "excavations", P::Selection("excavations|box"), "excavations or box",
+              "Where the zones are fine: at every excavation, or in the box between 'Fine box "
+              "min' and 'Fine box max'.");
+  declare_box(prm, "Fine box min", "Fine box max", "the fine region when 'Fine region' is box");
   prm.declare("Mesh file", "", P::Anything(), "a gmsh .msh file of linear tetrahedra (or empty)",
               "The deformable body's zones from a gmsh file instead of meshing the block (relative "
               "paths start at this parameter file's folder).");
@@ -370,7 +380,7 @@ void parse_deformable(ParameterFile& prm, Scene& scene)
     check_group_name(prm, "Groups", scene, g);
     d.groups.push_back(g);
   }
-  d.edge_length = prm.get_double("Edge length");
+  d.edge_length = EdgeLengthField(prm.get_double("Edge length"));
   d.implicit_check = prm.get_bool("Implicit check");
   d.material.nodal_mixed = prm.get_bool("Nodal mixed discretization");
   const std::string element = prm.get("Element");
@@ -430,8 +440,34 @@ void parse_deformable(ParameterFile& prm, Scene& scene)
       throw prm.error("Mesh file", e.what(), "a gmsh .msh file (2.2 or 4.1) of linear tetrahedra");
     }
   }
-  if (!(d.edge_length > 0.0))
+  if (!(d.edge_length.coarse > 0.0))
     throw prm.error("Edge length", "must be positive", "a number > 0 (m)");
+  const double fine = prm.get_double("Fine edge length");
+  if (!(fine >= 0.0 && fine < d.edge_length.coarse))
+    throw prm.error("Fine edge length",
+                    number(fine) + " m is not below 'Edge length' (" +
+                        number(d.edge_length.coarse) + " m)",
+                    "0 (no grading), or a number > 0 and < " + number(d.edge_length.coarse) +
+                        " (m)");
+  if (fine > 0.0)
+  {
+    d.edge_length.fine = fine;
+    d.edge_length.distance = prm.get_double("Grading distance");
+    if (!(d.edge_length.distance > 0.0))
+      throw prm.error("Grading distance", "must be positive", "a number > 0 (m)");
+    if (prm.get("Fine region") == "box")
+      d.edge_length.near.push_back(
+          ConvexRegion::box(read_box(prm, "Fine box min", "Fine box max")));
+    else
+    {
+      for (const ExcavationSpec& e : scene.excavations)
+        d.edge_length.near.push_back(e.region);
+      if (d.edge_length.near.empty())
+        throw prm.error("Fine edge length",
+                        "asks for fine zones at the excavations, and the scene has none",
+                        "0, or 'Fine region = box' with 'Fine box min' and 'Fine box max'");
+    }
+  }
   const double E = prm.get_double("Young's modulus"), nu = prm.get_double("Poisson's ratio");
   if (!(E > 0.0))
     throw prm.error("Young's modulus", "must be positive", "a number > 0 (Pa)");
@@ -805,7 +841,9 @@ void warn_about_ignored_entries(const ParameterFile& prm, Scene& scene,
         "'Mode' is dynamic (undamped, every one of 'Steps')", scene.warnings);
   if (scene.deformable.groups.empty())
     warn_ignored(prm, "Deformable",
-                 {"Edge length", "Mesh file", "Nodal mixed discretization", "Nodal mixed groups",
+                 {"Edge length", "Fine edge length", "Grading distance", "Fine region",
+                  "Fine box min", "Fine box max", "Mesh file", "Nodal mixed discretization",
+                  "Nodal mixed groups",
                   "Element", "Implicit check", "Zone model", "Young's modulus", "Poisson's ratio",
                   "Friction angle", "Dilation angle", "Cohesion", "Tensile strength",
                   "Stiffness ratio groups", "Stiffness ratio"},

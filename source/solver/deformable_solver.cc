@@ -443,6 +443,19 @@ double DeformableSolver::stable_time_step(const std::vector<double>& joint_stiff
   return stable_time_step_of(true_mass_, k);
 }
 
+unsigned int DeformableSolver::time_step_gridpoint() const
+{
+  unsigned int found = 0;
+  double ratio = 1e300;
+  for (std::size_t g = 0; g < true_mass_.size(); ++g)
+    if (nodal_stiffness_[g] > 0.0 && true_mass_[g] / nodal_stiffness_[g] < ratio)
+    {
+      ratio = true_mass_[g] / nodal_stiffness_[g];
+      found = static_cast<unsigned int>(g);
+    }
+  return found;
+}
+
 void DeformableSolver::external_forces(const double* x, double* f)
 {
   const unsigned int ng = mesh_.n_gridpoints();

@@ -53,12 +53,6 @@ double hexahedra_along(double length, double edge)
   return std::max(1.0, std::ceil(length / edge - 1e-9));
 }
 
-/// Times a tetrahedron of longest edge `longest` is split into eight.
-double refinement_levels(double longest, double edge)
-{
-  return longest > edge ? std::ceil(std::log2(longest / edge) - 1e-9) : 0.0;
-}
-
 /// Divisions of a brick along each axis for zones of edge at most `edge`.
 std::vector<unsigned int> brick_divisions(const Box& box, double edge)
 {
@@ -68,56 +62,84 @@ std::vector<unsigned int> brick_divisions(const Box& box, double edge)
   return n;
 }
 
-/// The fine mesh of one block as its own small triangulation.
-
-void mesh_one_block(const BlockModel& m, unsigned int b, double edge,
-                    dealii::Triangulation<3>& tria)
+/// The edge length for a brick meshed by deal.II's generator: the
+/// smallest the field asks for at its corners and centre (m).
+double brick_edge(const Box& box, const EdgeLengthField& field)
 {
-  Box box;
-  if (is_axis_aligned_box(m, b, box))
+  double h = field.at(0.5 * (box.lo + box.hi));
+  for (int i = 0; i < 8; ++i)
+    h = std::min(h, field.at(Vec3(i & 1 ? box.hi.x() : box.lo.x(), i & 2 ? box.hi.y() : box.lo.y(),
+                                  i & 4 ? box.hi.z() : box.lo.z())));
+  return h;
+}
+
+/// Appends zones `tets` on `points` as block `block`'s, each gridpoint its
+/// own, turned to positive volume, and the block's boundary faces (the zone
+/// faces that appear once), turned to face out.
+void append_zones(TetMesh& mesh, const std::vector<Vec3>& points,
+                  std::vector<std::array<unsigned int, 4>> tets, unsigned int block)
+{
+  const unsigned int offset = mesh.n_gridpoints();
+  for (const Vec3& p : points)
   {
-    const std::vector<unsigned int> n = brick_divisions(box, edge);
-    dealii::GridGenerator::subdivided_hyper_rectangle_with_simplices(
-        tria, n, Point<3>(box.lo.x(), box.lo.y(), box.lo.z()),
-        Point<3>(box.hi.x(), box.hi.y(), box.hi.z()));
-    return;
+    mesh.position.insert(mesh.position.end(), {p.x(), p.y(), p.z()});
+    mesh.gridpoint_block.push_back(block);
   }
-  // Any convex block: tetrahedra from the centroid to every triangle of a
-  // fan over each face, then uniform refinement (each tetrahedron into
-  // eight) until the longest edge is at most `edge`.
-  std::vector<Point<3>> vertices;
-  for (unsigned int v = m.vertex_start[b]; v < m.vertex_start[b + 1]; ++v)
-    vertices.emplace_back(m.vertex[v].x(), m.vertex[v].y(), m.vertex[v].z());
-  const unsigned int centre = static_cast<unsigned int>(vertices.size());
-  const Vec3 c = m.centroid[b];
-  vertices.emplace_back(c.x(), c.y(), c.z());
-  std::vector<dealii::CellData<3>> cells;
-  double longest = 0.0;
-  for (unsigned int f = m.face_start[b]; f < m.face_start[b + 1]; ++f)
+  const std::size_t first_zone = mesh.zone_gridpoint.size();
+  for (auto& t : tets)
   {
-    const unsigned int first = m.face_loop_start[f], n = m.face_loop_start[f + 1] - first;
-    for (unsigned int k = 1; k + 1 < n; ++k)
+    for (auto& g : t)
+      g += offset;
+    const auto P = [&](unsigned int g) { return points[g - offset]; };
+    if (signed_volume(P(t[0]), P(t[1]), P(t[2]), P(t[3])) < 0.0)
+      std::swap(t[1], t[2]);
+    mesh.zone_gridpoint.push_back(t);
+    mesh.zone_block.push_back(block);
+  }
+  // Boundary faces: sort every zone face by its sorted corners; a face
+  // found once is on the boundary.
+  static const int face_of[4][3] = {{1, 2, 3}, {0, 3, 2}, {0, 1, 3}, {0, 2, 1}};
+  struct ZoneFace
+  {
+    std::array<unsigned int, 3> key;
+    unsigned int zone;
+    int face;
+  };
+  std::vector<ZoneFace> faces;
+  faces.reserve(4 * tets.size());
+  for (std::size_t z = first_zone; z < mesh.zone_gridpoint.size(); ++z)
+    for (int f = 0; f < 4; ++f)
     {
-      std::array<unsigned int, 4> t{{m.face_vertex[first] - m.vertex_start[b],
-                                    m.face_vertex[first + k] - m.vertex_start[b],
-                                    m.face_vertex[first + k + 1] - m.vertex_start[b], centre}};
-      const auto P = [&](unsigned int i)
-      { return Vec3(vertices[t[i]][0], vertices[t[i]][1], vertices[t[i]][2]); };
-      if (signed_volume(P(0), P(1), P(2), P(3)) < 0.0)
-        std::swap(t[1], t[2]);
-      for (int i = 0; i < 4; ++i)
-        for (int j = i + 1; j < 4; ++j)
-          longest = std::max(longest, (P(i) - P(j)).norm());
-      dealii::CellData<3> cell(4);
-      for (int i = 0; i < 4; ++i)
-        cell.vertices[i] = t[i];
-      cells.push_back(cell);
+      ZoneFace zf{{{mesh.zone_gridpoint[z][face_of[f][0]], mesh.zone_gridpoint[z][face_of[f][1]],
+                    mesh.zone_gridpoint[z][face_of[f][2]]}},
+                  static_cast<unsigned int>(z),
+                  f};
+      std::sort(zf.key.begin(), zf.key.end());
+      faces.push_back(zf);
     }
+  std::sort(faces.begin(), faces.end(),
+            [](const ZoneFace& a, const ZoneFace& b)
+            { return a.key != b.key ? a.key < b.key : a.zone < b.zone; });
+  const auto P = [&](unsigned int g) { return points[g - offset]; };
+  for (std::size_t i = 0; i < faces.size();)
+  {
+    std::size_t j = i + 1;
+    while (j < faces.size() && faces[j].key == faces[i].key)
+      ++j;
+    if (j == i + 1)
+    {
+      const auto& t = mesh.zone_gridpoint[faces[i].zone];
+      const int f = faces[i].face;
+      // Face f of the zone is opposite its vertex f: turn it to face away.
+      std::array<unsigned int, 3> face{{t[face_of[f][0]], t[face_of[f][1]], t[face_of[f][2]]}};
+      const Vec3 n = (P(face[1]) - P(face[0])).cross(P(face[2]) - P(face[0]));
+      if (n.dot(P(face[0]) - P(t[f])) < 0.0)
+        std::swap(face[1], face[2]);
+      mesh.face_gridpoint.push_back(face);
+      mesh.face_zone.push_back(faces[i].zone);
+    }
+    i = j;
   }
-  tria.create_triangulation(vertices, cells, dealii::SubCellData());
-  const unsigned int levels = static_cast<unsigned int>(refinement_levels(longest, edge));
-  if (levels > 0)
-    tria.refine_global(levels);
 }
 
 /// Throws InputError naming `path` unless the zones form one body: every
@@ -196,12 +218,11 @@ void check_one_closed_body(const TetMesh& mesh, const std::string& path)
 
 void append_tetrahedra(TetMesh& mesh, const dealii::Triangulation<3>& tria, unsigned int block)
 {
-  const auto P = [&](unsigned int g)
-  { return Vec3(mesh.position[3 * g], mesh.position[3 * g + 1], mesh.position[3 * g + 2]); };
-  // The block's cells, with its own gridpoints (blocks never share one).
-  const unsigned int offset = mesh.n_gridpoints();
+  // The triangulation's vertices that cells use, numbered in the order the
+  // cells meet them.
   std::vector<int> local(tria.n_vertices(), -1);
-  const std::size_t first_zone = mesh.zone_gridpoint.size();
+  std::vector<Vec3> points;
+  std::vector<std::array<unsigned int, 4>> tets;
   for (const auto& cell : tria.active_cell_iterators())
   {
     if (cell->n_vertices() != 4)
@@ -212,44 +233,20 @@ void append_tetrahedra(TetMesh& mesh, const dealii::Triangulation<3>& tria, unsi
       const unsigned int v = cell->vertex_index(i);
       if (local[v] < 0)
       {
-        local[v] = static_cast<int>(mesh.n_gridpoints() - offset);
-        for (int d = 0; d < 3; ++d)
-          mesh.position.push_back(tria.get_vertices()[v][d]);
-        mesh.gridpoint_block.push_back(block);
+        local[v] = static_cast<int>(points.size());
+        const auto& x = tria.get_vertices()[v];
+        points.emplace_back(x[0], x[1], x[2]);
       }
-      t[i] = offset + static_cast<unsigned int>(local[v]);
+      t[i] = static_cast<unsigned int>(local[v]);
     }
-    if (signed_volume(P(t[0]), P(t[1]), P(t[2]), P(t[3])) < 0.0)
-      std::swap(t[1], t[2]);
-    mesh.zone_gridpoint.push_back(t);
-    mesh.zone_block.push_back(block);
+    tets.push_back(t);
   }
-  // Boundary faces of this block: the zone faces that appear once.
-  std::map<std::array<unsigned int, 3>, std::pair<unsigned int, int>> seen;
-  static const int face_of[4][3] = {{1, 2, 3}, {0, 3, 2}, {0, 1, 3}, {0, 2, 1}};
-  for (std::size_t z = first_zone; z < mesh.zone_gridpoint.size(); ++z)
-    for (int f = 0; f < 4; ++f)
-    {
-      std::array<unsigned int, 3> key{{mesh.zone_gridpoint[z][face_of[f][0]],
-                                      mesh.zone_gridpoint[z][face_of[f][1]],
-                                      mesh.zone_gridpoint[z][face_of[f][2]]}};
-      std::sort(key.begin(), key.end());
-      auto [it, fresh] = seen.emplace(key, std::make_pair(static_cast<unsigned int>(z), f));
-      if (!fresh)
-        seen.erase(it);
-    }
-  for (const auto& [key, where] : seen)
-  {
-    const auto& t = mesh.zone_gridpoint[where.first];
-    // Face f of the zone is opposite its vertex f: turn it to face away.
-    std::array<unsigned int, 3> face{{t[face_of[where.second][0]], t[face_of[where.second][1]],
-                                     t[face_of[where.second][2]]}};
-    const Vec3 n = (P(face[1]) - P(face[0])).cross(P(face[2]) - P(face[0]));
-    if (n.dot(P(face[0]) - P(t[where.second])) < 0.0)
-      std::swap(face[1], face[2]);
-    mesh.face_gridpoint.push_back(face);
-    mesh.face_zone.push_back(where.first);
-  }
+  append_zones(mesh, points, std::move(tets), block);
+}
+
+void append_tetrahedra(TetMesh& mesh, const BlockTetrahedra& tetrahedra, unsigned int block)
+{
+  append_zones(mesh, tetrahedra.point, tetrahedra.tet, block);
 }
 
 TetMesh read_gmsh_block(const std::string& path, unsigned int block, MeshOrder order)
@@ -302,6 +299,48 @@ TetMesh read_gmsh_block(const std::string& path, unsigned int block, MeshOrder o
   return mesh;
 }
 
+namespace
+{
+/// The radius-ratio figures of the report.
+void measure_quality(const TetMesh& mesh, MeshReport& report)
+{
+  const auto P = [&](unsigned int g)
+  { return Vec3(mesh.position[3 * g], mesh.position[3 * g + 1], mesh.position[3 * g + 2]); };
+  const unsigned int n = mesh.n_zones();
+  if (n == 0)
+    return;
+  std::vector<double> q(n);
+  std::map<unsigned int, unsigned int> poor_in_block;
+  report.quality_min = 2.0;
+  for (unsigned int z = 0; z < n; ++z)
+  {
+    const auto& t = mesh.zone_gridpoint[z];
+    q[z] = radius_ratio(P(t[0]), P(t[1]), P(t[2]), P(t[3]));
+    if (q[z] < report.quality_min)
+    {
+      report.quality_min = q[z];
+      report.worst_zone = z;
+      report.worst_block = mesh.zone_block[z];
+    }
+    if (q[z] < 0.1)
+    {
+      ++report.poor_zones;
+      ++poor_in_block[mesh.zone_block[z]];
+    }
+  }
+  for (const auto& [block, count] : poor_in_block)
+    report.poor_blocks.emplace_back(block, count);
+  std::stable_sort(report.poor_blocks.begin(), report.poor_blocks.end(),
+                   [](const auto& a, const auto& b) { return a.second > b.second; });
+  if (report.poor_blocks.size() > 20)
+    report.poor_blocks.resize(20);
+  std::nth_element(q.begin(), q.begin() + n / 100, q.end());
+  report.quality_1 = q[n / 100];
+  std::nth_element(q.begin(), q.begin() + n / 2, q.end());
+  report.quality_median = q[n / 2];
+}
+} // namespace
+
 MeshReport measure_mesh(const TetMesh& mesh)
 {
   const auto P = [&](unsigned int g)
@@ -339,6 +378,7 @@ MeshReport measure_mesh(const TetMesh& mesh)
       }
     report.smallest_height = std::min(report.smallest_height, 3.0 * v / largest_face);
   }
+  measure_quality(mesh, report);
   return report;
 }
 
@@ -347,31 +387,56 @@ namespace
 /// The zones of mesh_blocks, in the mesher's order (then ordered by
 /// mesh_blocks).
 TetMesh mesh_in_generator_order(const BlockModel& m, const std::vector<unsigned int>& which,
-                                double edge_length, ZoneElement element)
+                                const EdgeLengthField& field, ZoneElement element)
 {
-  if (!(edge_length > 0.0))
+  if (!(field.smallest() > 0.0))
     throw InputError("zone edge length must be positive");
   if (element == ZoneElement::tet10)
     throw InputError("internal: the mesher makes 4-node zones; 10-node zones are made from them "
                      "by make_quadratic");
+  // Blocks that are not bricks go to gmsh together (fewer calls); then every
+  // block is appended in the order asked.
+  std::vector<unsigned int> general;
+  std::vector<int> general_index(m.n_blocks(), -1);
+  for (unsigned int b : which)
+  {
+    Box box;
+    if (element == ZoneElement::hex_mixed && !is_axis_aligned_box(m, b, box))
+      throw InputError("entry 'Element' in subsection 'Deformable': hex-mixed needs every "
+                       "deformable block to be an axis-aligned brick, and block " +
+                       std::to_string(b) + " (" +
+                       std::to_string(m.face_start[b + 1] - m.face_start[b]) +
+                       " faces) is not one; allowed: tet4 for blocks of other shapes");
+    if (!is_axis_aligned_box(m, b, box))
+    {
+      general_index[b] = static_cast<int>(general.size());
+      general.push_back(b);
+    }
+  }
+  std::vector<BlockTetrahedra> meshed =
+      mesh_convex_blocks(m, general, [&field](const Vec3& x) { return field.at(x); });
   TetMesh mesh;
   for (unsigned int b : which)
   {
+    if (general_index[b] >= 0)
+    {
+      BlockTetrahedra& t = meshed[general_index[b]];
+      append_tetrahedra(mesh, t, b);
+      t = BlockTetrahedra(); // free it as we go
+      continue;
+    }
+    Box box;
+    is_axis_aligned_box(m, b, box);
+    const std::vector<unsigned int> n = brick_divisions(box, brick_edge(box, field));
     if (element == ZoneElement::hex_mixed)
     {
-      Box box;
-      if (!is_axis_aligned_box(m, b, box))
-        throw InputError("entry 'Element' in subsection 'Deformable': hex-mixed needs every "
-                         "deformable block to be an axis-aligned brick, and block " +
-                         std::to_string(b) + " (" +
-                         std::to_string(m.face_start[b + 1] - m.face_start[b]) +
-                         " faces) is not one; allowed: tet4 for blocks of other shapes");
-      const std::vector<unsigned int> n = brick_divisions(box, edge_length);
       append_hex_mixed_brick(mesh, box, {{n[0], n[1], n[2]}}, b);
       continue;
     }
     dealii::Triangulation<3> one;
-    mesh_one_block(m, b, edge_length, one);
+    dealii::GridGenerator::subdivided_hyper_rectangle_with_simplices(
+        one, n, Point<3>(box.lo.x(), box.lo.y(), box.lo.z()),
+        Point<3>(box.hi.x(), box.hi.y(), box.hi.z()));
     append_tetrahedra(mesh, one, b);
   }
   return mesh;
@@ -379,29 +444,32 @@ TetMesh mesh_in_generator_order(const BlockModel& m, const std::vector<unsigned 
 
 template <typename Order>
 TetMesh mesh_and_order(const BlockModel& m, const std::vector<unsigned int>& which,
-                       double edge_length, MeshReport& report, ZoneElement element,
+                       const EdgeLengthField& field, MeshReport& report, ZoneElement element,
                        const Order& order)
 {
-  TetMesh mesh = mesh_in_generator_order(m, which, edge_length, element);
+  TetMesh mesh = mesh_in_generator_order(m, which, field, element);
   order_for_locality(mesh, order);
   report = measure_mesh(mesh);
   return mesh;
 }
 } // namespace
 
-TetMesh mesh_blocks(const BlockModel& m, const std::vector<unsigned int>& which, double edge_length,
-                    MeshReport& report, ZoneElement element, MeshOrder order)
+TetMesh mesh_blocks(const BlockModel& m, const std::vector<unsigned int>& which,
+                    const EdgeLengthField& field, MeshReport& report, ZoneElement element,
+                    MeshOrder order)
 {
-  return mesh_and_order(m, which, edge_length, report, element, order);
+  return mesh_and_order(m, which, field, report, element, order);
 }
 
-TetMesh mesh_blocks(const BlockModel& m, const std::vector<unsigned int>& which, double edge_length,
-                    MeshReport& report, ZoneElement element, const BlockMeshOrder& order)
+TetMesh mesh_blocks(const BlockModel& m, const std::vector<unsigned int>& which,
+                    const EdgeLengthField& field, MeshReport& report, ZoneElement element,
+                    const BlockMeshOrder& order)
 {
-  return mesh_and_order(m, which, edge_length, report, element, order);
+  return mesh_and_order(m, which, field, report, element, order);
 }
 
-double count_zones(const BlockModel& m, const std::vector<unsigned int>& which, double edge_length)
+double count_zones(const BlockModel& m, const std::vector<unsigned int>& which,
+                   const EdgeLengthField& field)
 {
   double zones = 0.0;
   for (unsigned int b : which)
@@ -409,31 +477,31 @@ double count_zones(const BlockModel& m, const std::vector<unsigned int>& which, 
     Box box;
     if (is_axis_aligned_box(m, b, box))
     {
+      const double edge = brick_edge(box, field);
       double hexahedra = 1.0;
       for (int d = 0; d < 3; ++d)
-        hexahedra *= hexahedra_along(box.hi[d] - box.lo[d], edge_length);
+        hexahedra *= hexahedra_along(box.hi[d] - box.lo[d], edge);
       zones += 5.0 * hexahedra;
       continue;
     }
-    // As mesh_one_block: a fan of tetrahedra over each face to the centroid,
-    // each split into eight per refinement level.
-    double fan = 0.0, longest = 0.0;
+    // The regular tetrahedra that fill the block at the local edge length,
+    // summed over a fan of tetrahedra from the centroid to the faces' fans
+    // (each at the edge length at its own centroid); at least the fan.
+    double regular = 0.0, fan = 0.0;
     const Vec3& c = m.centroid[b];
     for (unsigned int f = m.face_start[b]; f < m.face_start[b + 1]; ++f)
     {
       const unsigned int first = m.face_loop_start[f], n = m.face_loop_start[f + 1] - first;
       for (unsigned int k = 1; k + 1 < n; ++k)
       {
-        const std::array<Vec3, 4> t{{m.vertex[m.face_vertex[first]],
-                                    m.vertex[m.face_vertex[first + k]],
-                                    m.vertex[m.face_vertex[first + k + 1]], c}};
-        for (int i = 0; i < 4; ++i)
-          for (int j = i + 1; j < 4; ++j)
-            longest = std::max(longest, (t[i] - t[j]).norm());
+        const Vec3 &p = m.vertex[m.face_vertex[first]], &q = m.vertex[m.face_vertex[first + k]],
+                   &r = m.vertex[m.face_vertex[first + k + 1]];
+        regular += regular_tetrahedra_in(std::abs(signed_volume(p, q, r, c)),
+                                         field.at(0.25 * (p + q + r + c)));
         fan += 1.0;
       }
     }
-    zones += fan * std::pow(8.0, refinement_levels(longest, edge_length));
+    zones += std::max(regular, fan);
   }
   return zones;
 }

@@ -4,6 +4,7 @@
 #include <talus/geometry/region.h>
 #include <talus/solver/deformable_solver.h>
 #include <talus/solver/rigid_solver.h>
+#include <talus/zone/edge_length_field.h>
 
 #include <algorithm>
 #include <map>
@@ -43,7 +44,7 @@ struct ExcavationSpec
 struct DeformableSpec
 {
   std::vector<std::string> groups;     ///< groups whose blocks are meshed into zones
-  double edge_length = 1.0;            ///< m, target zone edge
+  EdgeLengthField edge_length;         ///< m, target zone edge (uniform or graded)
   ZoneMaterial material;               ///< density taken from 'Material'
   std::string mesh_file;               ///< gmsh file of the body's zones (empty: mesh the block)
   std::shared_ptr<const TetMesh> mesh; ///< the zones read from mesh_file (block 0)

@@ -61,6 +61,9 @@ public:
   /// Time step of eqs. 84-86 with the true masses (s), with the joint
   /// stiffness of boundary gridpoints (eq. 85, N/m per gridpoint) if given.
   double stable_time_step(const std::vector<double>& joint_stiffness = {}) const;
+  /// The gridpoint whose mass over stiffness is smallest: the one that sets
+  /// the stable step of eq. 84 (without joints), for the summary.
+  unsigned int time_step_gridpoint() const;
 
   void step();
 

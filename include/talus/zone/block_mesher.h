@@ -1,6 +1,8 @@
 #pragma once
 
 #include <talus/model/block_model.h>
+#include <talus/zone/convex_block_mesher.h>
+#include <talus/zone/edge_length_field.h>
 #include <talus/zone/mesh_order.h>
 #include <talus/zone/tet_mesh.h>
 #include <talus/zone/zone_material.h>
@@ -25,7 +27,20 @@ struct MeshReport
   double zone_volume = 0.0;     ///< m^3, sum over zones (equals the blocks' volume)
   double smallest_height = 0.0; ///< m, smallest zone height (eq. 86)
   double largest_edge = 0.0;    ///< m, largest zone edge (eq. 86)
+  /// Normalised radius ratio of the zones (1 regular, 0 flat): the
+  /// smallest, the 1st percentile and the median; zones below 0.1, and the
+  /// worst zone with its block.
+  double quality_min = 0.0, quality_1 = 0.0, quality_median = 0.0;
+  unsigned int poor_zones = 0;
+  unsigned int worst_zone = 0, worst_block = 0;
+  /// Blocks holding zones below 0.1, with how many each (at most the 20
+  /// with most), for the summary.
+  std::vector<std::pair<unsigned int, unsigned int>> poor_blocks;
 };
+
+/// Appends one block's tetrahedra (from the mesher) as the zones of block
+/// `block`, with gridpoints of its own, and its boundary faces.
+void append_tetrahedra(TetMesh& mesh, const BlockTetrahedra& tetrahedra, unsigned int block);
 
 /// Appends every cell of `tria` (tetrahedra only) as a zone of block
 /// `block`, with gridpoints of its own, and the block's boundary faces.
@@ -41,14 +56,13 @@ TetMesh read_gmsh_block(const std::string& path, unsigned int block,
 /// Counts and sizes of a mesh (throws if a zone has no volume).
 MeshReport measure_mesh(const TetMesh& mesh);
 
-/// Meshes the given blocks into 4-node tetrahedra with edges no longer than
-/// about `edge_length` (m), every block with its own gridpoints, all in one
-/// deal.II triangulation of simplices per block, from which the flat
-/// TetMesh is taken. Axis-aligned bricks are divided by deal.II's generator
-/// (n_x n_y n_z hexahedra of five tetrahedra each); any other convex block
-/// is split into tetrahedra from its centroid over its triangulated faces,
-/// which are then refined (each into eight) until the edge length is
-/// reached.
+/// Meshes the given blocks into 4-node tetrahedra with edges of about
+/// `edge_length` (m; uniform, or graded near a region), every block with
+/// its own gridpoints. Axis-aligned bricks are divided by deal.II's
+/// generator (n_x n_y n_z hexahedra of five tetrahedra each, at the
+/// smallest edge length the field asks for over the brick); any other
+/// convex block is meshed by gmsh's Delaunay mesher (convex_block_mesher.h),
+/// its faces and edges kept exact.
 ///
 /// With `element` hex_mixed every block must be an axis-aligned brick: it
 /// becomes hexahedral zones of two overlays of five tetrahedra
@@ -59,18 +73,21 @@ MeshReport measure_mesh(const TetMesh& mesh);
 /// Last, zones and gridpoints are put in `order` (by default slabs,
 /// renumbered block by block for memory locality, mesh_order.h).
 TetMesh mesh_blocks(const BlockModel& blocks, const std::vector<unsigned int>& which,
-                    double edge_length, MeshReport& report, ZoneElement element = ZoneElement::tet4,
-                    MeshOrder order = MeshOrder::slabs);
+                    const EdgeLengthField& edge_length, MeshReport& report,
+                    ZoneElement element = ZoneElement::tet4, MeshOrder order = MeshOrder::slabs);
 
 /// The same with an order for each block.
 TetMesh mesh_blocks(const BlockModel& blocks, const std::vector<unsigned int>& which,
-                    double edge_length, MeshReport& report, ZoneElement element,
+                    const EdgeLengthField& edge_length, MeshReport& report, ZoneElement element,
                     const BlockMeshOrder& order);
 
 /// The number of zones mesh_blocks would make, found without meshing (as a
 /// double: a bad edge length can ask for more than any integer holds), so
-/// that a scene too large for memory is refused before it is meshed.
+/// that a scene too large for memory is refused before it is meshed: exact
+/// for bricks; for other blocks the regular tetrahedra that fill the
+/// volume at the local edge length (gmsh makes 0.6-1.0 of that on blocks
+/// larger than the edge length), and at least a fan of the block's faces.
 double count_zones(const BlockModel& blocks, const std::vector<unsigned int>& which,
-                   double edge_length);
+                   const EdgeLengthField& edge_length);
 
 } // namespace talus

@@ -14,6 +14,10 @@ namespace talus
 /// that a model is fine only where the stresses change quickly.
 struct EdgeLengthField
 {
+  EdgeLengthField() = default;
+  /// Uniform: `h` everywhere (m).
+  EdgeLengthField(double h) : coarse(h) {}
+
   double coarse = 1.0;            ///< m, away from the regions
   double fine = 0.0;              ///< m, at the regions (0: no grading)
   double distance = 0.0;          ///< m, over which the length grows to `coarse`
