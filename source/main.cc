@@ -244,8 +244,8 @@ std::string edge_length_text(const talus::EdgeLengthField& f)
   using talus::number;
   if (!f.graded())
     return "edge length " + number(f.coarse) + " m";
-  return "edge length " + number(f.fine) + " m at the fine region, growing to " +
-         number(f.coarse) + " m at " + number(f.distance) + " m from it";
+  return "edge length " + number(f.fine) + " m at the fine region, growing to " + number(f.coarse) +
+         " m at " + number(f.distance) + " m from it";
 }
 
 /// The summary's lines on the zones' shapes: the radius ratio (1 for a
@@ -264,8 +264,7 @@ void print_mesh_quality(const talus::MeshReport& r, const talus::TetMesh& mesh,
   {
     std::printf(" in block");
     for (std::size_t i = 0; i < r.poor_blocks.size(); ++i)
-      std::printf("%s %u (%u)", i == 0 ? "" : ",", r.poor_blocks[i].first,
-                  r.poor_blocks[i].second);
+      std::printf("%s %u (%u)", i == 0 ? "" : ",", r.poor_blocks[i].first, r.poor_blocks[i].second);
   }
   std::printf("\n");
   const unsigned int g = zones.time_step_gridpoint();
@@ -276,7 +275,8 @@ void print_mesh_quality(const talus::MeshReport& r, const talus::TetMesh& mesh,
     if (std::find(t.begin(), t.end(), g) != t.end())
     {
       worst = std::min(worst, radius_ratio(P(t[0]), P(t[1]), P(t[2]), P(t[3])));
-      const double v = std::abs((P(t[1]) - P(t[0])).dot((P(t[2]) - P(t[0])).cross(P(t[3]) - P(t[0]))));
+      const double v =
+          std::abs((P(t[1]) - P(t[0])).dot((P(t[2]) - P(t[0])).cross(P(t[3]) - P(t[0]))));
       for (int k = 0; k < 4; ++k)
       {
         const Vec3 a = P(t[(k + 1) % 4]), b = P(t[(k + 2) % 4]), c = P(t[(k + 3) % 4]);
@@ -502,10 +502,9 @@ double solve(talus::Scene& scene, talus::BlockModel& model, talus::PvdSeries& se
   const TetMesh& mesh = system.mesh;
   DeformableSolver* zones = system.zones.get();
   if (zones)
-    std::printf(
-        "Zones:        %u tetrahedra in %u deformable blocks, %u gridpoints (%s)\n",
-        system.mesh_report.zones, system.mesh_report.blocks, system.mesh_report.gridpoints,
-        edge_length_text(scene.deformable.edge_length).c_str());
+    std::printf("Zones:        %u tetrahedra in %u deformable blocks, %u gridpoints (%s)\n",
+                system.mesh_report.zones, system.mesh_report.blocks, system.mesh_report.gridpoints,
+                edge_length_text(scene.deformable.edge_length).c_str());
   if (zones && system.mesh_report.hexes > 0)
     std::printf("Hexahedra:    %u (mixed discretization: the tetrahedra are their two overlays of "
                 "five)\n",

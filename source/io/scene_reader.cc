@@ -444,11 +444,10 @@ void parse_deformable(ParameterFile& prm, Scene& scene)
     throw prm.error("Edge length", "must be positive", "a number > 0 (m)");
   const double fine = prm.get_double("Fine edge length");
   if (!(fine >= 0.0 && fine < d.edge_length.coarse))
-    throw prm.error("Fine edge length",
-                    number(fine) + " m is not below 'Edge length' (" +
-                        number(d.edge_length.coarse) + " m)",
-                    "0 (no grading), or a number > 0 and < " + number(d.edge_length.coarse) +
-                        " (m)");
+    throw prm.error(
+        "Fine edge length",
+        number(fine) + " m is not below 'Edge length' (" + number(d.edge_length.coarse) + " m)",
+        "0 (no grading), or a number > 0 and < " + number(d.edge_length.coarse) + " (m)");
   if (fine > 0.0)
   {
     d.edge_length.fine = fine;
@@ -841,12 +840,26 @@ void warn_about_ignored_entries(const ParameterFile& prm, Scene& scene,
         "'Mode' is dynamic (undamped, every one of 'Steps')", scene.warnings);
   if (scene.deformable.groups.empty())
     warn_ignored(prm, "Deformable",
-                 {"Edge length", "Fine edge length", "Grading distance", "Fine region",
-                  "Fine box min", "Fine box max", "Mesh file", "Nodal mixed discretization",
+                 {"Edge length",
+                  "Fine edge length",
+                  "Grading distance",
+                  "Fine region",
+                  "Fine box min",
+                  "Fine box max",
+                  "Mesh file",
+                  "Nodal mixed discretization",
                   "Nodal mixed groups",
-                  "Element", "Implicit check", "Zone model", "Young's modulus", "Poisson's ratio",
-                  "Friction angle", "Dilation angle", "Cohesion", "Tensile strength",
-                  "Stiffness ratio groups", "Stiffness ratio"},
+                  "Element",
+                  "Implicit check",
+                  "Zone model",
+                  "Young's modulus",
+                  "Poisson's ratio",
+                  "Friction angle",
+                  "Dilation angle",
+                  "Cohesion",
+                  "Tensile strength",
+                  "Stiffness ratio groups",
+                  "Stiffness ratio"},
                  "'Groups' names no deformable block", scene.warnings);
   std::size_t load = 0;
   for (const auto& [kind, name] : sections)
