@@ -252,7 +252,7 @@ std::string edge_length_text(const talus::EdgeLengthField& f)
 /// regular tetrahedron), where the poor zones are, and the gridpoint that
 /// sets the stable step of eq. 84 with its worst zone.
 void print_mesh_quality(const talus::MeshReport& r, const talus::TetMesh& mesh,
-                        const talus::DeformableSolver& zones)
+                        const talus::DeformableSolver& zones, const talus::BlockModel& model)
 {
   using namespace talus;
   if (r.zones == 0)
@@ -283,9 +283,41 @@ void print_mesh_quality(const talus::MeshReport& r, const talus::TetMesh& mesh,
         height = std::min(height, v / (b - a).cross(c - a).norm());
       }
     }
+  // The block's own shape: an edge or a thickness much below the zone size
+  // forces thin zones, whatever the mesher does.
+  const unsigned int b = mesh.gridpoint_block[g];
+  double shortest = 1e300, thickness = 1e300;
+  for (unsigned int f = model.face_start[b]; f < model.face_start[b + 1]; ++f)
+  {
+    const unsigned int first = model.face_loop_start[f], n = model.face_loop_start[f + 1] - first;
+    for (unsigned int k = 0; k < n; ++k)
+      shortest = std::min(shortest, (model.vertex[model.face_vertex[first + k]] -
+                                     model.vertex[model.face_vertex[first + (k + 1) % n]])
+                                        .norm());
+    double across = 0.0;
+    for (unsigned int v = model.vertex_start[b]; v < model.vertex_start[b + 1]; ++v)
+      across = std::max(across, -model.face_normal[f].dot(model.vertex[v] -
+                                                         model.vertex[model.face_vertex[first]]));
+    thickness = std::min(thickness, across);
+  }
   std::printf("Step set by:  the gridpoint at (%.4g, %.4g, %.4g) m of block %u (eq. 84): its "
-              "zones' worst radius ratio %.2g, smallest height %.3g m\n",
-              P(g).x(), P(g).y(), P(g).z(), mesh.gridpoint_block[g], worst, height);
+              "zones' worst radius ratio %.2g, smallest height %.3g m; the block's shortest edge "
+              "%.3g m, thickness %.3g m\n",
+              P(g).x(), P(g).y(), P(g).z(), b, worst, height, shortest, thickness);
+}
+
+/// The summary's line on the zones about to be meshed: how many and how much
+/// memory, estimated before meshing (after the checks, which refuse a scene
+/// that does not fit).
+void print_zone_estimate(const talus::Scene& scene, const talus::BlockModel& model)
+{
+  const talus::ZoneEstimate e = talus::estimate_zones(scene, model);
+  if (e.blocks == 0 || e.zones == 0.0)
+    return;
+  std::printf("Meshing:      about %.3g %s in %zu deformable block%s, about %s of memory\n",
+              e.zones, e.quadratic ? "10-node zones" : "zones", e.blocks, e.blocks == 1 ? "" : "s",
+              talus::memory_text(e.bytes).c_str());
+  std::fflush(stdout);
 }
 
 /// The summary's line on nodal mixed discretization, when some zones have
@@ -333,6 +365,7 @@ double solve_deformable(talus::Scene& scene, talus::BlockModel& model, const std
 {
   using namespace talus;
   MeshReport mesh_report;
+  print_zone_estimate(scene, model);
   TetMesh mesh = single_block_zones(scene, model, mesh_report);
   const bool from_file = !scene.deformable.mesh_file.empty();
   check_boundary_selections(scene, model, mesh);
@@ -354,7 +387,7 @@ double solve_deformable(talus::Scene& scene, talus::BlockModel& model, const std
   DeformableSolver solver(mesh, std::move(materials.materials), std::move(materials.of_zone),
                           scene.solver, scene.gridpoint_conditions, scene.face_pressures,
                           scene.has_initial_stress ? &scene.initial_stress : nullptr);
-  print_mesh_quality(mesh_report, mesh, solver);
+  print_mesh_quality(mesh_report, mesh, solver, model);
   print_nodal_mixed(solver);
   std::printf("Time step:    %.6g s (eq. 84%s)\n", solver.dt(),
               !scene.solver.dynamic && scene.solver.density_scaling ? ", density scaling: unit step"
@@ -496,7 +529,11 @@ double solve(talus::Scene& scene, talus::BlockModel& model, talus::PvdSeries& se
   // Deformable blocks among rigid ones: their zones, and their surfaces as
   // their shapes for the contacts.
   const std::unique_ptr<ParallelEnvironment> parallel = zone_environment(scene);
+  print_zone_estimate(scene, model);
+  const auto meshing = std::chrono::steady_clock::now();
   BlockSystem system = build_block_system(scene, model);
+  const double meshing_seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - meshing).count();
   check_boundary_selections(scene, model, system.mesh);
   RigidSolver& solver = *system.solver;
   const TetMesh& mesh = system.mesh;
@@ -511,7 +548,7 @@ double solve(talus::Scene& scene, talus::BlockModel& model, talus::PvdSeries& se
                 system.mesh_report.hexes);
   if (zones)
   {
-    print_mesh_quality(system.mesh_report, mesh, *zones);
+    print_mesh_quality(system.mesh_report, mesh, *zones, model);
     print_nodal_mixed(*zones);
   }
   if (scene.solver.time_step > 0.0 && solver.stable_time_step() < 1e300)
@@ -746,6 +783,7 @@ int run(const std::string& filename, bool check_only = false)
   {
     std::printf("talus: scene %s\n", std::filesystem::path(filename).filename().c_str());
     std::printf("Blocks:       %u\n", model.n_blocks());
+    print_zone_estimate(scene, model);
     check_calculation(scene, model);
     std::printf("Check:        no problem found; nothing was written\n");
     return 0;

@@ -61,4 +61,14 @@ std::string memory_text(double bytes)
   return text;
 }
 
+double peak_memory()
+{
+  std::ifstream status("/proc/self/status");
+  std::string line;
+  while (std::getline(status, line))
+    if (line.rfind("VmHWM:", 0) == 0)
+      return 1024.0 * std::strtod(line.c_str() + 6, nullptr); // given in kB
+  return 0.0;
+}
+
 } // namespace talus

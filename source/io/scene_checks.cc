@@ -229,10 +229,8 @@ void check_deformable_blocks(const Scene& scene, const BlockModel& model)
                           " m is larger than every deformable block (the largest spans " +
                           number(largest_extent) + " m)",
                       "a number > 0 and at most " + number(largest_extent) + " (m)");
-  // Hexahedral zones count as their ten tetrahedra (two overlays of five).
-  const double zones =
-      count_zones(model, deformable, field) *
-      (scene.deformable.material.element == ZoneElement::hex_mixed ? 2.0 : 1.0);
+  const ZoneEstimate estimate = estimate_zones(scene, model);
+  const double zones = estimate.zones;
   const char* entry = field.graded() ? "Fine edge length" : "Edge length";
   if (!(zones <= max_zones))
     throw scene_error(scene, "Deformable", entry,
@@ -240,11 +238,7 @@ void check_deformable_blocks(const Scene& scene, const BlockModel& model)
                           number(max_zones) +
                           " talus meshes (about 620 bytes of memory each while meshing)",
                       "an edge length that makes at most " + number(max_zones) + " zones");
-  const bool quadratic = scene.deformable.material.element == ZoneElement::tet10;
-  const double bytes = zones * bytes_per_zone * (quadratic ? 4.0 : 1.0);
-  std::printf("Meshing:      about %.3g %s in %zu deformable block%s, about %s of memory\n",
-              zones, quadratic ? "10-node zones" : "zones", deformable.size(),
-              deformable.size() == 1 ? "" : "s", memory_text(bytes).c_str());
+  const double bytes = estimate.bytes;
   const double room = available_memory();
   if (!(bytes <= room))
     throw scene_error(scene, "Deformable", entry,
@@ -257,6 +251,25 @@ void check_deformable_blocks(const Scene& scene, const BlockModel& model)
 }
 
 } // namespace
+
+ZoneEstimate estimate_zones(const Scene& scene, const BlockModel& model)
+{
+  ZoneEstimate e;
+  if (!scene.deformable.mesh_file.empty())
+    return e;
+  std::vector<unsigned int> deformable;
+  for (unsigned int b = 0; b < model.n_blocks(); ++b)
+    if (std::find(scene.deformable.groups.begin(), scene.deformable.groups.end(),
+                  model.group_names[model.group[b]]) != scene.deformable.groups.end())
+      deformable.push_back(b);
+  e.blocks = deformable.size();
+  e.quadratic = scene.deformable.material.element == ZoneElement::tet10;
+  // Hexahedral zones count as their ten tetrahedra (two overlays of five).
+  e.zones = count_zones(model, deformable, scene.deformable.edge_length) *
+            (scene.deformable.material.element == ZoneElement::hex_mixed ? 2.0 : 1.0);
+  e.bytes = e.zones * bytes_per_zone * (e.quadratic ? 4.0 : 1.0);
+  return e;
+}
 
 void resolve_history_blocks(Scene& scene, const BlockModel& model)
 {

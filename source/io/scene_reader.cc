@@ -68,8 +68,11 @@ void declare_model(ParameterFile& prm)
               "Group of blocks that no 'Group N' region selects.");
   prm.declare("Cutting tolerance", "1e-9", P::Double(0.0, 1e-3), "a number in [0, 1e-3]",
               "Vertices closer to a cutting plane than this times the block size lie on it.");
-  prm.declare("Minimum block volume", "0", P::Double(0.0), "a number >= 0 (m^3)",
-              "A cut that would leave a smaller piece is not made, and is reported.");
+  prm.declare("Minimum block volume", "auto", P::Anything(),
+              "auto, or a number >= 0 (m^3)",
+              "A cut that would leave a smaller piece is not made, and is reported. auto: 1e-7 "
+              "of the brick's volume (a sliver that small would set the time step of the whole "
+              "model); 0: every cut is made.");
   prm.leave();
 }
 
@@ -87,7 +90,20 @@ void parse_model(ParameterFile& prm, Scene& scene)
                     "a brick whose sides are from 1e-6 to 1e8 m");
   scene.default_group = prm.get("Default group");
   scene.cutting.relative_tolerance = prm.get_double("Cutting tolerance");
-  scene.cutting.minimum_volume = prm.get_double("Minimum block volume");
+  const std::string minimum = prm.get("Minimum block volume");
+  if (minimum == "auto")
+    scene.cutting.minimum_volume = relative_minimum_block_volume * sides.prod();
+  else
+  {
+    char* end = nullptr;
+    scene.cutting.minimum_volume = std::strtod(minimum.c_str(), &end);
+    while (end != nullptr && *end == ' ')
+      ++end;
+    if (minimum.empty() || end == nullptr || *end != '\0' ||
+        !(scene.cutting.minimum_volume >= 0.0) || !std::isfinite(scene.cutting.minimum_volume))
+      throw prm.error("Minimum block volume", "'" + minimum + "' is not auto or a number >= 0",
+                      "auto, or a number >= 0 (m^3)");
+  }
   prm.leave();
 }
 

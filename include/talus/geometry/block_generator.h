@@ -25,6 +25,12 @@ struct JointSetSpec
 };
 
 /// Settings shared by every cutting operation.
+/// The default 'Minimum block volume' as a share of the starting brick's
+/// volume: jointing leaves pieces this small only where a joint passes a
+/// hair from a corner or edge, and one such sliver would set the stable
+/// time step (eqs. 84, 87) of the whole model.
+constexpr double relative_minimum_block_volume = 1e-7;
+
 struct CuttingSettings
 {
   /// Vertices closer to a cutting plane than this times the block size

@@ -47,6 +47,18 @@ void check_model_size(const Scene& scene);
 /// warnings ("Warning: ...").
 void check_built_model(const Scene& scene, const BlockModel& model, const BuildReport& report);
 
+/// The zones meshing the deformable blocks will make, and the memory that
+/// takes, estimated from each block's volume and the edge length before
+/// anything is meshed (count_zones); zero for a scene whose zones come from
+/// a mesh file.
+struct ZoneEstimate
+{
+  double zones = 0.0, bytes = 0.0;
+  std::size_t blocks = 0;
+  bool quadratic = false;
+};
+ZoneEstimate estimate_zones(const Scene& scene, const BlockModel& model);
+
 /// Adds to `scene.solver.history_blocks` the block containing each of
 /// `scene.history_block_points` (the block with the nearest centroid when
 /// no block contains it), once each, after the numbered ones.
