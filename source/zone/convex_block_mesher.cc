@@ -63,7 +63,11 @@ GmshSession::GmshSession()
   gmsh::option::setNumber("Mesh.MeshSizeFromCurvature", 0);
   gmsh::option::setNumber("Mesh.MeshSizeExtendFromBoundary", 0);
   gmsh::option::setNumber("Mesh.Algorithm", 6);    // frontal-Delaunay faces
-  gmsh::option::setNumber("Mesh.Algorithm3D", 10); // HXT Delaunay volume
+  // gmsh's Delaunay volume mesher (1), not HXT (10): HXT (gmsh 4.8) gives
+  // the same block a different mesh from one call to the next in a process
+  // (convex_block_mesher_04), so a run's answer would depend on what was
+  // meshed before and on the batching.
+  gmsh::option::setNumber("Mesh.Algorithm3D", 1);
   gmsh::option::setNumber("Mesh.Optimize", 1);     // gmsh's sliver removal
 }
 
