@@ -12,13 +12,15 @@
 // and over each model the median normalised radius ratio is at least 0.6,
 // zones below 0.1 only in blocks whose shape forces them (a face angle or
 // dihedral angle below 20 degrees or an edge below h / 4).
-// Exact counts go to standard error (gmsh's meshes follow the rounding of
+// And the measures radius_ratio and regular_tetrahedra_in against closed
+// forms. Exact counts go to standard error (gmsh's meshes follow the rounding of
 // the build), rounded figures and verdicts to standard output.
 
 #include <talus/geometry/block_generator.h>
 #include <talus/model/block_model.h>
 #include <talus/zone/convex_block_mesher.h>
 
+#include <cmath>
 #include <cstdio>
 #include <numeric>
 #include <string>
@@ -42,6 +44,25 @@ void mesh_and_check(const std::string& name, const BlockModel& model, double h)
 
 int main()
 {
+  // The measures themselves, against closed forms: a regular tetrahedron
+  // has radius ratio 1 and is the one regular tetrahedron in its volume
+  // (edge a: V = a^3 sqrt(2) / 12); the corner tetrahedron (0, e1, e2, e3)
+  // has r_in = 1 / (3 + sqrt(3)) and r_circ = sqrt(3) / 2, so 3 r_in / r_circ
+  // = 2 / (1 + sqrt(3)); a flat one has 0.
+  {
+    const double a = 0.3;
+    const Vec3 p0(0, 0, 0), p1(a, 0, 0), p2(a / 2, a * std::sqrt(3.0) / 2, 0),
+        p3(a / 2, a * std::sqrt(3.0) / 6, a * std::sqrt(2.0 / 3.0));
+    talus_test::check("radius ratio of a regular tetrahedron", radius_ratio(p0, p1, p2, p3), 1.0,
+                      1e-14);
+    talus_test::check("regular tetrahedra of edge a in a^3 sqrt(2)/12",
+                      regular_tetrahedra_in(a * a * a * std::sqrt(2.0) / 12.0, a), 1.0, 1e-14);
+    talus_test::check("radius ratio of the corner tetrahedron",
+                      radius_ratio(p0, Vec3::UnitX(), Vec3::UnitY(), Vec3::UnitZ()),
+                      2.0 / (1.0 + std::sqrt(3.0)), 1e-14);
+    std::printf("radius ratio of a flat tetrahedron: %s\n",
+                talus_test::verdict(radius_ratio(p0, p1, p2, Vec3(0.1, 0.1, 0)) == 0.0));
+  }
   const double h = 0.25;
   const ConvexPolyhedron cube = ConvexPolyhedron::box(Vec3::Zero(), Vec3::Ones());
   {
