@@ -7,14 +7,17 @@
 //    (the mesh's surface) lie on the block's face planes (within 1e-12 of
 //    the block's size), facing out, their areas summing to each face's area
 //    to 1e-12: the surface of the mesh is the block's surface;
-//  - blocks at least h wide have 0.5 to 2 times the zones of regular
-//    tetrahedra of edge h filling them (regular_tetrahedra_in);
-// and over each model the median normalised radius ratio is at least 0.6,
-// zones below 0.1 only in blocks whose shape forces them (a face angle or
-// dihedral angle below 20 degrees or an edge below h / 4).
-// And the measures radius_ratio and regular_tetrahedra_in against closed
-// forms. Exact counts go to standard error (gmsh's meshes follow the rounding of
-// the build), rounded figures and verdicts to standard output.
+//  - blocks at least 2h wide have 0.5 to 2 times the zones of regular
+//    tetrahedra of edge h filling them (regular_tetrahedra_in); a narrower
+//    block has no room for a gridpoint h from its faces, so its zones are
+//    its faces' triangles joined up, with at most one interior gridpoint;
+// and over each model the median normalised radius ratio of blocks at
+// least h/2 wide is at least 0.6, zones below 0.1 only in blocks whose
+// shape forces them (a face or dihedral angle below 20 degrees, an edge or
+// a width below h/4). And the measures radius_ratio and
+// regular_tetrahedra_in against closed forms. Verdicts go to standard
+// output; counts and qualities to standard error, since gmsh's meshes
+// follow the build's rounding.
 
 #include <talus/geometry/block_generator.h>
 #include <talus/model/block_model.h>
