@@ -67,10 +67,10 @@ GmshSession::GmshSession()
   gmsh::option::setNumber("Mesh.MeshSizeFromCurvature", 0);
   gmsh::option::setNumber("Mesh.MeshSizeExtendFromBoundary", 0);
   gmsh::option::setNumber("Mesh.Algorithm", 6);    // frontal-Delaunay faces
-  // gmsh's Delaunay for the volume: the same mesh every time. HXT (10) is
-  // up to 1.6 times faster on small blocks, but meshing one block again in
-  // the same process gives another mesh (371, 361, 362 zones for one
-  // tetrahedron), so runs could not be repeated.
+  // gmsh's Delaunay volume mesher (1), not HXT (10): HXT (gmsh 4.8) gives
+  // the same block a different mesh from one call to the next in a process
+  // (371, 361, 362 zones for one tetrahedron; convex_block_mesher_04), so a
+  // run's answer would depend on what was meshed before.
   gmsh::option::setNumber("Mesh.Algorithm3D", 1);
   gmsh::option::setNumber("Mesh.Optimize", 1);     // gmsh's sliver removal
 }
