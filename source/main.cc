@@ -542,6 +542,11 @@ double solve(talus::Scene& scene, talus::BlockModel& model, talus::PvdSeries& se
     std::printf("Zones:        %u tetrahedra in %u deformable blocks, %u gridpoints (%s)\n",
                 system.mesh_report.zones, system.mesh_report.blocks, system.mesh_report.gridpoints,
                 edge_length_text(scene.deformable.edge_length).c_str());
+  if (zones)
+    // Indented "Time =" lines are ignored when test output is compared.
+    std::printf("   Time = %.3f s to mesh and set up the zones (%.3g zones/s); peak memory %s\n",
+                meshing_seconds, system.mesh_report.zones / meshing_seconds,
+                memory_text(peak_memory()).c_str());
   if (zones && system.mesh_report.hexes > 0)
     std::printf("Hexahedra:    %u (mixed discretization: the tetrahedra are their two overlays of "
                 "five)\n",

@@ -121,7 +121,8 @@ void check_built_model(const Scene& scene, const BlockModel& model, const BuildR
     throw scene_error(scene, section, "",
                       cuts.second > 0 ? "cuts no block: its " + std::to_string(cuts.second) +
                                             " cuts would all leave pieces smaller than the "
-                                            "'Minimum block volume' of subsection 'Model'"
+                                            "'Minimum block volume' of subsection 'Model' (" +
+                                            number(scene.cutting.minimum_volume) + " m^3)"
                                       : "cuts no block (its planes miss the blocks, or lie on "
                                         "faces that are already there)",
                       "joints that cross the model (see Origin, Dip, Dip direction and the "
