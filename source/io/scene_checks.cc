@@ -202,6 +202,36 @@ void check_deformable_blocks(const Scene& scene, const BlockModel& model)
   if (deformable.empty())
     throw scene_error(scene, "Deformable", "Groups", "no block of the model is in these groups",
                       "groups that hold blocks");
+  {
+    // A rock so soft that its own weight would strain a block by more than
+    // a half (rho g L / E, L its height or width) collapses: the zones
+    // invert within a few steps and the run can only diverge.
+    const DeformableSpec& d = scene.deformable;
+    const double weight = scene.density * scene.solver.gravity.norm(); // N/m^3
+    for (unsigned int b : deformable)
+    {
+      Box box{model.vertex[model.vertex_start[b]], model.vertex[model.vertex_start[b]]};
+      for (unsigned int v = model.vertex_start[b]; v < model.vertex_start[b + 1]; ++v)
+      {
+        box.lo = box.lo.cwiseMin(model.vertex[v]);
+        box.hi = box.hi.cwiseMax(model.vertex[v]);
+      }
+      const double extent = (box.hi - box.lo).maxCoeff();
+      const std::string& group = model.group_names[model.group[b]];
+      const bool scaled = std::find(d.scaled_groups.begin(), d.scaled_groups.end(), group) !=
+                          d.scaled_groups.end();
+      const double E = d.material.young() * (scaled ? d.stiffness_ratio : 1.0);
+      const double strain = weight * extent / E;
+      if (strain > 0.5)
+        throw scene_error(scene, "Deformable", scaled ? "Stiffness ratio" : "Young's modulus",
+                          "makes blocks of group '" + group + "' so soft (E = " + number(E) +
+                              " Pa) that their own weight would strain them by about " +
+                              number(strain) + " (density x gravity x " + number(extent) +
+                              " m / E): they would collapse",
+                          "a Young's modulus of at least " + number(2.0 * weight * extent) +
+                              " Pa for these blocks (own-weight strain at most 0.5)");
+    }
+  }
   if (!scene.deformable.mesh_file.empty())
   {
     if (model.n_blocks() != 1)
