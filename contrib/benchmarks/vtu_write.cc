@@ -3,7 +3,10 @@
 // velocity per gridpoint; stress, principal_stress and plastic_state per
 // zone), once as ASCII and once as compressed binary (the default), taking
 // turns three times. Per size and encoding it prints the zones written per
-// second (the fastest of the runs, wall clock), the file size per zone and
+// second (the fastest of the runs, wall clock; binary compresses on
+// vtu_compression_lanes() threads), the zones per second of processor time
+// (all threads; close to the wall-clock rate of one lane on an idle
+// machine, less disturbed when the cores are shared), the file size per zone and
 // the peak memory the write adds, per zone: the process's peak resident
 // set (VmHWM, reset through /proc/self/clear_refs before each write) minus
 // its resident set just before.
@@ -12,7 +15,7 @@
 // displacements and velocities, a gravitational stress with noise in its
 // last digits, a third of the zones plastic.
 //
-// One core; run from a Release build:
+// Run from a Release build:
 //   cmake --build build --target benchmark_vtu_write
 //   build/contrib/benchmarks/benchmark_vtu_write [n ...]
 // Default n = 39 59 (296 k and 1.03 M zones). Files go to the working
@@ -74,6 +77,9 @@ int main(int argc, char** argv)
                                                                    {"binary", VtuEncoding::binary}};
 #else
   const std::vector<std::pair<const char*, int>> encodings{{"dealii", 0}};
+#endif
+#ifdef TALUS_HAS_VTU_ENCODING
+  std::printf("compression lanes: %u\n", vtu_compression_lanes());
 #endif
   std::printf("%9s %9s %8s %12s %12s %12s %12s\n", "zones", "gridpts", "encoding", "zones/s",
               "zones/cpu-s", "file B/zone", "peak B/zone");

@@ -61,7 +61,11 @@ void write_vtu_file_start(std::ostream& out, VtuEncoding encoding);
 /// by what makes it whole tuples): each
 /// block is filled, compressed and dropped in turn, so that writing an
 /// array holds one block plus the array's compressed bytes.
-inline constexpr std::size_t vtu_block_bytes = 1 << 16;
+inline constexpr std::size_t vtu_block_bytes = std::size_t(1) << 16;
+
+/// How many blocks are compressed at once, each on a thread of its own:
+/// the machine's cores, at most 4.
+unsigned int vtu_compression_lanes();
 
 /// One DataArray element being written, the values given block by block
 /// (see write_data_array, which drives it).
@@ -71,9 +75,10 @@ public:
   VtuArrayEncoder(std::ostream& out, VtuEncoding encoding, const char* type,
                   const std::string& name, unsigned int components, std::size_t block_bytes);
   ~VtuArrayEncoder();
-  /// Binary: compresses `bytes` bytes as the next block (every block but the
-  /// last of `block_bytes`).
-  void add_block(const void* data, std::size_t bytes);
+  /// Binary: compresses `n` blocks as the next ones, at the same time on up
+  /// to vtu_compression_lanes() threads (every block but the array's last
+  /// of `block_bytes`).
+  void add_blocks(const void* const* data, const std::size_t* bytes, unsigned int n);
   /// ASCII: appends values as text, a line per 12.
   template <typename T>
   void add_text(const T* values, std::size_t count);
@@ -93,8 +98,8 @@ private:
   // sizes) and the compressed blocks one after the other.
   std::vector<std::uint64_t> header_;
   std::string packed_;
-  struct Deflater; ///< zlib's stream, made once per array
-  std::unique_ptr<Deflater> deflater_;
+  struct Deflater; ///< zlib's stream and its output: one per lane
+  std::vector<std::unique_ptr<Deflater>> deflaters_;
   // ASCII: text waiting to be written, values on the current line.
   std::string text_;
   unsigned int column_ = 0;
@@ -127,15 +132,25 @@ void write_data_array(std::ostream& out, VtuEncoding encoding, const std::string
       std::max<std::size_t>(1, vtu_block_bytes / (sizeof(T) * components));
   VtuArrayEncoder encoder(out, encoding, vtk_type_name<T>(), name, components,
                           per_block * components * sizeof(T));
-  std::vector<T> values(per_block * components);
-  for (std::size_t first = 0; first < n_tuples; first += per_block)
+  // Binary: as many blocks filled at a time as are compressed at once.
+  const unsigned int lanes = encoding == VtuEncoding::binary ? vtu_compression_lanes() : 1;
+  std::vector<std::vector<T>> values(lanes, std::vector<T>(per_block * components));
+  std::vector<const void*> data(lanes);
+  std::vector<std::size_t> bytes(lanes);
+  for (std::size_t first = 0; first < n_tuples;)
   {
-    const std::size_t count = std::min(per_block, n_tuples - first);
-    fill(first, count, values.data());
+    unsigned int n = 0;
+    for (; n < lanes && first < n_tuples; ++n, first += per_block)
+    {
+      const std::size_t count = std::min(per_block, n_tuples - first);
+      fill(first, count, values[n].data());
+      data[n] = values[n].data();
+      bytes[n] = count * components * sizeof(T);
+    }
     if (encoding == VtuEncoding::binary)
-      encoder.add_block(values.data(), count * components * sizeof(T));
+      encoder.add_blocks(data.data(), bytes.data(), n);
     else
-      encoder.add_text(values.data(), count * components);
+      encoder.add_text(values[0].data(), bytes[0] / sizeof(T));
   }
   encoder.finish();
 }
