@@ -53,24 +53,22 @@ unsigned int vtu_compression_lanes()
   return lanes;
 }
 
-/// A deflate stream reset for each block (each block a zlib stream of its
-/// own, as VTK reads them) and the block it compressed. zlib's fastest
-/// level: its matching shrinks the integer arrays 3 to 200 times and
-/// floating-point fields, which repeat in their leading bytes or where
-/// they are uniform, to between a half and a twentieth; Huffman coding
-/// alone would be faster on noisy fields but make files of smooth ones
-/// several times larger.
-struct VtuArrayEncoder::Deflater
+namespace
+{
+/// A zlib stream reset for each block (each block a zlib stream of its
+/// own, as VTK reads them) at zlib's fastest level, with matching or with
+/// Huffman coding alone.
+struct BlockStream
 {
   z_stream stream{};
-  std::string packed;
-  Deflater()
+  explicit BlockStream(bool huffman_only)
   {
-    if (deflateInit(&stream, Z_BEST_SPEED) != Z_OK)
+    if (deflateInit2(&stream, Z_BEST_SPEED, Z_DEFLATED, 15, 8,
+                     huffman_only ? Z_HUFFMAN_ONLY : Z_DEFAULT_STRATEGY) != Z_OK)
       throw std::runtime_error("VTU output: zlib cannot start");
   }
-  ~Deflater() { deflateEnd(&stream); }
-  void compress(const void* data, std::size_t bytes)
+  ~BlockStream() { deflateEnd(&stream); }
+  void compress(const void* data, std::size_t bytes, std::string& packed)
   {
     if (deflateReset(&stream) != Z_OK)
       throw std::runtime_error("VTU output: zlib failed");
@@ -84,19 +82,43 @@ struct VtuArrayEncoder::Deflater
     packed.resize(stream.total_out);
   }
 };
+} // namespace
+
+/// One lane: its two streams and the block it compressed.
+struct VtuArrayEncoder::Deflater
+{
+  BlockStream matching{false}, huffman{true};
+  std::string packed;
+};
+
+bool VtuArrayEncoder::huffman_only(std::size_t block) const
+{
+  // zlib's matching shrinks the integer arrays 3 to 200 times, and smooth
+  // or uniform fields 10 to 200 times (a run's early frames), but noisy
+  // floating-point fields only to about 0.55, where Huffman coding alone
+  // reaches about 0.75 at under two thirds of the time (benchmark_vtu_write:
+  // the difference between a million zones per second and less). So a
+  // floating-point array's blocks take Huffman coding while matching gets
+  // less than 0.35 off the block four before, and matching again once
+  // Huffman coding takes more than half off it. Looking four blocks back
+  // (not one) lets up to four lanes work at once with the same bytes
+  // whatever their number.
+  if (!floating_point_ || block < 4)
+    return false;
+  const double ratio = block_ratio_[block - 4];
+  return block_huffman_[block - 4] ? ratio >= 0.5 : ratio > 0.35;
+}
 
 VtuArrayEncoder::VtuArrayEncoder(std::ostream& out, VtuEncoding encoding, const char* type,
                                  const std::string& name, unsigned int components,
                                  std::size_t block_bytes)
-    : out_(out), encoding_(encoding)
+    : out_(out), encoding_(encoding), floating_point_(type[0] == 'F') // Float32, Float64
 {
   out_ << "        <DataArray type=\"" << type << "\" Name=\"" << name << "\" NumberOfComponents=\""
        << components << "\" format=\"" << (encoding == VtuEncoding::binary ? "binary" : "ascii")
        << "\">\n";
   if (encoding == VtuEncoding::binary)
-  {
     header_ = {0, block_bytes, 0};
-  }
 }
 
 VtuArrayEncoder::~VtuArrayEncoder() = default;
@@ -107,15 +129,23 @@ void VtuArrayEncoder::add_blocks(const void* const* data, const std::size_t* byt
     deflaters_.push_back(std::make_unique<Deflater>());
   // Blocks 1.. on threads of their own, block 0 here; the same bytes as one
   // after the other (restarted runs compare files byte for byte).
+  const std::size_t first = header_[0];
+  const auto compress = [&](unsigned int k)
+  {
+    Deflater& d = *deflaters_[k];
+    (huffman_only(first + k) ? d.huffman : d.matching).compress(data[k], bytes[k], d.packed);
+  };
   std::vector<std::future<void>> others;
   for (unsigned int k = 1; k < n; ++k)
-    others.push_back(
-        std::async(std::launch::async, [&, k] { deflaters_[k]->compress(data[k], bytes[k]); }));
-  deflaters_[0]->compress(data[0], bytes[0]);
+    others.push_back(std::async(std::launch::async, compress, k));
+  compress(0);
   for (std::future<void>& f : others)
     f.get(); // passes on an exception
   for (unsigned int k = 0; k < n; ++k)
   {
+    block_huffman_.push_back(huffman_only(first + k));
+    block_ratio_.push_back(static_cast<float>(deflaters_[k]->packed.size()) /
+                           static_cast<float>(bytes[k]));
     packed_ += deflaters_[k]->packed;
     ++header_[0];
     header_.push_back(deflaters_[k]->packed.size());

@@ -101,6 +101,10 @@ int main()
               talus_test::verdict(encoder_round_trip<double>(3, 2 * 2730 + 1, 3, 24)));
   std::printf("part of a block of Float32 x 9: %s\n",
               talus_test::verdict(encoder_round_trip<float>(9, 100, 1, 3600)));
+  // Values that zlib's matching hardly shrinks: from the fifth block on,
+  // Huffman coding alone.
+  std::printf("six full blocks of Float32: %s\n",
+              talus_test::verdict(encoder_round_trip<float>(1, 6 * 16384, 6, 0)));
   std::printf("empty UInt8: %s\n",
               talus_test::verdict(encoder_round_trip<std::uint8_t>(1, 0, 0, 0)));
 

@@ -98,8 +98,14 @@ private:
   // sizes) and the compressed blocks one after the other.
   std::vector<std::uint64_t> header_;
   std::string packed_;
-  struct Deflater; ///< zlib's stream and its output: one per lane
+  struct Deflater; ///< zlib's streams and their output: one per lane
   std::vector<std::unique_ptr<Deflater>> deflaters_;
+  /// Binary: how each block was compressed and its compressed size over
+  /// its size, which choose how the blocks four later are compressed.
+  bool huffman_only(std::size_t block) const;
+  bool floating_point_ = false;
+  std::vector<char> block_huffman_;
+  std::vector<float> block_ratio_;
   // ASCII: text waiting to be written, values on the current line.
   std::string text_;
   unsigned int column_ = 0;
