@@ -18,6 +18,8 @@
 #include <talus/model/build_blocks.h>
 #include <talus/solver/rigid_solver.h>
 #include <talus/zone/block_mesher.h>
+#include <talus/zone/hex_mixed.h>
+#include <talus/zone/tet10_mesh.h>
 
 #include "../tests.h"
 #include "vtu_reading.h"
@@ -161,6 +163,42 @@ int main()
     std::printf("zones: stress tensor per zone: %s\n", talus_test::verdict(stress_ok));
     std::printf("zones: block id per zone: %s\n", talus_test::verdict(block_ok));
     std::printf("zones: time: %s\n", talus_test::verdict(time == std::vector<double>{0.25}));
+  }
+
+  // 10-node and hexahedral zones: the cells are those of shown_tetrahedra,
+  // each with the block of its zone.
+  {
+    TetMesh tet10 = mesh_blocks(blocks, {0, 1}, 0.25, report);
+    make_quadratic(tet10);
+    const TetMesh hex = mesh_blocks(blocks, {0, 1}, 0.25, report, ZoneElement::hex_mixed);
+    for (const TetMesh* m : {static_cast<const TetMesh*>(&tet10), &hex})
+    {
+      const auto cells = shown_tetrahedra(*m);
+      std::vector<unsigned int> cell_block;
+      const std::vector<char> in_hex = zones_in_hexes(*m);
+      for (unsigned int z = 0; z < m->n_zones(); ++z)
+        if (!in_hex[z])
+          cell_block.insert(cell_block.end(), m->quadratic() ? 8 : 1, m->zone_block[z]);
+      for (unsigned int h = 0; h < m->n_hexes(); ++h)
+        cell_block.insert(cell_block.end(), TetMesh::tets_per_hex / 2,
+                          m->zone_block[m->hex_first_zone[h]]);
+      ZoneWriter(*m).write("zones_other.vtu", m->position, {},
+                           {{"stress", 6, std::vector<double>(6 * cells.size(), 1.0)}}, 0.0);
+      const auto arrays = vtu_reading::read_arrays(vtu_reading::read_text("zones_other.vtu"));
+      const auto connectivity = vtu_reading::find(arrays, "connectivity").values;
+      const auto block = vtu_reading::find(arrays, "block_id").values;
+      bool good = connectivity.size() == 4 * cells.size() && block.size() == cells.size() &&
+                  cell_block.size() == cells.size();
+      for (std::size_t i = 0; good && i < cells.size(); ++i)
+      {
+        for (int k = 0; k < 4; ++k)
+          good &= connectivity[4 * i + k] == cells[i][k];
+        good &= block[i] == cell_block[i];
+      }
+      std::printf("%s zones: %zu cells as shown_tetrahedra, block ids: %s\n",
+                  m->quadratic() ? "10-node" : "hexahedral", cells.size(),
+                  talus_test::verdict(good));
+    }
   }
 
   // Blocks and contacts: three rows of blocks cut by two joint sets and a
