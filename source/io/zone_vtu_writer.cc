@@ -138,8 +138,9 @@ void ZoneWriter::write(const std::string& path, const std::vector<double>& posit
                        const std::vector<ZoneField>& point_fields,
                        const std::vector<ZoneField>& zone_fields, double time)
 {
-  if (point_components_.empty() && zone_components_.empty())
+  if (!laid_out_)
   {
+    laid_out_ = true;
     if (mesh_.quadratic())
       n_cells_ = 8 * std::size_t(mesh_.n_zones());
     else

@@ -57,10 +57,10 @@ constexpr const char* vtk_type_name<std::uint8_t>()
 /// zlib compressor.
 void write_vtu_file_start(std::ostream& out, VtuEncoding encoding);
 
-/// The uncompressed size of one block of a binary data array (bytes; less
-/// by what makes it whole tuples): each
-/// block is filled, compressed and dropped in turn, so that writing an
-/// array holds one block plus the array's compressed bytes.
+/// The uncompressed size of one block of a binary data array (bytes, less
+/// what makes it whole tuples): blocks are filled, compressed and dropped
+/// in turn, so that writing an array holds a block per lane plus the
+/// array's compressed bytes.
 inline constexpr std::size_t vtu_block_bytes = std::size_t(1) << 16;
 
 /// How many blocks are compressed at once, each on a thread of its own:

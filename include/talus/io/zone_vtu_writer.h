@@ -63,6 +63,7 @@ private:
   /// The zone each shown tetrahedron comes from (4-node and hexahedral
   /// zones; a 10-node zone's eight follow from the index).
   std::vector<unsigned int> shown_zone_;
+  bool laid_out_ = false; ///< the cells and the fields' layout are known (first frame)
   std::vector<unsigned int> point_components_, zone_components_; ///< of the first frame
 };
 
