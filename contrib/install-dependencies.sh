@@ -8,6 +8,7 @@ packages=(
   libeigen3-dev    # small dense algebra: inertia tensors, local frames
   libcgal-dev      # exact geometric predicates
   libgmsh-dev      # gmsh's C++ API: tetrahedral meshes of the deformable blocks
+  zlib1g-dev       # compresses the binary arrays of the VTU output
   libopenmpi-dev openmpi-bin  # MPI
   numdiff          # compares test output with tolerances (deal.II's test macros need it)
   cmake g++ make

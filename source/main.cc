@@ -394,7 +394,7 @@ double solve_deformable(talus::Scene& scene, talus::BlockModel& model, const std
                                                                     : "");
 
   PvdSeries series(prefix + "_zones.pvd");
-  ZoneWriter zone_writer(mesh);
+  ZoneWriter zone_writer(mesh, scene.output.vtu_encoding);
   const PointHistory points(mesh, scene.solver.history_points);
   std::vector<std::string> columns{"step", "time (s)", "unbalanced ratio",
                                    "largest displacement (m)"};
@@ -568,7 +568,7 @@ double solve(talus::Scene& scene, talus::BlockModel& model, talus::PvdSeries& se
   PvdSeries zone_series(prefix + "_zones.pvd");
   std::unique_ptr<ZoneWriter> zone_writer;
   if (zones)
-    zone_writer = std::make_unique<ZoneWriter>(mesh);
+    zone_writer = std::make_unique<ZoneWriter>(mesh, scene.output.vtu_encoding);
   unsigned int zone_frame = 0;
 
   std::vector<std::string> columns{"step",
@@ -625,7 +625,7 @@ double solve(talus::Scene& scene, talus::BlockModel& model, talus::PvdSeries& se
         fields[1].values.push_back(solver.velocity[b][d]);
         fields[2].values.push_back(solver.rotation[b][d]);
       }
-    write_blocks_vtu(scene.output.directory + "/" + vtu, model, fields);
+    write_blocks_vtu(scene.output.directory + "/" + vtu, model, fields, scene.output.vtu_encoding);
     series.add(time, vtu);
     if (diverged)
     {
@@ -636,7 +636,7 @@ double solve(talus::Scene& scene, talus::BlockModel& model, talus::PvdSeries& se
     std::snprintf(name, sizeof name, "_contacts_%05u.vtu", frame - 1);
     const std::string contacts_vtu = scene.output.base_name + name;
     write_contacts_vtu(scene.output.directory + "/" + contacts_vtu, solver.contacts(), model,
-                       joint_numbers);
+                       joint_numbers, scene.output.vtu_encoding);
     contact_series.add(time, contacts_vtu);
     if (zones)
       write_zone_frame(scene, mesh, *zones, *zone_writer, zone_series, zone_frame++);
@@ -828,7 +828,8 @@ int run(const std::string& filename, bool check_only = false)
   if (scene.solver.steps == 0 && scene.output.write_vtu)
   {
     const std::string vtu = scene.output.base_name + "_blocks_00000.vtu";
-    talus::write_blocks_vtu(scene.output.directory + "/" + vtu, model);
+    talus::write_blocks_vtu(scene.output.directory + "/" + vtu, model, {},
+                            scene.output.vtu_encoding);
     series.add(0.0, vtu);
     std::printf("Output:       %s_blocks.pvd\n", prefix.c_str());
   }

@@ -1,81 +1,66 @@
 #include <talus/io/block_vtu_writer.h>
 #include <talus/io/file_output.h>
 
+#include <cstdint>
 #include <ostream>
 
 namespace talus
 {
 
-namespace
-{
-
-template <typename Range, typename Write>
-void data_array(std::ostream& out, const char* type, const std::string& name,
-                unsigned int components, const Range& range, Write write)
-{
-  out << "        <DataArray type=\"" << type << "\" Name=\"" << name
-      << "\" NumberOfComponents=\"" << components << "\" format=\"ascii\">\n";
-  unsigned int column = 0;
-  for (const auto& item : range)
-  {
-    write(out, item);
-    out << (++column % 12 == 0 ? '\n' : ' ');
-  }
-  out << "\n        </DataArray>\n";
-}
-
-} // namespace
-
 void write_blocks_vtu(const std::string& path, const BlockModel& m,
-                      const std::vector<BlockField>& fields)
+                      const std::vector<BlockField>& fields, VtuEncoding encoding)
 {
-  write_file_atomically(path, [&](std::ostream& out) {
-    out.precision(12);
-    out << "<?xml version=\"1.0\"?>\n"
-        << "<VTKFile type=\"UnstructuredGrid\" version=\"1.0\" byte_order=\"LittleEndian\" "
-           "header_type=\"UInt64\">\n"
-        << "  <UnstructuredGrid>\n"
-        << "    <Piece NumberOfPoints=\"" << m.n_vertices() << "\" NumberOfCells=\""
-        << m.n_blocks() << "\">\n"
-        << "      <Points>\n";
-    data_array(out, "Float64", "Points", 3, m.vertex,
-               [](std::ostream& o, const Vec3& v) { o << v[0] << ' ' << v[1] << ' ' << v[2]; });
-    out << "      </Points>\n      <Cells>\n";
-
-    std::vector<unsigned long> connectivity, offsets, faces, face_offsets;
-    std::vector<int> types(m.n_blocks(), 42); // VTK_POLYHEDRON
-    for (unsigned int b = 0; b < m.n_blocks(); ++b)
-    {
-      for (unsigned int v = m.vertex_start[b]; v < m.vertex_start[b + 1]; ++v)
-        connectivity.push_back(v);
-      offsets.push_back(connectivity.size());
-      faces.push_back(m.face_start[b + 1] - m.face_start[b]);
-      for (unsigned int f = m.face_start[b]; f < m.face_start[b + 1]; ++f)
+  write_file_atomically(
+      path,
+      [&](std::ostream& out)
       {
-        faces.push_back(m.face_loop_start[f + 1] - m.face_loop_start[f]);
-        for (unsigned int k = m.face_loop_start[f]; k < m.face_loop_start[f + 1]; ++k)
-          faces.push_back(m.face_vertex[k]);
-      }
-      face_offsets.push_back(faces.size());
-    }
-    const auto plain = [](std::ostream& o, auto x) { o << x; };
-    data_array(out, "Int64", "connectivity", 1, connectivity, plain);
-    data_array(out, "Int64", "offsets", 1, offsets, plain);
-    data_array(out, "UInt8", "types", 1, types, plain);
-    data_array(out, "Int64", "faces", 1, faces, plain);
-    data_array(out, "Int64", "faceoffsets", 1, face_offsets, plain);
-    out << "      </Cells>\n      <CellData Scalars=\"block_id\">\n";
+        write_vtu_file_start(out, encoding);
+        out << "  <UnstructuredGrid>\n"
+            << "    <Piece NumberOfPoints=\"" << m.n_vertices() << "\" NumberOfCells=\""
+            << m.n_blocks() << "\">\n"
+            << "      <Points>\n";
+        write_data_array<double>(out, encoding, "Points", 3, m.vertex.size(),
+                                 [&](std::size_t first, std::size_t count, double* to)
+                                 {
+                                   for (std::size_t v = first; v < first + count; ++v, to += 3)
+                                     for (int d = 0; d < 3; ++d)
+                                       to[d] = m.vertex[v][d];
+                                 });
+        out << "      </Points>\n      <Cells>\n";
 
-    std::vector<unsigned int> ids(m.n_blocks());
-    for (unsigned int b = 0; b < m.n_blocks(); ++b)
-      ids[b] = b;
-    data_array(out, "Int32", "block_id", 1, ids, plain);
-    data_array(out, "Int32", "group", 1, m.group, plain);
-    data_array(out, "Float64", "volume", 1, m.volume, plain);
-    for (const BlockField& f : fields)
-      data_array(out, "Float64", f.name, f.components, f.values, plain);
-    out << "      </CellData>\n    </Piece>\n  </UnstructuredGrid>\n</VTKFile>\n";
-  });
+        std::vector<std::int64_t> connectivity, offsets, faces, face_offsets;
+        std::vector<std::uint8_t> types(m.n_blocks(), 42); // VTK_POLYHEDRON
+        for (unsigned int b = 0; b < m.n_blocks(); ++b)
+        {
+          for (unsigned int v = m.vertex_start[b]; v < m.vertex_start[b + 1]; ++v)
+            connectivity.push_back(v);
+          offsets.push_back(static_cast<std::int64_t>(connectivity.size()));
+          faces.push_back(m.face_start[b + 1] - m.face_start[b]);
+          for (unsigned int f = m.face_start[b]; f < m.face_start[b + 1]; ++f)
+          {
+            faces.push_back(m.face_loop_start[f + 1] - m.face_loop_start[f]);
+            for (unsigned int k = m.face_loop_start[f]; k < m.face_loop_start[f + 1]; ++k)
+              faces.push_back(m.face_vertex[k]);
+          }
+          face_offsets.push_back(static_cast<std::int64_t>(faces.size()));
+        }
+        write_data_array<std::int64_t>(out, encoding, "connectivity", 1, connectivity);
+        write_data_array<std::int64_t>(out, encoding, "offsets", 1, offsets);
+        write_data_array<std::uint8_t>(out, encoding, "types", 1, types);
+        write_data_array<std::int64_t>(out, encoding, "faces", 1, faces);
+        write_data_array<std::int64_t>(out, encoding, "faceoffsets", 1, face_offsets);
+        out << "      </Cells>\n      <CellData Scalars=\"block_id\">\n";
+
+        std::vector<std::int32_t> ids(m.n_blocks());
+        for (unsigned int b = 0; b < m.n_blocks(); ++b)
+          ids[b] = static_cast<std::int32_t>(b);
+        write_data_array<std::int32_t>(out, encoding, "block_id", 1, ids);
+        write_data_array<std::int32_t>(out, encoding, "group", 1, m.group);
+        write_data_array<double>(out, encoding, "volume", 1, m.volume);
+        for (const BlockField& f : fields)
+          write_data_array<double>(out, encoding, f.name, f.components, f.values);
+        out << "      </CellData>\n    </Piece>\n  </UnstructuredGrid>\n</VTKFile>\n";
+      });
 }
 
 void PvdSeries::add(double time, const std::string& vtu_file)

@@ -2,13 +2,15 @@
 #include <talus/io/contact_vtu_writer.h>
 #include <talus/io/file_output.h>
 
+#include <algorithm>
+#include <cstdint>
 #include <ostream>
 
 namespace talus
 {
 
 void write_contacts_vtu(const std::string& path, const ContactSet& cs, const BlockModel& model,
-                        const JointNumbers& joints)
+                        const JointNumbers& joints, VtuEncoding encoding)
 {
   // The joint of each contact slot, as the numbers of its subsections.
   std::vector<int> joint_set(cs.n_slots(), 0), joint(cs.n_slots(), 0);
@@ -21,90 +23,78 @@ void write_contacts_vtu(const std::string& path, const ContactSet& cs, const Blo
       else if (origin < 0)
         joint[c] = joints.joint_number.at(static_cast<std::size_t>(-origin - 1));
     }
-  write_file_atomically(path, [&](std::ostream& out) {
-    const unsigned int n = cs.n_subcontacts();
-    out.precision(10);
-    out << "<?xml version=\"1.0\"?>\n"
-        << "<VTKFile type=\"UnstructuredGrid\" version=\"1.0\" byte_order=\"LittleEndian\" "
-           "header_type=\"UInt64\">\n  <UnstructuredGrid>\n    <Piece NumberOfPoints=\""
-        << n << "\" NumberOfCells=\"" << n << "\">\n      <Points>\n";
-    const auto begin = [&](const char* type, const char* name, int components) {
-      out << "        <DataArray type=\"" << type << "\" Name=\"" << name
-          << "\" NumberOfComponents=\"" << components << "\" format=\"ascii\">\n";
-    };
-    const auto end = [&]() { out << "\n        </DataArray>\n"; };
-    begin("Float64", "Points", 3);
-    for (const Vec3& p : cs.sc_position)
-      out << p[0] << ' ' << p[1] << ' ' << p[2] << '\n';
-    end();
-    out << "      </Points>\n      <Cells>\n";
-    begin("Int64", "connectivity", 1);
-    for (unsigned int i = 0; i < n; ++i)
-      out << i << ' ';
-    end();
-    begin("Int64", "offsets", 1);
-    for (unsigned int i = 0; i < n; ++i)
-      out << i + 1 << ' ';
-    end();
-    begin("UInt8", "types", 1);
-    for (unsigned int i = 0; i < n; ++i)
-      out << "1 "; // VTK_VERTEX
-    end();
-    out << "      </Cells>\n      <PointData Scalars=\"normal_force\">\n";
-    begin("Float64", "normal", 3);
-    for (unsigned int i = 0; i < n; ++i)
-    {
-      const Vec3& nrm = cs.plane[cs.sc_contact[i]].normal;
-      out << nrm[0] << ' ' << nrm[1] << ' ' << nrm[2] << '\n';
-    }
-    end();
-    // Forces and their stresses (over the sub-contact's area).
-    for (const double per : {0.0, 1.0})
-    {
-      begin("Float64", per == 0.0 ? "normal_force" : "normal_stress", 1);
-      for (unsigned int i = 0; i < n; ++i)
-        out << cs.sc_fn[i] / (per == 0.0 ? 1.0 : cs.sc_area[i]) << ' ';
-      end();
-      begin("Float64", per == 0.0 ? "shear_force" : "shear_stress", 3);
-      for (unsigned int i = 0; i < n; ++i)
+  const unsigned int n = cs.n_subcontacts();
+  // A Float64 array of `components` values per sub-contact from `value(i, d)`.
+  const auto reals = [&](std::ostream& out, const char* name, unsigned int components, auto value)
+  {
+    write_data_array<double>(out, encoding, name, components, n,
+                             [&](std::size_t first, std::size_t count, double* to)
+                             {
+                               for (std::size_t i = first; i < first + count; ++i)
+                                 for (unsigned int d = 0; d < components; ++d)
+                                   *to++ = value(i, d);
+                             });
+  };
+  const auto integers = [&](std::ostream& out, const char* name, auto value)
+  {
+    write_data_array<std::int32_t>(out, encoding, name, 1, n,
+                                   [&](std::size_t first, std::size_t count, std::int32_t* to)
+                                   {
+                                     for (std::size_t i = first; i < first + count; ++i)
+                                       *to++ = static_cast<std::int32_t>(value(i));
+                                   });
+  };
+  write_file_atomically(
+      path,
+      [&](std::ostream& out)
       {
-        const double scale = per == 0.0 ? 1.0 : 1.0 / cs.sc_area[i];
-        out << scale * cs.sc_fs[3 * i] << ' ' << scale * cs.sc_fs[3 * i + 1] << ' '
-            << scale * cs.sc_fs[3 * i + 2] << '\n';
-      }
-      end();
-    }
-    begin("Float64", "shear_displacement", 3);
-    for (unsigned int i = 0; i < n; ++i)
-      out << cs.sc_us[3 * i] << ' ' << cs.sc_us[3 * i + 1] << ' ' << cs.sc_us[3 * i + 2] << '\n';
-    end();
-    begin("Float64", "area", 1);
-    for (unsigned int i = 0; i < n; ++i)
-      out << cs.sc_area[i] << ' ';
-    end();
-    begin("Int32", "state", 1);
-    for (unsigned int i = 0; i < n; ++i)
-      out << static_cast<int>(cs.sc_state[i]) << ' ';
-    end();
-    // Numbered from 1 in the order of ContactType.
-    begin("Int32", "type", 1);
-    for (unsigned int i = 0; i < n; ++i)
-      out << static_cast<int>(cs.type[cs.sc_contact[i]]) + 1 << ' ';
-    end();
-    begin("Int32", "joint_set", 1);
-    for (unsigned int i = 0; i < n; ++i)
-      out << joint_set[cs.sc_contact[i]] << ' ';
-    end();
-    begin("Int32", "joint", 1);
-    for (unsigned int i = 0; i < n; ++i)
-      out << joint[cs.sc_contact[i]] << ' ';
-    end();
-    begin("Int32", "contact_id", 1);
-    for (unsigned int i = 0; i < n; ++i)
-      out << cs.sc_contact[i] << ' ';
-    end();
-    out << "      </PointData>\n    </Piece>\n  </UnstructuredGrid>\n</VTKFile>\n";
-  });
+        write_vtu_file_start(out, encoding);
+        out << "  <UnstructuredGrid>\n    <Piece NumberOfPoints=\"" << n << "\" NumberOfCells=\""
+            << n << "\">\n      <Points>\n";
+        reals(out, "Points", 3,
+              [&](std::size_t i, unsigned int d) { return cs.sc_position[i][d]; });
+        out << "      </Points>\n      <Cells>\n";
+        write_data_array<std::int64_t>(out, encoding, "connectivity", 1, n,
+                                       [](std::size_t first, std::size_t count, std::int64_t* to)
+                                       {
+                                         for (std::size_t i = 0; i < count; ++i)
+                                           to[i] = static_cast<std::int64_t>(first + i);
+                                       });
+        write_data_array<std::int64_t>(out, encoding, "offsets", 1, n,
+                                       [](std::size_t first, std::size_t count, std::int64_t* to)
+                                       {
+                                         for (std::size_t i = 0; i < count; ++i)
+                                           to[i] = static_cast<std::int64_t>(first + i + 1);
+                                       });
+        write_data_array<std::uint8_t>(out, encoding, "types", 1, n,
+                                       [](std::size_t, std::size_t count, std::uint8_t* to)
+                                       {
+                                         std::fill(to, to + count, 1); // VTK_VERTEX
+                                       });
+        out << "      </Cells>\n      <PointData Scalars=\"normal_force\">\n";
+        reals(out, "normal", 3,
+              [&](std::size_t i, unsigned int d) { return cs.plane[cs.sc_contact[i]].normal[d]; });
+        // Forces and their stresses (over the sub-contact's area).
+        reals(out, "normal_force", 1, [&](std::size_t i, unsigned int) { return cs.sc_fn[i]; });
+        reals(out, "shear_force", 3,
+              [&](std::size_t i, unsigned int d) { return cs.sc_fs[3 * i + d]; });
+        reals(out, "normal_stress", 1,
+              [&](std::size_t i, unsigned int) { return cs.sc_fn[i] / cs.sc_area[i]; });
+        reals(out, "shear_stress", 3,
+              [&](std::size_t i, unsigned int d)
+              { return 1.0 / cs.sc_area[i] * cs.sc_fs[3 * i + d]; });
+        reals(out, "shear_displacement", 3,
+              [&](std::size_t i, unsigned int d) { return cs.sc_us[3 * i + d]; });
+        reals(out, "area", 1, [&](std::size_t i, unsigned int) { return cs.sc_area[i]; });
+        integers(out, "state", [&](std::size_t i) { return cs.sc_state[i]; });
+        // Numbered from 1 in the order of ContactType.
+        integers(out, "type",
+                 [&](std::size_t i) { return static_cast<int>(cs.type[cs.sc_contact[i]]) + 1; });
+        integers(out, "joint_set", [&](std::size_t i) { return joint_set[cs.sc_contact[i]]; });
+        integers(out, "joint", [&](std::size_t i) { return joint[cs.sc_contact[i]]; });
+        integers(out, "contact_id", [&](std::size_t i) { return cs.sc_contact[i]; });
+        out << "      </PointData>\n    </Piece>\n  </UnstructuredGrid>\n</VTKFile>\n";
+      });
 }
 
 } // namespace talus

@@ -618,6 +618,8 @@ void declare_output(ParameterFile& prm)
   prm.declare("Base name", "talus", P::Anything(), "a file name prefix",
               "Prefix of the files written.");
   prm.declare("Write VTU", "true", P::Bool(), "true or false", "Write ParaView files.");
+  prm.declare("VTU encoding", "binary", P::Selection("binary|ascii"), "binary or ascii",
+              "Data arrays of the VTU files: zlib-compressed binary, or ASCII text to read.");
   prm.declare("Checkpoint interval", "0", P::Integer(0), "an integer >= 0 (0: only on a signal)",
               "Steps between checkpoints (<Base name>_checkpoint.bin, for talus --restart); "
               "SIGINT and SIGTERM always write one.");
@@ -636,6 +638,8 @@ void parse_output(ParameterFile& prm, Scene& scene)
     throw prm.error("Base name", "must be a plain file name",
                     "a name of 1 to 200 characters without '/' or control characters");
   scene.output.write_vtu = prm.get_bool("Write VTU");
+  scene.output.vtu_encoding =
+      prm.get("VTU encoding") == "ascii" ? VtuEncoding::ascii : VtuEncoding::binary;
   scene.output.checkpoint_interval =
       static_cast<unsigned long>(prm.get_integer("Checkpoint interval"));
   prm.leave();

@@ -2,18 +2,12 @@
 #include <talus/io/zone_vtu_writer.h>
 #include <talus/zone/hex_mixed.h>
 #include <talus/zone/tet10_mesh.h>
-#include <talus/zone/zone_triangulation.h>
-
-#include <deal.II/dofs/dof_handler.h>
-#include <deal.II/fe/fe_simplex_p.h>
-#include <deal.II/fe/fe_system.h>
-#include <deal.II/fe/mapping_fe.h>
-#include <deal.II/grid/tria.h>
-#include <deal.II/lac/vector.h>
-#include <deal.II/numerics/data_out.h>
 
 #include <Eigen/Eigenvalues>
 
+#include <charconv>
+#include <cstdint>
+#include <limits>
 #include <ostream>
 #include <stdexcept>
 
@@ -31,36 +25,13 @@ void principal_stresses(const double* s, double* p)
 
 namespace
 {
-using Interpretation = dealii::DataComponentInterpretation::DataComponentInterpretation;
-
-/// Components a field takes in the output: a symmetric tensor of 6 is
-/// written as all 9 entries, so that ParaView sees a tensor.
-unsigned int output_components(const ZoneField& f)
-{
-  return f.components == 6 ? 9 : f.components;
-}
-
 /// Which stored component (of 6: xx yy zz xy yz zx) is tensor entry (i, j),
-/// row-major.
+/// row-major: a symmetric tensor is written as all 9 entries, so that
+/// ParaView sees a tensor.
 constexpr unsigned int voigt_of[9] = {0, 3, 5, 3, 1, 4, 5, 4, 2};
-} // namespace
 
-/// The DoF layout of one field set: a linear field per gridpoint component
-/// and a constant one per zone component, in one FESystem, so that DataOut
-/// writes them all from one vector.
-struct ZoneWriter::Data
-{
-  std::vector<std::array<unsigned int, 4>> cells; ///< the shown tetrahedra
-  std::vector<unsigned int> cell_block;
-  std::unique_ptr<dealii::Triangulation<3>> tria;
-  dealii::MappingFE<3> mapping{dealii::FE_SimplexP<3>(1)};
-  std::unique_ptr<dealii::FESystem<3>> fe;
-  dealii::DoFHandler<3> dofs;
-  std::vector<unsigned int> point_components, zone_components; ///< as given
-  /// dof_of_point[c][g]: the DoF of point component c at gridpoint g;
-  /// dof_of_zone[c][z]: of output zone component c in zone z.
-  std::vector<std::vector<dealii::types::global_dof_index>> dof_of_point, dof_of_zone;
-};
+constexpr std::uint8_t vtk_tetra = 10;
+} // namespace
 
 std::vector<std::array<unsigned int, 4>> shown_tetrahedra(const TetMesh& mesh)
 {
@@ -120,131 +91,141 @@ void shown_zone_values(const TetMesh& mesh, const std::vector<double>& x,
   }
 }
 
-ZoneWriter::ZoneWriter(const TetMesh& mesh) : mesh_(mesh) {}
+ZoneWriter::ZoneWriter(const TetMesh& mesh, VtuEncoding encoding) : mesh_(mesh), encoding_(encoding)
+{
+}
 
 ZoneWriter::~ZoneWriter() = default;
+
+template <typename Index>
+void ZoneWriter::write_cells(std::ostream& out) const
+{
+  write_data_array<Index>(out, encoding_, "connectivity", 1, 4 * n_cells_,
+                          [&](std::size_t first, std::size_t count, Index* to)
+                          {
+                            // `first` and `count` are whole cells: blocks
+                            // hold a multiple of 4 values.
+                            for (std::size_t i = first / 4; i < (first + count) / 4; ++i, to += 4)
+                              if (mesh_.quadratic())
+                              {
+                                const std::size_t z = i / 8;
+                                const auto& corner = mesh_.zone_gridpoint[z];
+                                const auto& edge = mesh_.zone_edge_gridpoint[z];
+                                for (int k = 0; k < 4; ++k)
+                                {
+                                  const unsigned int node = tet10_subcell[i % 8][k];
+                                  to[k] =
+                                      static_cast<Index>(node < 4 ? corner[node] : edge[node - 4]);
+                                }
+                              }
+                              else
+                                for (int k = 0; k < 4; ++k)
+                                  to[k] =
+                                      static_cast<Index>(mesh_.zone_gridpoint[shown_zone_[i]][k]);
+                          });
+  write_data_array<Index>(out, encoding_, "offsets", 1, n_cells_,
+                          [](std::size_t first, std::size_t count, Index* to)
+                          {
+                            for (std::size_t i = 0; i < count; ++i)
+                              to[i] = static_cast<Index>(4 * (first + i + 1));
+                          });
+  write_data_array<std::uint8_t>(out, encoding_, "types", 1, n_cells_,
+                                 [](std::size_t, std::size_t count, std::uint8_t* to)
+                                 { std::fill(to, to + count, vtk_tetra); });
+}
 
 void ZoneWriter::write(const std::string& path, const std::vector<double>& positions,
                        const std::vector<ZoneField>& point_fields,
                        const std::vector<ZoneField>& zone_fields, double time)
 {
-  if (!data_)
+  if (!laid_out_)
   {
-    data_ = std::make_unique<Data>();
-    data_->cells = shown_tetrahedra(mesh_);
-    const std::vector<char> in_hex = zones_in_hexes(mesh_);
-    for (unsigned int z = 0; z < mesh_.n_zones(); ++z)
-      if (!in_hex[z])
-        data_->cell_block.insert(data_->cell_block.end(), mesh_.quadratic() ? 8 : 1,
-                                 mesh_.zone_block[z]);
-    for (unsigned int h = 0; h < mesh_.n_hexes(); ++h)
-      data_->cell_block.insert(data_->cell_block.end(), TetMesh::tets_per_hex / 2,
-                               mesh_.zone_block[mesh_.hex_first_zone[h]]);
-    data_->tria = build_zone_triangulation(mesh_.position, data_->cells, data_->cell_block);
-    unsigned int n_point = 0, n_zone = 0;
-    for (const ZoneField& f : point_fields)
-    {
-      data_->point_components.push_back(f.components);
-      n_point += f.components;
-    }
-    for (const ZoneField& f : zone_fields)
-    {
-      data_->zone_components.push_back(f.components);
-      n_zone += output_components(f);
-    }
-    if (n_point > 0 && n_zone > 0)
-      data_->fe = std::make_unique<dealii::FESystem<3>>(dealii::FE_SimplexP<3>(1), n_point,
-                                                        dealii::FE_SimplexDGP<3>(0), n_zone);
-    else if (n_point > 0)
-      data_->fe = std::make_unique<dealii::FESystem<3>>(dealii::FE_SimplexP<3>(1), n_point);
+    laid_out_ = true;
+    if (mesh_.quadratic())
+      n_cells_ = 8 * std::size_t(mesh_.n_zones());
     else
-      data_->fe = std::make_unique<dealii::FESystem<3>>(dealii::FE_SimplexDGP<3>(0), n_zone);
-    data_->dofs.reinit(*data_->tria);
-    data_->dofs.distribute_dofs(*data_->fe);
-    data_->dof_of_point.assign(n_point,
-                               std::vector<dealii::types::global_dof_index>(mesh_.n_gridpoints()));
-    data_->dof_of_zone.assign(n_zone,
-                              std::vector<dealii::types::global_dof_index>(data_->cells.size()));
-    std::vector<dealii::types::global_dof_index> local(data_->fe->n_dofs_per_cell());
-    for (const auto& cell : data_->dofs.active_cell_iterators())
     {
-      cell->get_dof_indices(local);
-      for (unsigned int i = 0; i < local.size(); ++i)
-      {
-        // The linear element's DoF k sits at vertex k of the cell.
-        const auto [component, within] = data_->fe->system_to_component_index(i);
-        if (component < n_point)
-          data_->dof_of_point[component][cell->vertex_index(within)] = local[i];
-        else
-          data_->dof_of_zone[component - n_point][cell->active_cell_index()] = local[i];
-      }
+      // As shown_tetrahedra: plain zones, then the first five tetrahedra of
+      // each hexahedral zone.
+      const std::vector<char> in_hex = zones_in_hexes(mesh_);
+      shown_zone_.clear();
+      for (unsigned int z = 0; z < mesh_.n_zones(); ++z)
+        if (!in_hex[z])
+          shown_zone_.push_back(z);
+      for (unsigned int h = 0; h < mesh_.n_hexes(); ++h)
+        for (unsigned int k = 0; k < TetMesh::tets_per_hex / 2; ++k)
+          shown_zone_.push_back(mesh_.hex_first_zone[h] + k);
+      n_cells_ = shown_zone_.size();
     }
+    for (const ZoneField& f : point_fields)
+      point_components_.push_back(f.components);
+    for (const ZoneField& f : zone_fields)
+      zone_components_.push_back(f.components);
   }
   else
   {
-    bool same = data_->point_components.size() == point_fields.size() &&
-                data_->zone_components.size() == zone_fields.size();
+    bool same = point_components_.size() == point_fields.size() &&
+                zone_components_.size() == zone_fields.size();
     for (std::size_t k = 0; same && k < point_fields.size(); ++k)
-      same = data_->point_components[k] == point_fields[k].components;
+      same = point_components_[k] == point_fields[k].components;
     for (std::size_t k = 0; same && k < zone_fields.size(); ++k)
-      same = data_->zone_components[k] == zone_fields[k].components;
+      same = zone_components_[k] == zone_fields[k].components;
     if (!same)
       throw std::logic_error("ZoneWriter: the fields changed between frames");
   }
-
-  // The cells follow the gridpoints: the triangulation's vertices are moved
-  // to the current positions for this frame.
-  for (const auto& cell : data_->tria->active_cell_iterators())
-    for (unsigned int i = 0; i < 4; ++i)
-    {
-      const unsigned int g = cell->vertex_index(i);
-      cell->vertex(i) =
-          dealii::Point<3>(positions[3 * g], positions[3 * g + 1], positions[3 * g + 2]);
-    }
-
-  dealii::Vector<double> values(data_->dofs.n_dofs());
-  std::vector<std::string> names;
-  std::vector<Interpretation> interpretation;
-  unsigned int c = 0;
+  const std::size_t n_points = mesh_.n_gridpoints();
+  bool sizes = positions.size() == 3 * n_points;
   for (const ZoneField& f : point_fields)
-    for (unsigned int k = 0; k < f.components; ++k, ++c)
-    {
-      for (unsigned int g = 0; g < mesh_.n_gridpoints(); ++g)
-        values[data_->dof_of_point[c][g]] = f.values[f.components * g + k];
-      names.push_back(f.name);
-      interpretation.push_back(
-          f.components == 1 ? dealii::DataComponentInterpretation::component_is_scalar
-                            : dealii::DataComponentInterpretation::component_is_part_of_vector);
-    }
-  unsigned int zc = 0;
+    sizes &= f.values.size() == f.components * n_points;
   for (const ZoneField& f : zone_fields)
-  {
-    const unsigned int n = output_components(f);
-    for (unsigned int k = 0; k < n; ++k, ++zc)
-    {
-      const unsigned int stored = f.components == 6 ? voigt_of[k] : k;
-      for (std::size_t z = 0; z < data_->cells.size(); ++z)
-        values[data_->dof_of_zone[zc][z]] = f.values[f.components * z + stored];
-      names.push_back(f.name);
-      interpretation.push_back(
-          n == 1   ? dealii::DataComponentInterpretation::component_is_scalar
-          : n == 9 ? dealii::DataComponentInterpretation::component_is_part_of_tensor
-                   : dealii::DataComponentInterpretation::component_is_part_of_vector);
-    }
-  }
-  dealii::Vector<double> block_id(data_->cells.size());
-  for (std::size_t z = 0; z < data_->cells.size(); ++z)
-    block_id[z] = data_->cell_block[z];
+    sizes &= f.values.size() == f.components * n_cells_;
+  if (!sizes)
+    throw std::logic_error("ZoneWriter: a field has the wrong number of values");
 
-  dealii::DataOut<3> out;
-  out.attach_dof_handler(data_->dofs);
-  out.add_data_vector(values, names, dealii::DataOut<3>::type_dof_data, interpretation);
-  out.add_data_vector(block_id, "block_id", dealii::DataOut<3>::type_cell_data);
-  out.build_patches(data_->mapping);
-  dealii::DataOutBase::VtkFlags flags(time);
-  flags.print_date_and_time = false; // same state, same file (restart tests compare bytes)
-  out.set_flags(flags);
-  write_file_atomically(path, [&](std::ostream& stream) { out.write_vtu(stream); });
+  write_file_atomically(
+      path,
+      [&](std::ostream& out)
+      {
+        char time_text[32];
+        *std::to_chars(time_text, time_text + sizeof time_text - 1, time).ptr = '\0';
+        write_vtu_file_start(out, encoding_);
+        out << "  <UnstructuredGrid>\n    <FieldData>\n"
+            << "      <DataArray type=\"Float64\" Name=\"TIME\" NumberOfTuples=\"1\" "
+               "format=\"ascii\">"
+            << time_text << "</DataArray>\n    </FieldData>\n"
+            << "    <Piece NumberOfPoints=\"" << n_points << "\" NumberOfCells=\"" << n_cells_
+            << "\">\n      <Points>\n";
+        write_data_array<double>(out, encoding_, "Points", 3, positions);
+        out << "      </Points>\n      <Cells>\n";
+        if (4 * n_cells_ <= std::size_t(std::numeric_limits<std::int32_t>::max()))
+          write_cells<std::int32_t>(out);
+        else
+          write_cells<std::int64_t>(out);
+        out << "      </Cells>\n      <PointData>\n";
+        for (const ZoneField& f : point_fields)
+          write_data_array<float>(out, encoding_, f.name, f.components, f.values);
+        out << "      </PointData>\n      <CellData Scalars=\"block_id\">\n";
+        for (const ZoneField& f : zone_fields)
+          if (f.components == 6)
+            write_data_array<float>(out, encoding_, f.name, 9, n_cells_,
+                                    [&](std::size_t first, std::size_t count, float* to)
+                                    {
+                                      for (std::size_t z = first; z < first + count; ++z, to += 9)
+                                        for (int c = 0; c < 9; ++c)
+                                          to[c] = static_cast<float>(f.values[6 * z + voigt_of[c]]);
+                                    });
+          else
+            write_data_array<float>(out, encoding_, f.name, f.components, f.values);
+        write_data_array<std::int32_t>(
+            out, encoding_, "block_id", 1, n_cells_,
+            [&](std::size_t first, std::size_t count, std::int32_t* to)
+            {
+              for (std::size_t i = first; i < first + count; ++i)
+                to[i - first] = static_cast<std::int32_t>(
+                    mesh_.zone_block[mesh_.quadratic() ? i / 8 : shown_zone_[i]]);
+            });
+        out << "      </CellData>\n    </Piece>\n  </UnstructuredGrid>\n</VTKFile>\n";
+      });
 }
 
 } // namespace talus

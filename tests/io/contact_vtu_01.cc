@@ -23,7 +23,7 @@
 
 namespace
 {
-/// The values of DataArray `name` of a VTU file written by talus (ascii).
+/// The values of DataArray `name` of a VTU file written by talus in ASCII.
 std::vector<double> data_array(const std::string& text, const std::string& name)
 {
   std::vector<double> values;
@@ -75,7 +75,8 @@ int main()
   RigidSolver solver(model, scene.density, scene.solver);
   for (int i = 0; i < 50; ++i)
     solver.step();
-  write_contacts_vtu("contacts.vtu", solver.contacts(), model, JointNumbers{{1, 2}, {1}});
+  write_contacts_vtu("contacts.vtu", solver.contacts(), model, JointNumbers{{1, 2}, {1}},
+                     VtuEncoding::ascii);
   std::ifstream in("contacts.vtu");
   const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
 

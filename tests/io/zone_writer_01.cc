@@ -1,78 +1,34 @@
-// The zone writer (deal.II DataOut on the zones' triangulation): two brick
-// blocks meshed into tetrahedra, a linear displacement field, a constant
-// velocity per block and a stress made from the zone index are written,
-// the VTU file is decoded again (base64, zlib) and every cell is checked:
-// its points at the displaced gridpoints of the zone, the displacement and
-// velocity there, its stress tensor, principal stress and block id. Checks
-// the numbering between zones/gridpoints and deal.II's cells/DoFs.
+// The zone writer: two brick blocks meshed into tetrahedra, a linear
+// displacement field, a constant velocity per block and a stress made from
+// the zone index are written, the VTU file is decoded again (base64, zlib:
+// vtu_reading.h) and every cell is checked: its points at the displaced
+// gridpoints of the zone, the displacement and velocity there, its stress
+// tensor, principal stress and block id. Checks the numbering between
+// zones/gridpoints and the file's cells/points.
 
 #include <talus/base/parallel_environment.h>
 #include <talus/io/zone_vtu_writer.h>
 #include <talus/model/block_model.h>
 #include <talus/zone/block_mesher.h>
 
-#include <zlib.h>
-
 #include <cstdint>
-#include <cstring>
-#include <fstream>
-#include <sstream>
 #include <stdexcept>
 
 #include "../tests.h"
+#include "vtu_reading.h"
 
 using namespace talus;
 
 namespace
 {
-std::string base64_decode(const std::string& text)
+/// The values of the data array called `name`, which must decode cleanly.
+std::vector<double> read_array(const std::vector<vtu_reading::Array>& arrays,
+                               const std::string& name)
 {
-  static const std::string digits =
-      "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
-  std::string bytes;
-  unsigned int buffer = 0, bits = 0;
-  for (char c : text)
-  {
-    const std::size_t d = digits.find(c);
-    if (d == std::string::npos)
-      continue; // padding and white space
-    buffer = (buffer << 6) | static_cast<unsigned int>(d);
-    bits += 6;
-    if (bits >= 8)
-    {
-      bits -= 8;
-      bytes.push_back(static_cast<char>((buffer >> bits) & 0xff));
-    }
-  }
-  return bytes;
-}
-
-/// The values of the data array called `name` (or the Points array when
-/// `name` is empty), as doubles: deal.II writes a base64 header of four
-/// 32-bit numbers (one block: count, size, last size, compressed size),
-/// then the base64 of the zlib-compressed values.
-template <typename T>
-std::vector<double> read_array(const std::string& file, const std::string& name)
-{
-  const std::string key = name.empty() ? "<Points>" : "Name=\"" + name + "\"";
-  std::size_t at = file.find(key);
-  if (at == std::string::npos)
-    throw std::runtime_error("no array " + name);
-  at = file.find('>', name.empty() ? file.find("<DataArray", at) : at) + 1;
-  const std::string text = file.substr(at, file.find("</DataArray>", at) - at);
-  const std::size_t header_end = text.find('=') + 2; // header ends in "=="
-  const std::string header = base64_decode(text.substr(0, header_end));
-  std::uint32_t words[4];
-  std::memcpy(words, header.data(), sizeof words);
-  if (words[0] != 1)
-    throw std::runtime_error("expected one compressed block");
-  const std::string packed = base64_decode(text.substr(header_end));
-  std::vector<T> raw(words[1] / sizeof(T));
-  uLongf length = words[1];
-  if (uncompress(reinterpret_cast<Bytef*>(raw.data()), &length,
-                 reinterpret_cast<const Bytef*>(packed.data()), packed.size()) != Z_OK)
-    throw std::runtime_error("cannot inflate " + name);
-  return std::vector<double>(raw.begin(), raw.end());
+  const vtu_reading::Array a = vtu_reading::find(arrays, name);
+  if (a.name != name || !a.problem.empty() || a.format != "binary")
+    throw std::runtime_error("cannot read array " + name + ": " + a.problem);
+  return a.values;
 }
 } // namespace
 
@@ -114,21 +70,19 @@ int main(int argc, char** argv)
     writer.write(path, x, {{"displacement", 3, u}, {"velocity", 3, v}},
                  {{"stress", 6, stress}, {"principal_stress", 3, principal}}, 1.5);
 
-  std::ifstream in(path);
-  std::stringstream buffer;
-  buffer << in.rdbuf();
-  const std::string file = buffer.str();
-  const auto points = read_array<float>(file, "");
-  const auto connectivity = read_array<std::int32_t>(file, "connectivity");
-  const auto disp = read_array<float>(file, "displacement");
-  const auto vel = read_array<float>(file, "velocity");
-  const auto sig = read_array<float>(file, "stress");
-  const auto prin = read_array<float>(file, "principal_stress");
-  const auto block = read_array<float>(file, "block_id");
+  const std::string file = vtu_reading::read_text(path);
+  const auto arrays = vtu_reading::read_arrays(file);
+  const auto points = read_array(arrays, "Points");
+  const auto connectivity = read_array(arrays, "connectivity");
+  const auto disp = read_array(arrays, "displacement");
+  const auto vel = read_array(arrays, "velocity");
+  const auto sig = read_array(arrays, "stress");
+  const auto prin = read_array(arrays, "principal_stress");
+  const auto block = read_array(arrays, "block_id");
   std::printf("file: %zu cells, %zu points\n", connectivity.size() / 4, points.size() / 3);
 
-  // Largest relative mismatch of each quantity over all cells (the file
-  // holds single precision).
+  // Largest relative mismatch of each quantity over all cells (the fields
+  // are single precision, the points double).
   double e_x = 0, e_u = 0, e_v = 0, e_s = 0, e_p = 0, e_b = 0;
   const auto rel = [](double a, double b) { return std::abs(a - b) / std::max(1.0, std::abs(b)); };
   const unsigned int voigt[9] = {0, 3, 5, 3, 1, 4, 5, 4, 2};
@@ -144,15 +98,15 @@ int main(int argc, char** argv)
         e_u = std::max(e_u, rel(disp[3 * p + d], u[3 * g + d]));
         e_v = std::max(e_v, rel(vel[3 * p + d], v[3 * g + d]));
       }
-      for (int c = 0; c < 9; ++c)
-        e_s = std::max(e_s, rel(sig[9 * p + c], stress[6 * z + voigt[c]]) /
-                                std::max(1.0, stress[6 * z + voigt[c]]));
-      for (int c = 0; c < 3; ++c)
-        e_p = std::max(e_p, rel(prin[3 * p + c], principal[3 * z + c]) /
-                                std::max(1.0, std::abs(principal[3 * z + c])));
-      // Zone data are written at each of the cell's own points.
-      e_b = std::max(e_b, std::abs(block[p] - mesh.zone_block[z]));
     }
+    // Zone data are cell data.
+    for (int c = 0; c < 9; ++c)
+      e_s = std::max(e_s, rel(sig[9 * z + c], stress[6 * z + voigt[c]]) /
+                              std::max(1.0, stress[6 * z + voigt[c]]));
+    for (int c = 0; c < 3; ++c)
+      e_p = std::max(e_p, rel(prin[3 * z + c], principal[3 * z + c]) /
+                              std::max(1.0, std::abs(principal[3 * z + c])));
+    e_b = std::max(e_b, std::abs(block[z] - mesh.zone_block[z]));
   }
   talus_test::check("positions, largest mismatch", e_x, 0.0, 1e-6);
   talus_test::check("displacement, largest mismatch", e_u, 0.0, 1e-6);

@@ -1,5 +1,6 @@
 #pragma once
 
+#include <talus/io/vtu_encoding.h>
 #include <talus/model/block_model.h>
 
 #include <string>
@@ -23,9 +24,11 @@ struct BlockField
 
 /// Writes every block as one VTK polyhedron cell (type 42) of an XML
 /// unstructured grid, with block id, group and volume as cell data plus any
-/// `fields`. ParaView shows each block as a solid it can colour and select.
+/// `fields` (Float64). ParaView shows each block as a solid it can colour
+/// and select.
 void write_blocks_vtu(const std::string& path, const BlockModel& model,
-                      const std::vector<BlockField>& fields = {});
+                      const std::vector<BlockField>& fields = {},
+                      VtuEncoding encoding = VtuEncoding::binary);
 
 /// The list of VTU files of a run with their times, written as a PVD file so
 /// that ParaView opens the run as one time series.

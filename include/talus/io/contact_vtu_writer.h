@@ -1,6 +1,7 @@
 #pragma once
 
 #include <talus/contact/contact_set.h>
+#include <talus/io/vtu_encoding.h>
 #include <talus/model/block_model.h>
 
 #include <string>
@@ -28,6 +29,7 @@ struct JointNumbers
 /// none: contacts made by motion, or between faces of different joints);
 /// and `contact_id` (the contact's slot).
 void write_contacts_vtu(const std::string& path, const ContactSet& contacts,
-                        const BlockModel& model, const JointNumbers& joints);
+                        const BlockModel& model, const JointNumbers& joints,
+                        VtuEncoding encoding = VtuEncoding::binary);
 
 } // namespace talus

@@ -2,6 +2,7 @@
 
 #include <talus/geometry/block_generator.h>
 #include <talus/geometry/region.h>
+#include <talus/io/vtu_encoding.h>
 #include <talus/solver/deformable_solver.h>
 #include <talus/solver/rigid_solver.h>
 #include <talus/zone/edge_length_field.h>
@@ -81,6 +82,7 @@ struct OutputSettings
   std::string directory = "output"; ///< created if missing
   std::string base_name = "talus";  ///< prefix of every file written
   bool write_vtu = true;
+  VtuEncoding vtu_encoding = VtuEncoding::binary; ///< of every VTU file written
   unsigned long checkpoint_interval = 0; ///< steps between checkpoints (0: only on a signal)
 };
 

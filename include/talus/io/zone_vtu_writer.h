@@ -1,10 +1,11 @@
 #pragma once
 
 #include <talus/io/block_vtu_writer.h>
+#include <talus/io/vtu_encoding.h>
 #include <talus/zone/tet_mesh.h>
 
 #include <array>
-#include <memory>
+#include <ostream>
 #include <string>
 #include <vector>
 
@@ -30,18 +31,20 @@ void shown_zone_values(const TetMesh& mesh, const std::vector<double>& x,
                        const std::vector<double>& stress, const std::vector<unsigned char>& state,
                        std::vector<double>& cell_stress, std::vector<unsigned char>& cell_state);
 
-/// Writes the zones of deformable blocks through deal.II's DataOut. It
-/// holds one deal.II triangulation of all deformable blocks, made of the
-/// shown tetrahedra (material_id = block), built when output is first
-/// asked for. Gridpoint fields have 1 or 3 components (linear in each
-/// cell); cell fields (per shown tetrahedron) 1, 3 or 6 components
-/// (constant in each cell; 6 is a symmetric tensor xx, yy, zz, xy, yz, zx,
-/// written as a full 3x3 tensor); the block id is added. The field layout
-/// is fixed by the first frame; the DoF numbering is built once.
+/// Writes the zones of deformable blocks as a VTU file straight from the
+/// flat mesh arrays: the gridpoints are the points (at their current
+/// positions, Float64), the shown tetrahedra the cells (VTK_TETRA).
+/// Gridpoint fields (1 or 3 components) are point data, zone fields (per
+/// shown tetrahedron; 1, 3 or 6 components, 6 a symmetric tensor xx, yy,
+/// zz, xy, yz, zx written as the full 3x3 tensor) cell data, both Float32;
+/// the block id (Int32) is added as cell data and the time as field data
+/// TIME. Arrays are made and compressed a block at a time, so that a write
+/// holds little more than one array's compressed bytes. The field layout is
+/// fixed by the first frame.
 class ZoneWriter
 {
 public:
-  explicit ZoneWriter(const TetMesh& mesh);
+  explicit ZoneWriter(const TetMesh& mesh, VtuEncoding encoding = VtuEncoding::binary);
   ~ZoneWriter();
 
   /// Writes one VTU file atomically, the cells at the gridpoints' current
@@ -51,9 +54,17 @@ public:
              double time);
 
 private:
-  struct Data;
+  template <typename Index>
+  void write_cells(std::ostream& out) const;
+
   const TetMesh& mesh_;
-  std::unique_ptr<Data> data_;
+  VtuEncoding encoding_;
+  std::size_t n_cells_ = 0;
+  /// The zone each shown tetrahedron comes from (4-node and hexahedral
+  /// zones; a 10-node zone's eight follow from the index).
+  std::vector<unsigned int> shown_zone_;
+  bool laid_out_ = false; ///< the cells and the fields' layout are known (first frame)
+  std::vector<unsigned int> point_components_, zone_components_; ///< of the first frame
 };
 
 /// Principal stresses of a symmetric stress (xx, yy, zz, xy, yz, zx), in
