@@ -12,6 +12,7 @@
 // centre, h = h0 r / a, capped at h_max (about the thickness, so that the
 // zones far out stay well shaped).
 
+#include <talus/zone/block_mesher.h>
 #include <talus/zone/convex_block_mesher.h>
 #include <talus/zone/tet_mesh.h>
 
@@ -107,57 +108,8 @@ struct HoleBody
     const talus::BlockTetrahedra tets =
         talus::mesh_polyhedron(surface(), [this](const talus::Vec3& x) { return edge_length(x); });
     talus::TetMesh mesh;
-    append_block_tetrahedra(mesh, tets, 0);
+    talus::append_tetrahedra(mesh, tets, 0);
     return mesh;
-  }
-
-  /// The zones of one block from the mesher as block `block` of a TetMesh,
-  /// as append_tetrahedra (block_mesher.h) does from a deal.II
-  /// triangulation: gridpoints of its own, and its boundary faces (the zone
-  /// faces that appear once) turned to face out of the block.
-  static void append_block_tetrahedra(talus::TetMesh& mesh, const talus::BlockTetrahedra& tets,
-                                      unsigned int block)
-  {
-    using talus::Vec3;
-    const unsigned int offset = mesh.n_gridpoints();
-    const std::size_t first_zone = mesh.zone_gridpoint.size();
-    for (const Vec3& p : tets.point)
-    {
-      for (int d = 0; d < 3; ++d)
-        mesh.position.push_back(p[d]);
-      mesh.gridpoint_block.push_back(block);
-    }
-    for (const auto& t : tets.tet)
-    {
-      mesh.zone_gridpoint.push_back({{offset + t[0], offset + t[1], offset + t[2], offset + t[3]}});
-      mesh.zone_block.push_back(block);
-    }
-    const auto P = [&](unsigned int g)
-    { return Vec3(mesh.position[3 * g], mesh.position[3 * g + 1], mesh.position[3 * g + 2]); };
-    std::map<std::array<unsigned int, 3>, std::pair<unsigned int, int>> seen;
-    static const int face_of[4][3] = {{1, 2, 3}, {0, 3, 2}, {0, 1, 3}, {0, 2, 1}};
-    for (std::size_t z = first_zone; z < mesh.zone_gridpoint.size(); ++z)
-      for (int f = 0; f < 4; ++f)
-      {
-        std::array<unsigned int, 3> key{{mesh.zone_gridpoint[z][face_of[f][0]],
-                                         mesh.zone_gridpoint[z][face_of[f][1]],
-                                         mesh.zone_gridpoint[z][face_of[f][2]]}};
-        std::sort(key.begin(), key.end());
-        const auto [it, fresh] = seen.emplace(key, std::make_pair(static_cast<unsigned int>(z), f));
-        if (!fresh)
-          seen.erase(it);
-      }
-    for (const auto& [key, where] : seen)
-    {
-      const auto& t = mesh.zone_gridpoint[where.first];
-      std::array<unsigned int, 3> face{
-          {t[face_of[where.second][0]], t[face_of[where.second][1]], t[face_of[where.second][2]]}};
-      const Vec3 normal = (P(face[1]) - P(face[0])).cross(P(face[2]) - P(face[0]));
-      if (normal.dot(P(face[0]) - P(t[where.second])) < 0.0)
-        std::swap(face[1], face[2]);
-      mesh.face_gridpoint.push_back(face);
-      mesh.face_zone.push_back(where.first);
-    }
   }
 };
 
