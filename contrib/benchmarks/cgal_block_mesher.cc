@@ -26,8 +26,7 @@ namespace
 using Kernel = CGAL::Exact_predicates_inexact_constructions_kernel;
 using Surface = CGAL::Surface_mesh<Kernel::Point_3>;
 using Domain = CGAL::Polyhedral_mesh_domain_with_features_3<Kernel, Surface>;
-using Triangulation =
-    CGAL::Mesh_triangulation_3<Domain, CGAL::Default, CGAL::Sequential_tag>::type;
+using Triangulation = CGAL::Mesh_triangulation_3<Domain, CGAL::Default, CGAL::Sequential_tag>::type;
 using Complex = CGAL::Mesh_complex_3_in_triangulation_3<Triangulation, Domain::Corner_index,
                                                         Domain::Curve_index>;
 using Criteria = CGAL::Mesh_criteria_3<Triangulation>;
@@ -43,8 +42,7 @@ CgalCriteria cgal_criteria_for(double h)
   return c;
 }
 
-BlockTetrahedra cgal_mesh_convex_block(const BlockModel& m, unsigned int b,
-                                       const CgalCriteria& c)
+BlockTetrahedra cgal_mesh_convex_block(const BlockModel& m, unsigned int b, const CgalCriteria& c)
 {
   Surface surface;
   const unsigned int v0 = m.vertex_start[b];
@@ -58,7 +56,8 @@ BlockTetrahedra cgal_mesh_convex_block(const BlockModel& m, unsigned int b,
     for (unsigned int k = 1; k + 1 < n; ++k)
       if (surface.add_face(corner[m.face_vertex[first] - v0], corner[m.face_vertex[first + k] - v0],
                            corner[m.face_vertex[first + k + 1] - v0]) == Surface::null_face())
-        throw std::runtime_error("block " + std::to_string(b) + ": its faces are no closed surface");
+        throw std::runtime_error("block " + std::to_string(b) +
+                                 ": its faces are no closed surface");
   }
 
   Domain domain(surface);
@@ -68,9 +67,9 @@ BlockTetrahedra cgal_mesh_convex_block(const BlockModel& m, unsigned int b,
                           p::facet_size = c.facet_size, p::facet_distance = c.facet_distance,
                           p::cell_radius_edge_ratio = c.cell_radius_edge_ratio,
                           p::cell_size = c.cell_size);
-  const Complex complex = c.optimise ? CGAL::make_mesh_3<Complex>(domain, criteria)
-                                     : CGAL::make_mesh_3<Complex>(domain, criteria, p::no_perturb(),
-                                                                  p::no_exude());
+  const Complex complex =
+      c.optimise ? CGAL::make_mesh_3<Complex>(domain, criteria)
+                 : CGAL::make_mesh_3<Complex>(domain, criteria, p::no_perturb(), p::no_exude());
 
   BlockTetrahedra out;
   std::unordered_map<const void*, unsigned int> local;
@@ -80,8 +79,7 @@ BlockTetrahedra cgal_mesh_convex_block(const BlockModel& m, unsigned int b,
     for (int i = 0; i < 4; ++i)
     {
       const auto v = cell->vertex(i);
-      const auto [it, fresh] =
-          local.emplace(&*v, static_cast<unsigned int>(out.point.size()));
+      const auto [it, fresh] = local.emplace(&*v, static_cast<unsigned int>(out.point.size()));
       if (fresh)
       {
         const auto& x = v->point();

@@ -15,13 +15,13 @@ namespace talus
 /// Mesh_3's criteria (its names). Sizes in m.
 struct CgalCriteria
 {
-  double edge_size;                     ///< spacing of the protecting balls on the block's edges
-  double facet_size;                    ///< largest surface Delaunay ball radius
-  double cell_size;                     ///< largest circumradius of a tetrahedron
-  double facet_angle = 25.0;            ///< degrees, smallest facet angle
-  double facet_distance;                ///< facet centre to surface (flat faces: 0 anyway)
-  double cell_radius_edge_ratio = 2.0;  ///< circumradius over shortest edge
-  bool optimise = true;                 ///< Mesh_3's default perturb + exude (sliver removal)
+  double edge_size;                    ///< spacing of the protecting balls on the block's edges
+  double facet_size;                   ///< largest surface Delaunay ball radius
+  double cell_size;                    ///< largest circumradius of a tetrahedron
+  double facet_angle = 25.0;           ///< degrees, smallest facet angle
+  double facet_distance;               ///< facet centre to surface (flat faces: 0 anyway)
+  double cell_radius_edge_ratio = 2.0; ///< circumradius over shortest edge
+  bool optimise = true;                ///< Mesh_3's default perturb + exude (sliver removal)
   /// Edges between faces whose normals differ by at least this (degrees)
   /// are protected; a convex block's faces all differ, its triangulated
   /// faces' diagonals do not.

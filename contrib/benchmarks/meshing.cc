@@ -5,10 +5,10 @@
 // 100 and 1,000 blocks (rock around an excavation), meshed at a target edge
 // length h; each row runs in a child process of its own so that its memory
 // peak is its own. Per row and mesher it prints:
-//   zones/s     zones made per second of the child's CPU time (one core;
-//               wall-clock time in brackets when it differs, the machine is
-//               shared), the whole mesh_convex_blocks call (or Mesh_3 block
-//               by block), statistics not included;
+//   zones/s     zones made per second of the child's CPU time (one core),
+//               then per second of wall-clock time (lower when the machine
+//               is shared): the whole mesh_convex_blocks call (or Mesh_3
+//               block by block), the statistics not included;
 //   us/zone     the same as time per zone, for linearity across rows;
 //   count/band  zones over regular_tetrahedra_in(V, h) summed over blocks,
 //               and the share of the blocks at least h thick (least width
@@ -18,7 +18,8 @@
 //   B/zone      the rise of the peak resident memory (VmHWM, reset through
 //               /proc/self/clear_refs) while meshing, over the zones; gmsh's
 //               start-up (gmsh::initialize) is not in it but printed apart;
-//   vol err     largest |sum of zone volumes - block volume| / block volume.
+//   vol err     largest |sum of zone volumes - block volume| / block volume,
+//               and how many blocks miss by more than 1e-9.
 // Run:
 //   cmake --build build --target benchmark_meshing && build/contrib/benchmarks/benchmark_meshing
 // Arguments (all optional): rows (10, 100, 1000: h = 0.5 m; 1000c: the 1,000
@@ -26,8 +27,10 @@
 // zones per block), meshers (gmsh, cgal), runs=N (each row and mesher N times,
 // taking turns; the fastest is shown, all on standard error), batch=N (blocks
 // per gmsh model), and gmsh options as Name=value (e.g. Mesh.Algorithm3D=1,
-// Mesh.Optimize=0), set once gmsh is started. Without rows or meshers: gmsh
-// on every row and CGAL on 10, 100 and 100f... as listed in `defaults` below.
+// Mesh.Optimize=0), set once gmsh is started; cgal-scale=x (CGAL's sizes for
+// x h); detail (one line per block on standard error). Without rows or
+// meshers: gmsh on every row and CGAL on 10 and 100 (CGAL on 1000 takes
+// about two CPU minutes: `benchmark_meshing 1000 cgal`).
 
 #include "benchmark_arguments.h"
 #include "cgal_block_mesher.h"
@@ -101,6 +104,21 @@ double thickness(const BlockModel& m, unsigned int b)
   return least;
 }
 
+/// The block's shortest edge.
+double shortest_edge(const BlockModel& m, unsigned int b)
+{
+  double least = INFINITY;
+  for (unsigned int f = m.face_start[b]; f < m.face_start[b + 1]; ++f)
+  {
+    const unsigned int first = m.face_loop_start[f], n = m.face_loop_start[f + 1] - first;
+    for (unsigned int k = 0; k < n; ++k)
+      least = std::min(
+          least, (m.vertex[m.face_vertex[first + k]] - m.vertex[m.face_vertex[first + (k + 1) % n]])
+                     .norm());
+  }
+  return least;
+}
+
 /// A field of /proc/self/status in bytes (VmRSS, VmHWM).
 double status_bytes(const char* field)
 {
@@ -142,13 +160,15 @@ struct Result
   unsigned int thick2_blocks = 0, thick2_in_band = 0; // at least 2h thick
   double zones = 0, band = 0, cpu = 0, wall = 0;
   double q_min = 0, q_1 = 0, q_median = 0, below_01 = 0;
+  double below_01_thick = 0, q_min_thick = 1; // in blocks at least h thick
   double peak_rise = 0, start_up = 0, volume_error = 0;
+  unsigned int volume_off = 0; // blocks whose zones miss its volume by more than 1e-9
   bool peak_reset = false;
 };
 
 struct Settings
 {
-  bool detail = false; // one line per block on standard error
+  bool detail = false;     // one line per block on standard error
   double cgal_scale = 1.0; // CGAL's sizes for h times this
   std::size_t batch = 64;
   std::vector<std::pair<std::string, double>> gmsh_options;
@@ -239,20 +259,32 @@ Result measure(const Row& row, const std::string& mesher, const Settings& settin
       ++r.thick2_blocks;
       r.thick2_in_band += in_band;
     }
-    double volume = 0;
+    double volume = 0, worst = 1;
+    unsigned int poor = 0;
     for (const auto& z : t.tet)
     {
       const Vec3 &a = t.point[z[0]], &b1 = t.point[z[1]], &c = t.point[z[2]], &d = t.point[z[3]];
       quality.push_back(radius_ratio(a, b1, c, d));
+      worst = std::min(worst, quality.back());
+      poor += quality.back() < 0.1;
       volume += (b1 - a).dot((c - a).cross(d - a)) / 6.0;
     }
-    r.volume_error =
-        std::max(r.volume_error, std::abs(volume - model.volume[b]) / model.volume[b]);
+    if (thick >= row.h)
+    {
+      r.below_01_thick += poor;
+      r.q_min_thick = std::min(r.q_min_thick, worst);
+    }
+    const double volume_error = std::abs(volume - model.volume[b]) / model.volume[b];
+    r.volume_error = std::max(r.volume_error, volume_error);
+    r.volume_off += volume_error > 1e-9;
     if (settings.detail)
-      std::fprintf(stderr, "%s %s block %u: V %.4g m^3 thick %.3g m faces %u zones %.0f band %.0f "
-                   "ratio %.2f vol err %.1e\n", mesher.c_str(), row.name, b, model.volume[b],
-                   thickness(model, b), model.face_start[b + 1] - model.face_start[b], count,
-                   band, count / band, std::abs(volume - model.volume[b]) / model.volume[b]);
+      std::fprintf(
+          stderr,
+          "%s %s block %u: V %.4g m^3 thick %.3g m edge >= %.2g m faces %u zones %.0f band %.0f "
+          "ratio %.2f q min %.3f < 0.1: %u vol err %.1e\n",
+          mesher.c_str(), row.name, b, model.volume[b], thick, shortest_edge(model, b),
+          model.face_start[b + 1] - model.face_start[b], count, band, count / band, worst, poor,
+          std::abs(volume - model.volume[b]) / model.volume[b]);
   }
   std::sort(quality.begin(), quality.end());
   if (!quality.empty())
@@ -331,7 +363,16 @@ int main(int argc, char** argv)
     else if (a == "detail")
       settings.detail = true;
     else if (a.rfind("cgal-scale=", 0) == 0)
-      settings.cgal_scale = std::atof(argv[i] + 11);
+    {
+      char* end = nullptr;
+      settings.cgal_scale = std::strtod(argv[i] + 11, &end);
+      if (end == argv[i] + 11 || *end != '\0' || !(settings.cgal_scale > 0.0))
+      {
+        std::fprintf(stderr, "%s: argument '%s': cgal-scale must be a positive number\n", argv[0],
+                     argv[i]);
+        return 2;
+      }
+    }
     else if (a.rfind("runs=", 0) == 0)
       runs = whole_argument(argv[0], argv[i] + 5, "runs", 1, 100);
     else if (a.rfind("batch=", 0) == 0)
@@ -342,8 +383,8 @@ int main(int argc, char** argv)
       const double value = std::strtod(a.c_str() + eq + 1, &end);
       if (end == a.c_str() + eq + 1 || *end != '\0')
       {
-        std::fprintf(stderr, "%s: argument '%s': a gmsh option's value must be a number\n",
-                     argv[0], argv[i]);
+        std::fprintf(stderr, "%s: argument '%s': a gmsh option's value must be a number\n", argv[0],
+                     argv[i]);
         return 2;
       }
       settings.gmsh_options.emplace_back(a.substr(0, eq), value);
@@ -352,7 +393,7 @@ int main(int argc, char** argv)
     {
       std::fprintf(stderr,
                    "%s: argument '%s': allowed are rows 10 100 1000 1000c 100f, meshers gmsh "
-                   "cgal, runs=N, batch=N and gmsh options Name=value\n",
+                   "cgal, runs=N, batch=N, cgal-scale=x, detail and gmsh options Name=value\n",
                    argv[0], argv[i]);
       return 2;
     }
@@ -392,9 +433,11 @@ int main(int argc, char** argv)
       results[j].push_back(r);
     }
 
-  std::printf("| mesher | row | h (m) | blocks | zones | zones/s (CPU; wall) | us/zone | count/band "
-              "| in band: blocks >= h / >= 2h thick | quality min / 1 %% / median | zones < 0.1 | B/zone "
-              "(start-up MB) | vol err |\n");
+  std::printf(
+      "| mesher | row | h (m) | blocks | zones | zones/s (CPU; wall) | us/zone | count/band "
+      "| in band: blocks >= h / >= 2h thick | quality min / 1 %% / median | zones < 0.1 (in blocks "
+      ">= h thick: number, least) | B/zone "
+      "(start-up MB) | vol err (blocks > 1e-9) |\n");
   std::printf("|---|---|---:|---:|---:|---|---:|---:|---|---|---:|---|---:|\n");
   for (std::size_t j = 0; j < jobs.size(); ++j)
   {
@@ -418,13 +461,14 @@ int main(int argc, char** argv)
     std::string blocks = thousands(r.blocks);
     if (r.failed_blocks > 0)
       blocks += " (" + std::to_string(r.failed_blocks) + " failed)";
-    std::printf("| %s | %s | %.2f | %s | %s | %s | %.1f | %.2f | %u of %u / %u of %u | %.3f / %.3f / %.3f | "
-                "%.0f | %.0f%s (%.0f) | %.0e |\n",
+    std::printf("| %s | %s | %.2f | %s | %s | %s | %.1f | %.2f | %u of %u / %u of %u | %.3f / %.3f "
+                "/ %.3f | "
+                "%.0f (%.0f, %.3f) | %.0f%s (%.0f) | %.0e (%u) |\n",
                 jobs[j].second.c_str(), jobs[j].first->name, jobs[j].first->h, blocks.c_str(),
                 thousands(r.zones).c_str(), rates.c_str(), 1e6 * r.cpu / r.zones, r.zones / r.band,
-                r.thick_in_band, r.thick_blocks, r.thick2_in_band, r.thick2_blocks, r.q_min, r.q_1, r.q_median, r.below_01,
-                r.peak_rise / r.zones, r.peak_reset ? "" : "*", r.start_up / 1048576.0,
-                r.volume_error);
+                r.thick_in_band, r.thick_blocks, r.thick2_in_band, r.thick2_blocks, r.q_min, r.q_1,
+                r.q_median, r.below_01, r.below_01_thick, r.q_min_thick, r.peak_rise / r.zones,
+                r.peak_reset ? "" : "*", r.start_up / 1048576.0, r.volume_error, r.volume_off);
   }
   std::printf("\nzones/s: the fastest of the runs first, then the others, then the fastest "
               "run's wall-clock rate.%s\n",
