@@ -85,7 +85,7 @@ TetMesh mesh_blocks(const BlockModel& blocks, const std::vector<unsigned int>& w
 /// double: a bad edge length can ask for more than any integer holds), so
 /// that a scene too large for memory is refused before it is meshed: exact
 /// for bricks; for other blocks the regular tetrahedra that fill the
-/// volume at the local edge length (gmsh makes 0.6-1.0 of that on blocks
+/// volume at the local edge length (gmsh makes 0.55-1.0 of that on blocks
 /// larger than the edge length), and at least a fan of the block's faces.
 double count_zones(const BlockModel& blocks, const std::vector<unsigned int>& which,
                    const EdgeLengthField& edge_length);
