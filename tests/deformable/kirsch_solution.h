@@ -1,0 +1,147 @@
+#pragma once
+
+// Kirsch's solution for a circular hole of radius a in a plane-strain
+// plate under far-field stresses Sx = -K p, Sy = -p, and the measures the
+// Kirsch tests take of a zone solution against it (wall displacement, hoop
+// stress of the zones near the axes, a least-squares fit to the wall).
+// Shared by kirsch_01 (structured mesh) and kirsch_02 (the mesher's).
+
+#include <talus/zone/tet_mesh.h>
+#include <talus/zone/zone_material.h>
+
+#include <Eigen/Dense>
+
+#include <cmath>
+#include <vector>
+
+using namespace talus;
+
+namespace
+{
+const double a = 1.0, p = 1e5, K = 0.5, E = 1e10, nu = 0.25;
+const double G = E / (2.0 * (1.0 + nu));
+const double Sx = -K * p, Sy = -p, Sz = nu * (Sx + Sy); // far field, Pa, tension positive
+const double eps = 1e-9, big = 1e3;
+double L = 40.0;      // m, half-width of the outer square
+double target = 1e-6; // unbalanced-force ratio of the static runs
+
+/// Kirsch's stresses at (r, theta): radial, hoop, shear (Pa).
+void kirsch(double r, double theta, double& srr, double& stt, double& srt)
+{
+  const double m = 0.5 * (Sx + Sy), d = 0.5 * (Sx - Sy), rho = a * a / (r * r);
+  srr = m * (1.0 - rho) + d * (1.0 - 4.0 * rho + 3.0 * rho * rho) * std::cos(2.0 * theta);
+  stt = m * (1.0 + rho) - d * (1.0 + 3.0 * rho * rho) * std::cos(2.0 * theta);
+  srt = -d * (1.0 + 2.0 * rho - 3.0 * rho * rho) * std::sin(2.0 * theta);
+}
+
+double kirsch_wall_ur(double theta)
+{
+  return -(p * a / (4.0 * G)) * ((1.0 + K) - (1.0 - K) * (3.0 - 4.0 * nu) * std::cos(2.0 * theta));
+}
+
+Vec3 point(const TetMesh& m, unsigned int g)
+{
+  return Vec3(m.position[3 * g], m.position[3 * g + 1], m.position[3 * g + 2]);
+}
+
+/// Zone stresses (6 per zone) of a displacement field in small strain:
+/// the far-field stress plus eq. 59 applied to the zone's constant strain.
+std::vector<double> small_strain_stress(const TetMesh& m, const std::vector<double>& u,
+                                        const ZoneMaterial& rock)
+{
+  std::vector<double> stress(6 * m.n_zones());
+  const double lambda = rock.bulk_modulus - 2.0 * rock.shear_modulus / 3.0;
+  for (unsigned int z = 0; z < m.n_zones(); ++z)
+  {
+    const auto& t = m.zone_gridpoint[z];
+    Eigen::Matrix3d edges, du;
+    for (int k = 0; k < 3; ++k)
+    {
+      edges.col(k) = point(m, t[k + 1]) - point(m, t[0]);
+      for (int d = 0; d < 3; ++d)
+        du(d, k) = u[3 * t[k + 1] + d] - u[3 * t[0] + d];
+    }
+    const Eigen::Matrix3d grad = du * edges.inverse(); // du_i/dx_j
+    const Eigen::Matrix3d e = 0.5 * (grad + grad.transpose());
+    const Eigen::Matrix3d s =
+        lambda * e.trace() * Eigen::Matrix3d::Identity() + 2.0 * rock.shear_modulus * e;
+    double* out = &stress[6 * z];
+    out[0] = Sx + s(0, 0);
+    out[1] = Sy + s(1, 1);
+    out[2] = Sz + s(2, 2);
+    out[3] = s(0, 1);
+    out[4] = s(1, 2);
+    out[5] = s(2, 0);
+  }
+  return stress;
+}
+
+/// Mean radial displacement of the wall gridpoints on the x axis (theta =
+/// 0) or on the y axis (theta = 90 degrees): u_x or u_y there.
+double wall_ur(const TetMesh& m, const std::vector<double>& u, bool y_axis)
+{
+  double sum = 0.0;
+  unsigned int n = 0;
+  for (unsigned int g = 0; g < m.n_gridpoints(); ++g)
+  {
+    const Vec3 x = point(m, g);
+    if (std::abs(x[y_axis ? 1 : 0] - a) < eps && std::abs(x[y_axis ? 0 : 1]) < eps)
+    {
+      sum += u[3 * g + (y_axis ? 1 : 0)];
+      ++n;
+    }
+  }
+  return sum / n;
+}
+
+struct ZoneHoop
+{
+  double r, angle_from_axis, computed, kirsch;
+};
+
+/// Hoop stress of the zones whose centroid lies within `rings` rings of
+/// the wall and `sectors` sectors of the x axis (or the y axis).
+std::vector<ZoneHoop> hoop_near_axis(const TetMesh& m, const std::vector<double>& stress,
+                                     double ring_ratio, double dtheta, int rings, int sectors,
+                                     bool y_axis)
+{
+  std::vector<ZoneHoop> out;
+  for (unsigned int z = 0; z < m.n_zones(); ++z)
+  {
+    Vec3 c = Vec3::Zero();
+    for (unsigned int g : m.zone_gridpoint[z])
+      c += 0.25 * point(m, g);
+    const double r = std::hypot(c[0], c[1]), theta = std::atan2(c[1], c[0]);
+    const double from_axis = y_axis ? 0.5 * M_PI - theta : theta;
+    if (r > a * std::pow(ring_ratio, rings) || from_axis > sectors * dtheta)
+      continue;
+    const double* s = &stress[6 * z];
+    const double cs = std::cos(theta), sn = std::sin(theta);
+    const double stt = s[0] * sn * sn + s[1] * cs * cs - 2.0 * s[3] * sn * cs;
+    double srr, kstt, srt;
+    kirsch(r, theta, srr, kstt, srt);
+    out.push_back({r, from_axis, stt, kstt});
+  }
+  return out;
+}
+
+/// Wall value of a least-squares fit to the zone values (from `computed`,
+/// or from Kirsch at the same centroids: the bias of the fit itself) of
+///   s = c0 + c1 q + c2 q^2 + phi^2 (c3 + c4 q),  q = a^2/r^2 - 1,
+/// phi the angle from the axis: along an axis an elastic perturbation of
+/// the far field around a circular hole is a polynomial in a^2/r^2 (of
+/// degree two for Kirsch), and the hoop stress is even in phi by symmetry.
+double wall_fit(const std::vector<ZoneHoop>& zones, bool use_kirsch)
+{
+  Eigen::MatrixXd A(zones.size(), 5);
+  Eigen::VectorXd b(zones.size());
+  for (std::size_t k = 0; k < zones.size(); ++k)
+  {
+    const double q = a * a / (zones[k].r * zones[k].r) - 1.0,
+                 phi2 = std::pow(zones[k].angle_from_axis, 2);
+    A.row(k) << 1.0, q, q * q, phi2, phi2 * q;
+    b[k] = use_kirsch ? zones[k].kirsch : zones[k].computed;
+  }
+  return A.colPivHouseholderQr().solve(b)[0];
+}
+} // namespace
