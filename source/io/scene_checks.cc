@@ -191,14 +191,33 @@ void check_built_model(const Scene& scene, const BlockModel& model, const BuildR
 namespace
 {
 
-/// The checks of check_built_model on deformable blocks.
-void check_deformable_blocks(const Scene& scene, const BlockModel& model)
+/// The blocks of the deformable groups.
+std::vector<unsigned int> deformable_blocks(const Scene& scene, const BlockModel& model)
 {
   std::vector<unsigned int> deformable;
   for (unsigned int b = 0; b < model.n_blocks(); ++b)
     if (std::find(scene.deformable.groups.begin(), scene.deformable.groups.end(),
                   model.group_names[model.group[b]]) != scene.deformable.groups.end())
       deformable.push_back(b);
+  return deformable;
+}
+
+/// The largest side of block b's bounding box (m).
+double block_extent(const BlockModel& model, unsigned int b)
+{
+  Box box{model.vertex[model.vertex_start[b]], model.vertex[model.vertex_start[b]]};
+  for (unsigned int v = model.vertex_start[b]; v < model.vertex_start[b + 1]; ++v)
+  {
+    box.lo = box.lo.cwiseMin(model.vertex[v]);
+    box.hi = box.hi.cwiseMax(model.vertex[v]);
+  }
+  return (box.hi - box.lo).maxCoeff();
+}
+
+/// The checks of check_built_model on deformable blocks.
+void check_deformable_blocks(const Scene& scene, const BlockModel& model)
+{
+  const std::vector<unsigned int> deformable = deformable_blocks(scene, model);
   if (deformable.empty())
     throw scene_error(scene, "Deformable", "Groups", "no block of the model is in these groups",
                       "groups that hold blocks");
@@ -210,13 +229,7 @@ void check_deformable_blocks(const Scene& scene, const BlockModel& model)
     const double weight = scene.density * scene.solver.gravity.norm(); // N/m^3
     for (unsigned int b : deformable)
     {
-      Box box{model.vertex[model.vertex_start[b]], model.vertex[model.vertex_start[b]]};
-      for (unsigned int v = model.vertex_start[b]; v < model.vertex_start[b + 1]; ++v)
-      {
-        box.lo = box.lo.cwiseMin(model.vertex[v]);
-        box.hi = box.hi.cwiseMax(model.vertex[v]);
-      }
-      const double extent = (box.hi - box.lo).maxCoeff();
+      const double extent = block_extent(model, b);
       const std::string& group = model.group_names[model.group[b]];
       const bool scaled = std::find(d.scaled_groups.begin(), d.scaled_groups.end(), group) !=
                           d.scaled_groups.end();
@@ -228,8 +241,11 @@ void check_deformable_blocks(const Scene& scene, const BlockModel& model)
                               " Pa) that their own weight would strain them by about " +
                               number(strain) + " (density x gravity x " + number(extent) +
                               " m / E): they would collapse",
-                          "a Young's modulus of at least " + number(2.0 * weight * extent) +
-                              " Pa for these blocks (own-weight strain at most 0.5)");
+                          (scaled ? "a stiffness ratio of at least " +
+                                        number(2.0 * weight * extent / d.material.young())
+                                  : "a Young's modulus of at least " +
+                                        number(2.0 * weight * extent) + " Pa") +
+                              " for these blocks (own-weight strain at most 0.5)");
     }
   }
   if (!scene.deformable.mesh_file.empty())
@@ -243,15 +259,7 @@ void check_deformable_blocks(const Scene& scene, const BlockModel& model)
   }
   double largest_extent = 0.0;
   for (unsigned int b : deformable)
-  {
-    Box box{model.vertex[model.vertex_start[b]], model.vertex[model.vertex_start[b]]};
-    for (unsigned int v = model.vertex_start[b]; v < model.vertex_start[b + 1]; ++v)
-    {
-      box.lo = box.lo.cwiseMin(model.vertex[v]);
-      box.hi = box.hi.cwiseMax(model.vertex[v]);
-    }
-    largest_extent = std::max(largest_extent, (box.hi - box.lo).maxCoeff());
-  }
+    largest_extent = std::max(largest_extent, block_extent(model, b));
   const EdgeLengthField& field = scene.deformable.edge_length;
   const double edge = field.smallest();
   if (!field.graded() && edge > largest_extent)
@@ -288,11 +296,7 @@ ZoneEstimate estimate_zones(const Scene& scene, const BlockModel& model)
   ZoneEstimate e;
   if (!scene.deformable.mesh_file.empty())
     return e;
-  std::vector<unsigned int> deformable;
-  for (unsigned int b = 0; b < model.n_blocks(); ++b)
-    if (std::find(scene.deformable.groups.begin(), scene.deformable.groups.end(),
-                  model.group_names[model.group[b]]) != scene.deformable.groups.end())
-      deformable.push_back(b);
+  const std::vector<unsigned int> deformable = deformable_blocks(scene, model);
   e.blocks = deformable.size();
   e.quadratic = scene.deformable.material.element == ZoneElement::tet10;
   // Hexahedral zones count as their ten tetrahedra (two overlays of five).
