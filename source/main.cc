@@ -227,6 +227,14 @@ void implicit_check(const talus::Scene& scene, talus::DeformableSolver& solver)
               check.largest > 0.0 ? check.difference / check.largest : 0.0);
 }
 
+/// How a run ended: its unbalanced-force ratio, and where the force that
+/// sets it acts (for the warning of a run that did not settle).
+struct RunEnd
+{
+  double ratio = 0.0;
+  std::string where;
+};
+
 /// The largest displacement of a gridpoint (m).
 double largest_gridpoint_displacement(const talus::DeformableSolver& solver)
 {
@@ -361,7 +369,7 @@ std::unique_ptr<talus::ParallelEnvironment> zone_environment(const talus::Scene&
 /// Runs a scene of deformable blocks: meshes them, then the explicit zone
 /// cycle with output and histories; returns the unbalanced-force ratio
 /// reached.
-double solve_deformable(talus::Scene& scene, talus::BlockModel& model, const std::string& prefix)
+RunEnd solve_deformable(talus::Scene& scene, talus::BlockModel& model, const std::string& prefix)
 {
   using namespace talus;
   MeshReport mesh_report;
@@ -516,12 +524,17 @@ double solve_deformable(talus::Scene& scene, talus::BlockModel& model, const std
   if (scene.deformable.implicit_check)
     implicit_check(scene, solver);
   std::printf("Output:       %s_zones.pvd, %s_history.csv\n", prefix.c_str(), prefix.c_str());
-  return solver.unbalanced_ratio();
+  const unsigned int g = solver.unbalanced_gridpoint();
+  const std::vector<double> x = solver.positions();
+  char where[160];
+  std::snprintf(where, sizeof where, "gridpoint %u at %.4g, %.4g, %.4g m", g, x[3 * g],
+                x[3 * g + 1], x[3 * g + 2]);
+  return {solver.unbalanced_ratio(), where};
 }
 
 /// Runs the calculation the scene asks for, with output and histories;
-/// returns the unbalanced-force ratio reached.
-double solve(talus::Scene& scene, talus::BlockModel& model, talus::PvdSeries& series,
+/// returns the unbalanced-force ratio reached and where it acts.
+RunEnd solve(talus::Scene& scene, talus::BlockModel& model, talus::PvdSeries& series,
              const std::string& prefix)
 {
   using namespace talus;
@@ -694,7 +707,12 @@ double solve(talus::Scene& scene, talus::BlockModel& model, talus::PvdSeries& se
     std::printf("Largest gridpoint displacement: %.6g m\n", largest_gridpoint_displacement(*zones));
   std::printf("Output:       %s_blocks.pvd, %s_contacts.pvd, %s%s_history.csv\n", prefix.c_str(),
               prefix.c_str(), zones ? (prefix + "_zones.pvd, ").c_str() : "", prefix.c_str());
-  return r.ratio;
+  const unsigned int b = solver.unbalanced_block();
+  const Vec3& c = model.centroid[b];
+  char where[200];
+  std::snprintf(where, sizeof where, "block %u (group %s, centroid %.4g, %.4g, %.4g m)", b,
+                model.group_names[model.group[b]].c_str(), c[0], c[1], c[2]);
+  return {r.ratio, where};
 }
 
 /// The summary's lines on the history blocks: which block each is (so that
@@ -722,16 +740,16 @@ constexpr int exit_not_in_equilibrium = 4;
 
 /// Warns, and returns exit_not_in_equilibrium, when a static run with a
 /// target ratio ended above it; 0 otherwise.
-int static_run_end(const talus::Scene& scene, double ratio)
+int static_run_end(const talus::Scene& scene, const RunEnd& end)
 {
   const talus::SolverSettings& s = scene.solver;
-  if (s.dynamic || s.target_ratio <= 0.0 || ratio < s.target_ratio)
+  if (s.dynamic || s.target_ratio <= 0.0 || end.ratio < s.target_ratio)
     return 0;
   std::printf("Warning: the run stopped at its step limit ('Steps' = %lu) with the unbalanced "
               "force ratio at %.3g, above 'Target ratio' = %g: the model is not in equilibrium "
-              "(exit code %d); raise 'Steps', or set 'Target ratio' = 0 to run a fixed number of "
-              "steps\n",
-              s.steps, ratio, s.target_ratio, exit_not_in_equilibrium);
+              "(exit code %d); the largest unbalanced force is on %s; raise 'Steps', or set "
+              "'Target ratio' = 0 to run a fixed number of steps\n",
+              s.steps, end.ratio, s.target_ratio, exit_not_in_equilibrium, end.where.c_str());
   return exit_not_in_equilibrium;
 }
 
@@ -836,10 +854,10 @@ int run(const std::string& filename, bool check_only = false)
   int exit_code = 0;
   if (scene.solver.steps > 0)
   {
-    const double ratio = !scene.deformable.groups.empty() && model.n_blocks() == 1
-                             ? solve_deformable(scene, model, prefix)
-                             : solve(scene, model, series, prefix);
-    exit_code = static_run_end(scene, ratio);
+    const RunEnd end = !scene.deformable.groups.empty() && model.n_blocks() == 1
+                           ? solve_deformable(scene, model, prefix)
+                           : solve(scene, model, series, prefix);
+    exit_code = static_run_end(scene, end);
   }
   const auto done = std::chrono::steady_clock::now();
   // Indented "Time =" lines are ignored when test output is compared.

@@ -492,10 +492,20 @@ void ContactSet::build_subcontacts(unsigned int c, const BlockModel& m,
   if (has_area && (da || db))
   {
     // Sub-contacts at the gridpoints of deformable sides that lie over the
-    // contact region, each with a third of the facing boundary triangles
-    // around it; two deformable sides make two sets of springs in
-    // parallel, each with half the area.
+    // contact region, each with the part over the region of its third of
+    // the facing boundary triangles around it (the text after eq. 25); two
+    // deformable sides make two sets of springs in parallel, each with half
+    // the area. Without that cut, a gridpoint where a face meets two
+    // blocks would carry its whole area twice: twice the stiffness the
+    // time step of eq. 85 allows for, and a gridpoint that rattles.
     const double share = da && db ? 0.5 : 1.0;
+    double region_min[2] = {1e300, 1e300}, region_max[2] = {-1e300, -1e300};
+    for (const Point2& p : region)
+      for (int d = 0; d < 2; ++d)
+      {
+        region_min[d] = std::min(region_min[d], p[d]);
+        region_max[d] = std::max(region_max[d], p[d]);
+      }
     for (const auto& [blk, sign, side] : {std::tuple<unsigned int, double, int>{a, 1.0, 0},
                                           std::tuple<unsigned int, double, int>{b, -1.0, 1}})
     {
@@ -511,30 +521,58 @@ void ContactSet::build_subcontacts(unsigned int c, const BlockModel& m,
         const double area =
             0.5 *
             (m.vertex[m.face_vertex[k + 1]] - x0).cross(m.vertex[m.face_vertex[k + 2]] - x0).norm();
-        // Each corner the area the zones would take its load from (a third,
-        // or for hexahedral zones the mean of both overlays' splits).
+        Point2 p[3];
+        bool apart = false; // the triangle's box misses the region's
         for (int j = 0; j < 3; ++j)
-          vertex_area[m.face_vertex[k + j] - m.vertex_start[blk]] +=
-              area * (m.face_corner_share.empty() ? 1.0 / 3.0 : m.face_corner_share[f][j]);
+          p[j] = project(m.vertex[m.face_vertex[k + j]]);
+        for (int d = 0; d < 2; ++d)
+          apart |= std::max({p[0][d], p[1][d], p[2][d]}) < region_min[d] - eps ||
+                   std::min({p[0][d], p[1][d], p[2][d]}) > region_max[d] + eps;
+        const double projected = 0.5 * cross2(p[0], p[1], p[2]);
+        if (apart || projected == 0.0)
+          continue;
+        // The part of the triangle over the region, and where its area
+        // centre lies in the triangle (barycentric l).
+        std::vector<Point2> part = projected > 0.0 ? std::vector<Point2>{p[0], p[1], p[2]}
+                                                   : std::vector<Point2>{p[0], p[2], p[1]};
+        part = clip_convex(std::move(part), region, eps);
+        const double part_area = part.size() >= 3 ? polygon_area(part) : 0.0;
+        if (!(part_area > 0.0))
+          continue;
+        const Point2 c = polygon_centroid(part);
+        const double l[3] = {cross2(c, p[1], p[2]) / (2.0 * projected),
+                             cross2(p[0], c, p[2]) / (2.0 * projected),
+                             cross2(p[0], p[1], c) / (2.0 * projected)};
+        // Each corner takes the load a uniform pressure on that part gives
+        // it: the integral of its linear shape function over the part,
+        // which is the part's area times l at its centre. The zones' own
+        // split of a whole triangle (a third each, or for hexahedral zones
+        // the mean of both overlays' splits) weights it, so that a whole
+        // triangle gives each corner its share, and the parts' areas add up
+        // to the region's.
+        double s[3], weighted = 0.0;
+        for (int q = 0; q < 3; ++q)
+        {
+          s[q] = m.face_corner_share.empty() ? 1.0 / 3.0 : m.face_corner_share[f][q];
+          weighted += s[q] * std::max(l[q], 0.0);
+        }
+        const double over = std::min(part_area / std::abs(projected), 1.0) * area;
+        for (int q = 0; q < 3; ++q)
+          vertex_area[m.face_vertex[k + q] - m.vertex_start[blk]] +=
+              over * (weighted > 1e-12 ? s[q] * std::max(l[q], 0.0) / weighted
+                                       : s[q] / (s[0] + s[1] + s[2]));
       }
       for (unsigned int vtx = m.vertex_start[blk]; vtx < m.vertex_start[blk + 1]; ++vtx)
       {
         const double h = n.dot(m.vertex[vtx] - ref);
         if (vertex_area[vtx - m.vertex_start[blk]] <= 0.0 || sign * h < -band)
           continue;
+        // A gridpoint takes part when some of its area lies over the
+        // region: the areas then add up to the region's, also where the
+        // region's edge passes between gridpoints (a face on two blocks, a
+        // block over an edge), at the price of a spring that may stand a
+        // fraction of a zone off the edge.
         const Point2 q = project(m.vertex[vtx]);
-        // Over the region, or off it by less than the contact tolerance (a
-        // block squeezed sideways by its load bulges past the edge it
-        // stands on by a little).
-        bool inside = true;
-        for (std::size_t e = 0; e < region.size() && inside; ++e)
-        {
-          const Point2& e0 = region[e];
-          const Point2& e1 = region[(e + 1) % region.size()];
-          inside = cross2(e0, e1, q) >= -band * (e1 - e0).norm();
-        }
-        if (!inside)
-          continue;
         Seed seed;
         seed.at = q;
         seed.area = share * vertex_area[vtx - m.vertex_start[blk]];
@@ -550,17 +588,56 @@ void ContactSet::build_subcontacts(unsigned int c, const BlockModel& m,
     }
   }
   else
+  {
+    // A point contact (edge on edge, a corner) on a deformable side is
+    // carried by a few gridpoints: its area may not exceed half of what
+    // they stand for on the faces towards the contact, or its spring would
+    // pass the joint stiffness that the time step (eq. 85) allows them.
+    // (With no face towards it, a corner touching, all their faces.)
+    const auto carried_area = [&](unsigned int blk, double sign, const int* node, const double* w,
+                                  bool area_from_all_faces)
+    {
+      double area = 0.0;
+      for (unsigned int f = m.face_start[blk]; f < m.face_start[blk + 1]; ++f)
+      {
+        if (sign * m.face_normal[f].dot(n) <= (area_from_all_faces ? -2.0 : 0.1))
+          continue;
+        const unsigned int k = m.face_loop_start[f];
+        const Vec3& x0 = m.vertex[m.face_vertex[k]];
+        const double third = (m.vertex[m.face_vertex[k + 1]] - x0)
+                                 .cross(m.vertex[m.face_vertex[k + 2]] - x0)
+                                 .norm() /
+                             6.0;
+        for (int j = 0; j < 3; ++j)
+          for (int c = 0; c < 3; ++c)
+            if (node[c] >= 0 && node[c] == (*vertex_gridpoint_)[m.face_vertex[k + j]])
+              area += w[c] * third;
+      }
+      return area;
+    };
+    const auto carried = [&](unsigned int blk, double sign, const int* node, const double* w)
+    {
+      const double facing = carried_area(blk, sign, node, w, false);
+      return facing > 0.0 ? facing : carried_area(blk, sign, node, w, true);
+    };
     for (std::size_t i = 0; i < region.size(); ++i)
     {
       Seed seed;
       seed.at = region[i];
       seed.area = weight[i];
       if (da)
+      {
         support(a, 1.0, seed.at, seed.node, seed.w, seed.point[0]);
+        seed.area = std::min(seed.area, 0.5 * carried(a, 1.0, seed.node, seed.w));
+      }
       if (db)
+      {
         support(b, -1.0, seed.at, seed.node + 3, seed.w + 3, seed.point[1]);
+        seed.area = std::min(seed.area, 0.5 * carried(b, -1.0, seed.node + 3, seed.w + 3));
+      }
       seeds.push_back(seed);
     }
+  }
 
   for (const Seed& seed : seeds)
   {

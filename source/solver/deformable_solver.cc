@@ -927,7 +927,11 @@ void DeformableSolver::move_gridpoints()
     }
     if (held_[g] != 7u)
     {
-      largest = std::max(largest, std::sqrt(f2));
+      if (std::sqrt(f2) > largest)
+      {
+        largest = std::sqrt(f2);
+        ratio_gridpoint_ = g;
+      }
       size_sum += std::sqrt(size2);
       ++n_free;
     }

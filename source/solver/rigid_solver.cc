@@ -410,7 +410,11 @@ void RigidSolver::move_blocks()
     }
     const Vec3 applied = applied_force[b] + applied_force_rate[b] * time_;
     const Vec3 f = force[b] + mass[b] * s_.gravity + applied;
-    max_unbalanced = std::max(max_unbalanced, f.norm());
+    if (f.norm() > max_unbalanced)
+    {
+      max_unbalanced = f.norm();
+      ratio_block_ = b;
+    }
     sum_weight += mass[b] * s_.gravity.norm();
     ++n_free;
     // Eq. 49 for translation, damped for statics.
@@ -657,6 +661,13 @@ void RigidSolver::check_reach()
 double RigidSolver::unbalanced_ratio() const
 {
   return zones_ != nullptr ? std::max(ratio_, zones_->unbalanced_ratio()) : ratio_;
+}
+
+unsigned int RigidSolver::unbalanced_block() const
+{
+  if (zones_ != nullptr && zones_->unbalanced_ratio() > ratio_)
+    return zones_->mesh().gridpoint_block[zones_->unbalanced_gridpoint()];
+  return ratio_block_;
 }
 
 double RigidSolver::kinetic_energy() const

@@ -111,6 +111,8 @@ public:
   /// Largest unbalanced gridpoint force over the mean gravity force of a
   /// gridpoint (or, without gravity, over the mean zone force magnitude).
   double unbalanced_ratio() const { return ratio_; }
+  /// The gridpoint whose unbalanced force sets that ratio (of the last step).
+  unsigned int unbalanced_gridpoint() const { return ratio_gridpoint_; }
 
   const TetMesh& mesh() const { return mesh_; }
   /// Copies of the gridpoint state (3 per gridpoint).
@@ -304,6 +306,7 @@ private:
   bool last_step_yielded_ = false;
   Damper damper_{Damping::none, 0.0, 0.5, 1.0};
   std::vector<double> last_force_; ///< 3 per gridpoint, N (combined damping only)
+  unsigned int ratio_gridpoint_ = 0;
   double dt_ = 0.0, time_ = 0.0, ratio_ = 1.0;
   double seconds_zones_ = 0.0, seconds_gridpoints_ = 0.0;
   unsigned long step_ = 0;

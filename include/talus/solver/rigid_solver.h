@@ -120,6 +120,9 @@ public:
   /// Largest unbalanced force over the mean gravity force of free blocks.
   /// (with deformable blocks, the larger of that and the gridpoints' ratio).
   double unbalanced_ratio() const;
+  /// The block whose unbalanced force sets that ratio (of the last step; for
+  /// deformable blocks, the block of the gridpoint that sets it).
+  unsigned int unbalanced_block() const;
   double kinetic_energy() const;
   /// Angular momentum of block b about its centroid (kg m^2/s, scaled
   /// inertia), at the last whole step with the principal inertia.
@@ -200,6 +203,7 @@ private:
   double* gp_x_ = nullptr; ///< gridpoint arrays during the contact stage
   double* gp_v_ = nullptr;
   double* gp_f_ = nullptr;
+  unsigned int ratio_block_ = 0;
   double dt_ = 0.0, time_ = 0.0, ratio_ = 1.0;
   double gravity_work_ = 0.0, friction_work_ = 0.0, damping_work_ = 0.0;
   double boundary_work_ = 0.0;          ///< J: applied forces and prescribed velocities
