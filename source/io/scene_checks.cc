@@ -221,6 +221,22 @@ void check_deformable_blocks(const Scene& scene, const BlockModel& model)
   if (deformable.empty())
     throw scene_error(scene, "Deformable", "Groups", "no block of the model is in these groups",
                       "groups that hold blocks");
+  if (scene.deformable.material.element == ZoneElement::hex_mixed &&
+      scene.deformable.mesh_file.empty())
+    for (unsigned int b : deformable)
+    {
+      Box box;
+      if (!is_axis_aligned_box(model, b, box))
+        throw scene_error(scene, "Deformable", "Element",
+                          "hex-mixed needs every deformable block to be an axis-aligned brick, "
+                          "and block " +
+                              std::to_string(b) + " (" +
+                              std::to_string(model.face_start[b + 1] - model.face_start[b]) +
+                              " faces, centroid " + number(model.centroid[b].x()) + ", " +
+                              number(model.centroid[b].y()) + ", " +
+                              number(model.centroid[b].z()) + " m) is not one",
+                          "tet4 or tet10 for blocks of other shapes");
+    }
   {
     // A rock so soft that its own weight would strain a block by more than
     // a half (rho g L / E, L its height or width) collapses: the zones

@@ -726,8 +726,10 @@ void declare_solver(ParameterFile& prm)
   prm.leave();
 
   prm.enter("Joint properties");
-  prm.declare("Normal stiffness", "1e10", P::Double(), "a number > 0 (Pa/m)", "kn (Pa/m).");
-  prm.declare("Shear stiffness", "1e10", P::Double(), "a number > 0 (Pa/m)", "ks (Pa/m).");
+  prm.declare("Normal stiffness", "1e10", P::Double(), "a number > 0 and at most 1e16 (Pa/m)",
+              "kn (Pa/m).");
+  prm.declare("Shear stiffness", "1e10", P::Double(), "a number > 0 and at most 1e16 (Pa/m)",
+              "ks (Pa/m).");
   prm.declare("Friction angle", "30", P::Double(0.0, 89.999),
               "a number from 0 to less than 90 (degrees)", "phi (degrees).");
   prm.declare("Cohesion", "0", P::Double(0.0), "a number >= 0 (Pa)", "c (Pa), lost at failure.");
@@ -815,12 +817,19 @@ void parse_solver(ParameterFile& prm, Scene& scene)
 
   prm.enter("Joint properties");
   JointProperties& j = s.joint;
+  // Rock joints are 1e8-1e13 Pa/m; far stiffer ones only shrink the time
+  // step (eq. 87) towards nothing, and at 1e300 their forces overflow.
+  for (const char* entry : {"Normal stiffness", "Shear stiffness"})
+  {
+    const double k = prm.get_double(entry);
+    if (!(k > 0.0))
+      throw prm.error(entry, "must be positive", "a number > 0 and at most 1e16 (Pa/m)");
+    if (!(k <= 1e16))
+      throw prm.error(entry, "is stiffer than any rock joint by orders of magnitude",
+                      "a number > 0 and at most 1e16 (Pa/m)");
+  }
   j.normal_stiffness = prm.get_double("Normal stiffness");
-  if (!(j.normal_stiffness > 0.0))
-    throw prm.error("Normal stiffness", "must be positive", "a number > 0 (Pa/m)");
   j.shear_stiffness = prm.get_double("Shear stiffness");
-  if (!(j.shear_stiffness > 0.0))
-    throw prm.error("Shear stiffness", "must be positive", "a number > 0 (Pa/m)");
   j.friction_angle = prm.get_double("Friction angle");
   j.cohesion = prm.get_double("Cohesion");
   j.tensile_strength = prm.get_double("Tensile strength");

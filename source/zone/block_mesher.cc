@@ -16,12 +16,6 @@
 namespace talus
 {
 
-namespace
-{
-using dealii::Point;
-
-/// True when the block is an axis-aligned box (six faces, normals along
-/// the axes): deal.II's generator meshes it directly.
 bool is_axis_aligned_box(const BlockModel& m, unsigned int b, Box& box)
 {
   if (m.face_start[b + 1] - m.face_start[b] != 6 || m.vertex_start[b + 1] - m.vertex_start[b] != 8)
@@ -41,6 +35,10 @@ bool is_axis_aligned_box(const BlockModel& m, unsigned int b, Box& box)
   }
   return true;
 }
+
+namespace
+{
+using dealii::Point;
 
 double signed_volume(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& d)
 {

@@ -3,7 +3,10 @@
 // file, and checks how every run ends. Allowed: exit code 0 (the input was
 // good enough to run) or 4 (a static run that the step cap stopped before
 // its target ratio), or exit code 1 with exactly one line on standard
-// error, "talus: error: ...", naming the mutated file. Anything else - a
+// error, "talus: error: ...", naming the mutated file, or exit code 3 with
+// such a line (a run that the input made diverge or fling a block through
+// another, stopped at its first bad step, e.g. a force of 1e12 N on a
+// block of a few tonnes). Anything else - a
 // signal (crash), another exit code (an internal error), a message of
 // several lines or none, a run still going after the time limit - is a
 // failure and is printed in full, so the output differs from the expected one.
@@ -440,7 +443,7 @@ Outcome run_talus(const std::string& prm, const std::string& folder, double limi
 
 struct Tally
 {
-  unsigned int mutations = 0, refused = 0, ran = 0, failed = 0;
+  unsigned int mutations = 0, refused = 0, stopped = 0, ran = 0, failed = 0;
 };
 
 /// Judges one run: prints nothing for a good ending, everything for a bad one.
@@ -457,21 +460,22 @@ void judge(const Outcome& o, const std::string& name, const std::string& what, T
     ++tally.ran;
     return;
   }
-  else if (o.exit_code != 1)
+  else if (o.exit_code != 1 && o.exit_code != 3)
     problem = "exit code " + std::to_string(o.exit_code);
   else
   {
+    const std::string code = "exit code " + std::to_string(o.exit_code);
     const bool one_line = !o.error_text.empty() && o.error_text.back() == '\n' &&
                           o.error_text.find('\n') == o.error_text.size() - 1;
     if (!one_line)
-      problem = "exit code 1 but the message is not one line";
+      problem = code + " but the message is not one line";
     else if (o.error_text.rfind("talus: error", 0) != 0)
-      problem = "exit code 1 but the message does not start with 'talus: error'";
+      problem = code + " but the message does not start with 'talus: error'";
     else if (o.error_text.find(name) == std::string::npos)
       problem = "the message does not name the file";
     else
     {
-      ++tally.refused;
+      ++(o.exit_code == 1 ? tally.refused : tally.stopped);
       return;
     }
   }
@@ -509,7 +513,7 @@ int main()
   // Parameter files: every kind of mutation on every file in turn.
   const unsigned int n_parameter_mutations = 14 * 16;
   Tally parameters;
-  std::map<std::string, std::array<unsigned int, 2>> per_kind; // refused, ran
+  std::map<std::string, std::array<unsigned int, 3>> per_kind; // refused, stopped, ran
   for (unsigned int m = 0; m < n_parameter_mutations; ++m)
   {
     const unsigned int kind = m % kind_names.size();
@@ -524,7 +528,8 @@ int main()
     judge(run_talus((work / file).string(), work.string(), limit_seconds), file,
           kind_names[kind] + " of " + base.filename().string(), parameters);
     per_kind[kind_names[kind]][0] += parameters.refused - before.refused;
-    per_kind[kind_names[kind]][1] += parameters.ran - before.ran;
+    per_kind[kind_names[kind]][1] += parameters.stopped - before.stopped;
+    per_kind[kind_names[kind]][2] += parameters.ran - before.ran;
   }
 
   // Mesh files: a one-block deformable scene reading a mutated gmsh file.
@@ -558,13 +563,14 @@ int main()
           paths);
 
   for (const auto& [kind, counts] : per_kind)
-    std::printf("%-22s %3u refused with a message, %3u ran\n", kind.c_str(), counts[0], counts[1]);
-  std::printf("%u mutated parameter files: %u refused with a message, %u ran, %u failed\n",
-              parameters.mutations, parameters.refused, parameters.ran, parameters.failed);
-  std::printf("%u mutated mesh files: %u refused with a message, %u ran, %u failed\n",
-              meshes.mutations, meshes.refused, meshes.ran, meshes.failed);
-  std::printf("%u paths that are no parameter file: %u refused with a message, %u ran, %u failed\n",
-              paths.mutations, paths.refused, paths.ran, paths.failed);
+    std::printf("%-22s %3u refused with a message, %u stopped with one, %3u ran\n", kind.c_str(),
+                counts[0], counts[1], counts[2]);
+  for (const auto& [what, t] : {std::pair<const char*, const Tally&>{"mutated parameter files",
+                                                                     parameters},
+                                {"mutated mesh files", meshes},
+                                {"paths that are no parameter file", paths}})
+    std::printf("%u %s: %u refused with a message, %u stopped with one, %u ran, %u failed\n",
+                t.mutations, what, t.refused, t.stopped, t.ran, t.failed);
   // The mutated files stay for a look when a run failed.
   if (parameters.failed + meshes.failed + paths.failed == 0)
     fs::remove_all(work);

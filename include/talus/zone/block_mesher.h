@@ -90,4 +90,9 @@ TetMesh mesh_blocks(const BlockModel& blocks, const std::vector<unsigned int>& w
 double count_zones(const BlockModel& blocks, const std::vector<unsigned int>& which,
                    const EdgeLengthField& edge_length);
 
+/// True when block b is an axis-aligned box (six faces, normals along the
+/// axes; `box` is then its extent): such blocks are meshed by deal.II's
+/// brick split, and only they can have hexahedral zones.
+bool is_axis_aligned_box(const BlockModel& blocks, unsigned int b, Box& box);
+
 } // namespace talus
