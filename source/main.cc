@@ -861,7 +861,7 @@ int run(const std::string& filename, bool check_only = false)
   }
   const auto done = std::chrono::steady_clock::now();
   // Indented "Time =" lines are ignored when test output is compared.
-  std::printf("   Time = %.3f s (blocks %.3f s, output %.3f s)\n",
+  std::printf("   Time = %.3f s (blocks %.3f s, then the calculation and output %.3f s)\n",
               std::chrono::duration<double>(done - start).count(),
               std::chrono::duration<double>(built - start).count(),
               std::chrono::duration<double>(done - built).count());
