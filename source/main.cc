@@ -686,6 +686,20 @@ RunEnd solve(talus::Scene& scene, talus::BlockModel& model, talus::PvdSeries& se
   progress.finish();
   std::printf("Steps:        %lu (time %.6g s)\n", r.steps, r.time);
   std::printf("Contacts:     %u with %u sub-contacts\n", r.contacts, r.subcontacts);
+  if (scene.joint_material_names.size() > 1)
+  {
+    // Which material the contacts took: the check that the rules say what
+    // was meant.
+    std::vector<unsigned int> count(scene.joint_material_names.size(), 0);
+    const ContactSet& cs = solver.contacts();
+    for (unsigned int c = 0; c < cs.n_slots(); ++c)
+      if (cs.alive[c])
+        ++count[cs.material[c]];
+    std::printf("Joint materials:");
+    for (std::size_t k = 0; k < count.size(); ++k)
+      std::printf("%s %s %u", k == 0 ? "" : ",", scene.joint_material_names[k].c_str(), count[k]);
+    std::printf(" contacts\n");
+  }
   std::printf("Unbalanced force ratio: %.3g\n", r.ratio);
   unsigned int moved_most = 0;
   for (unsigned int b = 0; b < model.n_blocks(); ++b)

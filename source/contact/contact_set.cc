@@ -1,4 +1,5 @@
 #include <talus/contact/contact_set.h>
+#include <talus/contact/joint_material_rule.h>
 
 #include <talus/contact/contact_polygon.h>
 
@@ -190,6 +191,7 @@ void ContactSet::try_create(unsigned int a, unsigned int b, const BlockModel& m,
     gap[c] = r.gap;
     type[c] = r.type;
     alive[c] = 1;
+    material[c] = 0;
     path_at_update[c] = -1.0;
   }
   else
@@ -201,8 +203,11 @@ void ContactSet::try_create(unsigned int a, unsigned int b, const BlockModel& m,
     gap.push_back(r.gap);
     type.push_back(r.type);
     alive.push_back(1);
+    material.push_back(0);
     path_at_update.push_back(-1.0);
   }
+  if (settings.materials != nullptr)
+    material[c] = settings.materials->material(m, *this, c);
   slot_of_pair_[pair_key(a, b)] = c;
   ++n_alive_;
 }
@@ -253,6 +258,7 @@ void ContactSet::update(const BlockModel& m, const ContactSettings& settings,
   sc_us.clear();
   sc_dilation.clear();
   sc_state.clear();
+  sc_material.clear();
   sc_fresh.clear();
   sc_node.clear();
   sc_weight.clear();
@@ -286,6 +292,7 @@ void ContactSet::update(const BlockModel& m, const ContactSettings& settings,
           if (settings.dilation)
             sc_dilation.push_back(old_dilation_[o]);
           sc_state.push_back(old_state_[o]);
+          sc_material.push_back(material[c]);
           sc_fresh.push_back(0);
           if (has_deformable())
             for (int k = 0; k < 6; ++k)
@@ -679,8 +686,9 @@ void ContactSet::build_subcontacts(unsigned int c, const BlockModel& m,
     // The normal offset holds the closure that carries the initial stress
     // (geometric re-initialisation of un keeps it), later also dilation.
     if (settings.dilation)
-      sc_dilation.push_back(fn > 0.0 ? fn / (settings.kn * seed.area) : 0.0);
+      sc_dilation.push_back(fn > 0.0 ? fn / (settings.kn[material[c]] * seed.area) : 0.0);
     sc_state.push_back(0);
+    sc_material.push_back(material[c]);
     sc_fresh.push_back(1);
     if (has_deformable())
       for (int k = 0; k < 6; ++k)

@@ -453,6 +453,7 @@ void ContactSet::save_state(CheckpointWriter& out) const
   out.put(gap);
   out.put(type);
   out.put(alive);
+  out.put(material);
   out.put(path_at_update);
   out.put(sc_contact);
   out.put(sc_position);
@@ -463,6 +464,7 @@ void ContactSet::save_state(CheckpointWriter& out) const
   out.put(sc_dilation);
   out.put(sc_us);
   out.put(sc_state);
+  out.put(sc_material);
   out.put(sc_fresh);
   out.put(sc_node);
   out.put(sc_weight);
@@ -489,6 +491,7 @@ void ContactSet::load_state(CheckpointReader& in, unsigned int n_blocks)
   in.get(gap, ns, "contact slots");
   in.get(type, ns, "contact slots");
   in.get(alive, ns, "contact slots");
+  in.get(material, ns, "contact slots");
   in.get(path_at_update, ns, "contact slots");
   in.get(sc_contact);
   const std::size_t n = sc_contact.size();
@@ -502,6 +505,7 @@ void ContactSet::load_state(CheckpointReader& in, unsigned int n_blocks)
     in.mismatch("sub-contact offsets", sc_dilation.size(), n);
   in.get(sc_us, 3 * n, "sub-contact shear displacement components");
   in.get(sc_state, n, "sub-contacts");
+  in.get(sc_material, n, "sub-contacts");
   in.get(sc_fresh, n, "sub-contacts");
   in.get(sc_node);
   in.get(sc_weight, sc_node.size(), "sub-contact gridpoint weights");

@@ -92,6 +92,8 @@ void write_contacts_vtu(const std::string& path, const ContactSet& cs, const Blo
                  [&](std::size_t i) { return static_cast<int>(cs.type[cs.sc_contact[i]]) + 1; });
         integers(out, "joint_set", [&](std::size_t i) { return joint_set[cs.sc_contact[i]]; });
         integers(out, "joint", [&](std::size_t i) { return joint[cs.sc_contact[i]]; });
+        // 0: 'Joint properties'; k: the k-th 'Joint material N' of the file.
+        integers(out, "material", [&](std::size_t i) { return cs.sc_material[i]; });
         integers(out, "contact_id", [&](std::size_t i) { return cs.sc_contact[i]; });
         out << "      </PointData>\n    </Piece>\n  </UnstructuredGrid>\n</VTKFile>\n";
       });

@@ -4,6 +4,7 @@
 #include <talus/io/scene_checks.h>
 #include <talus/zone/block_mesher.h>
 
+#include "joint_materials_reader.h"
 #include "parameter_file.h"
 
 #include <cerrno>
@@ -149,6 +150,7 @@ void declare_joint_set(ParameterFile& prm, const std::string& section)
 {
   prm.enter(section);
   declare_orientation(prm);
+  declare_joint_material_entry(prm);
   prm.declare("Spacing", "1", P::Double(), "a number > 0 (m)",
               "Normal distance between neighbouring joints of the set (m).");
   prm.declare("Number of joints", "0", P::Integer(0, 1000000000),
@@ -161,6 +163,7 @@ void declare_joint(ParameterFile& prm, const std::string& section)
 {
   prm.enter(section);
   declare_orientation(prm);
+  declare_joint_material_entry(prm);
   prm.leave();
 }
 
@@ -175,9 +178,10 @@ void parse_orientation(ParameterFile& prm, Spec& spec)
     spec.extent = read_box(prm, "Extent min", "Extent max");
 }
 
-JointSetSpec parse_joint_set(ParameterFile& prm, const std::string& section)
+JointSetSpec parse_joint_set(ParameterFile& prm, const std::string& section, Scene& scene)
 {
   prm.enter(section);
+  scene.solver.joint_rule.of_joint_set.push_back(parse_joint_material_entry(prm, scene));
   JointSetSpec set;
   parse_orientation(prm, set);
   set.spacing = prm.get_double("Spacing");
@@ -188,9 +192,10 @@ JointSetSpec parse_joint_set(ParameterFile& prm, const std::string& section)
   return set;
 }
 
-JointPlaneSpec parse_joint(ParameterFile& prm, const std::string& section)
+JointPlaneSpec parse_joint(ParameterFile& prm, const std::string& section, Scene& scene)
 {
   prm.enter(section);
+  scene.solver.joint_rule.of_joint.push_back(parse_joint_material_entry(prm, scene));
   JointPlaneSpec joint;
   parse_orientation(prm, joint);
   prm.leave();
@@ -262,6 +267,8 @@ GroupSpec parse_group(ParameterFile& prm, const std::string& section)
   return g;
 }
 
+} // namespace
+
 /// Throws unless `name` is the default group or a 'Group N' name; `entry`
 /// is the entry of the current subsection that names it.
 void check_group_name(const ParameterFile& prm, const std::string& entry, const Scene& scene,
@@ -274,6 +281,9 @@ void check_group_name(const ParameterFile& prm, const std::string& entry, const 
     throw prm.error(entry, "names the unknown group '" + name + "'",
                     "the default group '" + scene.default_group + "' or a 'Group N' name");
 }
+
+namespace
+{
 
 // ---- Loads -------------------------------------------------------------------
 
@@ -726,19 +736,7 @@ void declare_solver(ParameterFile& prm)
   prm.leave();
 
   prm.enter("Joint properties");
-  prm.declare("Normal stiffness", "1e10", P::Double(), "a number > 0 and at most 1e16 (Pa/m)",
-              "kn (Pa/m).");
-  prm.declare("Shear stiffness", "1e10", P::Double(), "a number > 0 and at most 1e16 (Pa/m)",
-              "ks (Pa/m).");
-  prm.declare("Friction angle", "30", P::Double(0.0, 89.999),
-              "a number from 0 to less than 90 (degrees)", "phi (degrees).");
-  prm.declare("Cohesion", "0", P::Double(0.0), "a number >= 0 (Pa)", "c (Pa), lost at failure.");
-  prm.declare("Tensile strength", "0", P::Double(0.0), "a number >= 0 (Pa)",
-              "T (Pa), lost at failure.");
-  prm.declare("Dilation angle", "0", P::Double(0.0, 89.999),
-              "a number from 0 to less than 90 (degrees)", "psi (degrees), active while slipping.");
-  prm.declare("Dilation limit", "0", P::Double(0.0), "a number >= 0 (m; 0: no limit)",
-              "Shear displacement beyond which dilation stops (m).");
+  declare_joint_properties(prm);
   prm.leave();
 }
 
@@ -763,6 +761,13 @@ std::vector<Vec3> get_points(ParameterFile& prm, const std::string& entry)
     points.push_back(p);
   }
   return points;
+}
+
+void parse_joint_properties_section(ParameterFile& prm, Scene& scene)
+{
+  prm.enter("Joint properties");
+  scene.solver.joint = parse_joint_properties(prm, "Joint properties", nullptr);
+  prm.leave();
 }
 
 void parse_solver(ParameterFile& prm, Scene& scene)
@@ -815,27 +820,6 @@ void parse_solver(ParameterFile& prm, Scene& scene)
     throw prm.error("Point area fraction", "must be positive", "a number > 0");
   prm.leave();
 
-  prm.enter("Joint properties");
-  JointProperties& j = s.joint;
-  // Rock joints are 1e8-1e13 Pa/m; far stiffer ones only shrink the time
-  // step (eq. 87) towards nothing, and at 1e300 their forces overflow.
-  for (const char* entry : {"Normal stiffness", "Shear stiffness"})
-  {
-    const double k = prm.get_double(entry);
-    if (!(k > 0.0))
-      throw prm.error(entry, "must be positive", "a number > 0 and at most 1e16 (Pa/m)");
-    if (!(k <= 1e16))
-      throw prm.error(entry, "is stiffer than any rock joint by orders of magnitude",
-                      "a number > 0 and at most 1e16 (Pa/m)");
-  }
-  j.normal_stiffness = prm.get_double("Normal stiffness");
-  j.shear_stiffness = prm.get_double("Shear stiffness");
-  j.friction_angle = prm.get_double("Friction angle");
-  j.cohesion = prm.get_double("Cohesion");
-  j.tensile_strength = prm.get_double("Tensile strength");
-  j.dilation_angle = prm.get_double("Dilation angle");
-  j.dilation_limit = prm.get_double("Dilation limit");
-  prm.leave();
 }
 
 /// Warnings about entries that the file sets and the run ignores (legal,
@@ -904,7 +888,8 @@ Scene read_scene(const std::string& filename, bool prepare_output)
   ParameterFile prm(filename);
 
   // Numbered subsections exist exactly as the file names them.
-  const std::regex numbered("(Joint set|Joint|Excavation|Group|Load|Boundary) ([0-9]+)");
+  const std::regex numbered(
+      "(Joint set|Joint material|Joint|Excavation|Group contact|Group|Load|Boundary) ([0-9]+)");
   std::vector<std::tuple<std::string, long, std::string>> found; // kind, number, name
   if (prm.sections_in_file().size() > max_numbered_sections + 16)
     throw InputError(filename + ": the file has " + std::to_string(prm.sections_in_file().size()) +
@@ -955,6 +940,10 @@ Scene read_scene(const std::string& filename, bool prepare_output)
       declare_load(prm, name);
     else if (kind == "Boundary")
       declare_boundary(prm, name);
+    else if (kind == "Joint material")
+      declare_joint_material(prm, name);
+    else if (kind == "Group contact")
+      declare_group_contact(prm, name);
     else
       declare_group(prm, name);
   }
@@ -966,16 +955,20 @@ Scene read_scene(const std::string& filename, bool prepare_output)
   parse_model(prm, scene);
   parse_material(prm, scene);
   parse_output(prm, scene);
+  parse_joint_properties_section(prm, scene);
+  for (const auto& [kind, name] : numbered_sections)
+    if (kind == "Joint material")
+      parse_joint_material(prm, name, scene);
   for (const auto& [kind, name] : numbered_sections)
   {
     if (kind == "Joint set")
     {
-      scene.joint_sets.push_back(parse_joint_set(prm, name));
+      scene.joint_sets.push_back(parse_joint_set(prm, name, scene));
       scene.joint_set_sections.push_back(name);
     }
     else if (kind == "Joint")
     {
-      scene.joint_planes.push_back(parse_joint(prm, name));
+      scene.joint_planes.push_back(parse_joint(prm, name, scene));
       scene.joint_plane_sections.push_back(name);
     }
     else if (kind == "Excavation")
@@ -989,6 +982,8 @@ Scene read_scene(const std::string& filename, bool prepare_output)
       parse_load(prm, name, scene);
     else if (kind == "Boundary")
       parse_boundary(prm, name, scene);
+    else if (kind == "Group contact")
+      parse_group_contact(prm, name, scene);
   parse_deformable(prm, scene);
   warn_about_ignored_entries(prm, scene, numbered_sections);
   scene.used_parameters = prm.used_parameters();

@@ -6,15 +6,43 @@
 namespace talus
 {
 
-double coulomb_slip(const JointProperties& joint, SubContactBatch& s)
+namespace
+{
+/// What the loop needs of a joint material, its tangents worked out once.
+struct CoulombRow
+{
+  double kn, ks, tan_phi, tan_psi, cohesion, tensile_strength, dilation_limit;
+};
+
+CoulombRow row_of(const JointProperties& joint)
 {
   const double deg = M_PI / 180.0;
-  const double tan_phi = std::tan(joint.friction_angle * deg);
-  const double tan_psi = std::tan(joint.dilation_angle * deg);
-  const double kn = joint.normal_stiffness, ks = joint.shear_stiffness;
+  return {joint.normal_stiffness,
+          joint.shear_stiffness,
+          std::tan(joint.friction_angle * deg),
+          std::tan(joint.dilation_angle * deg),
+          joint.cohesion,
+          joint.tensile_strength,
+          joint.dilation_limit > 0.0 ? joint.dilation_limit : 1e300};
+}
+} // namespace
+
+double coulomb_slip(const JointProperties& joint, SubContactBatch& s)
+{
+  return coulomb_slip(std::vector<JointProperties>{joint}, s);
+}
+
+double coulomb_slip(const std::vector<JointProperties>& joints, SubContactBatch& s)
+{
+  CoulombRow rows[256];
+  for (std::size_t k = 0; k < joints.size() && k < 256; ++k)
+    rows[k] = row_of(joints[k]);
   double dissipated = 0.0;
   for (unsigned int i = 0; i < s.size; ++i)
   {
+    const CoulombRow& joint = rows[s.material != nullptr ? s.material[i] : 0];
+    const double tan_phi = joint.tan_phi, tan_psi = joint.tan_psi;
+    const double kn = joint.kn, ks = joint.ks;
     const double area = s.area[i];
     const double shear_compliance = area > 0.0 ? 1.0 / (ks * area) : 0.0; // for the energy
     double* fs = s.shear_force + 3 * i;
@@ -81,7 +109,7 @@ double coulomb_slip(const JointProperties& joint, SubContactBatch& s)
       double strength = fs_max;
       if (tan_psi != 0.0 && s.dilation)
       {
-        const double limit = joint.dilation_limit > 0.0 ? joint.dilation_limit : 1e300;
+        const double limit = joint.dilation_limit;
         const double before =
             std::sqrt(us_old[0] * us_old[0] + us_old[1] * us_old[1] + us_old[2] * us_old[2]);
         const double after = std::sqrt(us[0] * us[0] + us[1] * us[1] + us[2] * us[2]);

@@ -154,6 +154,19 @@ void resolve_group_names(Scene& scene, BlockModel& model)
     scene.solver.fixed_groups.push_back(model.group_index(name));
   for (std::size_t l = 0; l < scene.solver.loads.size(); ++l)
     scene.solver.loads[l].group = model.group_index(scene.load_groups[l]);
+  // Group contact rules on group indices (the first rule for a pair wins).
+  JointMaterialRule& rule = scene.solver.joint_rule;
+  std::vector<std::pair<unsigned int, unsigned int>> pairs;
+  for (const GroupContactSpec& g : scene.group_contacts)
+    pairs.emplace_back(model.group_index(g.a), model.group_index(g.b));
+  rule.n_groups = static_cast<unsigned int>(model.group_names.size());
+  rule.of_group_pair.assign(std::size_t(rule.n_groups) * rule.n_groups, JointMaterialRule::none);
+  for (std::size_t i = pairs.size(); i-- > 0;)
+  {
+    const auto [a, b] = pairs[i];
+    rule.of_group_pair[a * rule.n_groups + b] = rule.of_group_pair[b * rule.n_groups + a] =
+        scene.group_contacts[i].material;
+  }
 }
 
 } // namespace talus

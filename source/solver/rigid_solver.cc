@@ -45,8 +45,21 @@ RigidSolver::RigidSolver(BlockModel& blocks, double density, const SolverSetting
                          DeformableSolver* zones, std::vector<int> vertex_gridpoint)
     : m_(blocks), s_(settings), zones_(zones), vertex_gridpoint_(std::move(vertex_gridpoint))
 {
+  joints_.push_back(s_.joint);
+  joints_.insert(joints_.end(), s_.joint_materials.begin(), s_.joint_materials.end());
+  if (joints_.size() > 255)
+    throw InputError("at most 254 joint materials besides 'Joint properties'");
+  if (!s_.joint_rule.trivial())
+    s_.contact.materials = &s_.joint_rule;
+  s_.contact.kn.clear();
+  bool dilates = false;
+  for (const JointProperties& j : joints_)
+  {
+    s_.contact.kn.push_back(j.normal_stiffness);
+    dilates |= j.dilation_angle != 0.0;
+  }
   // No normal offset for joints that neither dilate nor start stressed.
-  s_.contact.dilation = s_.joint.dilation_angle != 0.0 || s_.initial_stress != nullptr;
+  s_.contact.dilation = dilates || s_.initial_stress != nullptr;
   const unsigned int nb = m_.n_blocks();
   mass.resize(nb);
   inertia.resize(nb);
@@ -155,7 +168,7 @@ RigidSolver::RigidSolver(BlockModel& blocks, double density, const SolverSetting
     // Eq. 85: the joints add their stiffness to the surface gridpoints;
     // eq. 88: the smaller of the block and zone steps governs.
     std::vector<double> joint_stiffness(zones_->mesh().n_gridpoints(), 0.0);
-    const double k = std::max(s_.joint.normal_stiffness, s_.joint.shear_stiffness);
+    const double k = stiffest_joint();
     for (unsigned int b : deformable_blocks_)
       for (unsigned int f = m_.face_start[b]; f < m_.face_start[b + 1]; ++f)
       {
@@ -191,7 +204,6 @@ RigidSolver::RigidSolver(BlockModel& blocks, double density, const SolverSetting
   // start free of force.
   ContactSettings first = s_.contact;
   first.initial_stress = s_.initial_stress;
-  first.kn = s_.joint.normal_stiffness;
   contacts_.update(m_, first);
 
   // Energy at the start: the blocks' initial motion (with the masses the
@@ -215,6 +227,14 @@ RigidSolver::RigidSolver(BlockModel& blocks, double density, const SolverSetting
   energy_floor_ = 1e-9 * weight_size + 1e-6; // J
 }
 
+double RigidSolver::stiffest_joint() const
+{
+  double k = 0.0;
+  for (const JointProperties& j : joints_)
+    k = std::max({k, j.normal_stiffness, j.shear_stiffness});
+  return k;
+}
+
 double RigidSolver::stable_time_step() const
 {
   // Eq. 87 block by block: a contact is never stiffer than its joint
@@ -222,7 +242,7 @@ double RigidSolver::stable_time_step() const
   // is bounded by its own mass against its own largest face. A fixed block
   // has no inertia to keep stable, and its faces (a large floor) do not
   // enter; a model of fixed blocks only takes them all.
-  const double k = std::max(s_.joint.normal_stiffness, s_.joint.shear_stiffness);
+  const double k = stiffest_joint();
   double smallest = 1e300;
   for (int pass = 0; pass < 2 && smallest == 1e300; ++pass)
     for (unsigned int b = 0; b < m_.n_blocks(); ++b)
@@ -345,7 +365,8 @@ void RigidSolver::contact_forces()
   batch.shear_displacement = cs.sc_us.data();
   batch.dilation = cs.sc_dilation.empty() ? nullptr : cs.sc_dilation.data();
   batch.state = cs.sc_state.data();
-  friction_work_ += apply_joint_model(s_.joint, batch);
+  batch.material = cs.sc_material.data();
+  friction_work_ += apply_joint_model(joints_, batch);
 
   // Force and moment sums (eqs. 28-32): A pushes B along +n.
   for (unsigned int i = 0; i < n; ++i)
@@ -722,8 +743,9 @@ double RigidSolver::joint_energy() const
     const double fs2 = cs.sc_fs[3 * i] * cs.sc_fs[3 * i] +
                        cs.sc_fs[3 * i + 1] * cs.sc_fs[3 * i + 1] +
                        cs.sc_fs[3 * i + 2] * cs.sc_fs[3 * i + 2];
-    e += 0.5 * cs.sc_fn[i] * cs.sc_fn[i] / (s_.joint.normal_stiffness * a) +
-         0.5 * fs2 / (s_.joint.shear_stiffness * a);
+    const JointProperties& j = joints_[cs.sc_material[i]];
+    e += 0.5 * cs.sc_fn[i] * cs.sc_fn[i] / (j.normal_stiffness * a) +
+         0.5 * fs2 / (j.shear_stiffness * a);
   }
   return e;
 }
@@ -800,7 +822,7 @@ std::string RigidSolver::likely_cause(unsigned int b) const
 {
   // Eq. 87 for this block alone, with its largest face.
   const double area = largest_face_area(m_, b);
-  const double k = std::max(s_.joint.normal_stiffness, s_.joint.shear_stiffness);
+  const double k = stiffest_joint();
   const double limit = 2.0 * std::sqrt(inertial_mass[b] / (k * area));
   const std::string numbers =
       "the time step " + number(dt_) + " s against 2 sqrt(m / (k A)) = " + number(limit) +

@@ -13,6 +13,7 @@ namespace talus
 
 class CheckpointReader;
 class CheckpointWriter;
+struct JointMaterialRule;
 
 struct ContactSettings
 {
@@ -34,7 +35,10 @@ struct ContactSettings
   /// F^n / (kn A) (kn in Pa/m): joints of a model under in-situ stress.
   /// Used for the contacts that exist at the start.
   const InitialStress* initial_stress = nullptr;
-  double kn = 0.0;
+  /// kn of each joint material (Pa/m), for that normal offset.
+  std::vector<double> kn;
+  /// Which joint material a new contact takes (null: material 0 for all).
+  const JointMaterialRule* materials = nullptr;
   CommonPlaneSettings common_plane;
 };
 
@@ -79,6 +83,7 @@ public:
   std::vector<double> gap;
   std::vector<ContactType> type;
   std::vector<char> alive;
+  std::vector<unsigned char> material; ///< joint material (JointMaterialRule)
   std::vector<double> path_at_update; ///< path[a] + path[b] when last updated
 
   // Sub-contacts.
@@ -93,6 +98,7 @@ public:
   std::vector<double> sc_dilation;
   std::vector<double> sc_us; ///< total shear displacement U^s, 3 per sub-contact, m
   std::vector<unsigned char> sc_state;
+  std::vector<unsigned char> sc_material; ///< its contact's joint material
   /// 1 while un was just measured from the geometry: the next force
   /// calculation must not add the last step's motion to it a second time.
   std::vector<unsigned char> sc_fresh;

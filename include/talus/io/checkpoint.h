@@ -33,7 +33,7 @@ class PvdSeries;
 class RigidSolver;
 struct Scene;
 
-constexpr std::uint32_t checkpoint_format_version = 3; // 3: the growth watch keeps its largest sources
+constexpr std::uint32_t checkpoint_format_version = 4; // 4: contacts keep their joint material
 
 /// FNV-1a, 64 bits: a fingerprint, not a cryptographic hash.
 std::uint64_t fnv1a(const void* data, std::size_t size,

@@ -33,6 +33,15 @@ struct GroupSpec
   Box region;
 };
 
+/// A 'Group contact N': contacts between blocks of groups `a` and `b` that
+/// lie on no joint with a material take material `material`.
+struct GroupContactSpec
+{
+  std::string a, b;
+  unsigned char material = 0;
+  std::string section; ///< "Group contact N"
+};
+
 /// A region to remove from the model, with a description for the summary.
 struct ExcavationSpec
 {
@@ -98,6 +107,11 @@ struct Scene
   std::vector<JointPlaneSpec> joint_planes;
   std::vector<std::string> joint_set_sections;   ///< "Joint set N" of each joint set
   std::vector<std::string> joint_plane_sections; ///< "Joint N" of each joint plane
+  /// Name of each joint material: "default" ('Joint properties', material
+  /// 0, solver.joint), then those of 'Joint material N' (solver.joint_materials).
+  std::vector<std::string> joint_material_names{"default"};
+  /// Resolved into solver.joint_rule by resolve_group_names.
+  std::vector<GroupContactSpec> group_contacts;
   std::vector<ExcavationSpec> excavations;
   std::string default_group = "rock";
   std::vector<GroupSpec> groups;

@@ -2,6 +2,8 @@
 
 #include <talus/joint/joint_properties.h>
 
+#include <vector>
+
 namespace talus
 {
 
@@ -30,6 +32,9 @@ struct SubContactBatch
                                          ///< (dilation limit and direction)
   double* dilation = nullptr;            ///< opening from dilation so far (eq. 42), m
   unsigned char* state = nullptr;
+  /// Joint material of each sub-contact (an index into the list given to
+  /// the model); null: all take the first.
+  const unsigned char* material = nullptr;
 };
 
 /// Coulomb slip with tension cut-off, cohesion, dilation and loss of
@@ -37,5 +42,8 @@ struct SubContactBatch
 /// batch. Returns the frictional work done this step (J), for the energy
 /// balance.
 double coulomb_slip(const JointProperties& joint, SubContactBatch& batch);
+/// The same with a joint material per sub-contact (batch.material), each
+/// an index into `joints` (every one Coulomb slip).
+double coulomb_slip(const std::vector<JointProperties>& joints, SubContactBatch& batch);
 
 } // namespace talus

@@ -20,4 +20,13 @@ inline double apply_joint_model(const JointProperties& joint, SubContactBatch& b
   return 0.0;
 }
 
+/// The same with a joint material per sub-contact (batch.material indexes
+/// `joints`). Every material is Coulomb slip today; when materials of
+/// other models come, the sub-contacts are taken in one batch per model.
+inline double apply_joint_model(const std::vector<JointProperties>& joints,
+                                SubContactBatch& batch)
+{
+  return coulomb_slip(joints, batch);
+}
+
 } // namespace talus

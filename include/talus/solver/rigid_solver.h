@@ -2,6 +2,7 @@
 
 #include <talus/contact/cell_space.h>
 #include <talus/contact/contact_set.h>
+#include <talus/contact/joint_material_rule.h>
 #include <talus/joint/joint_properties.h>
 #include <talus/model/block_model.h>
 #include <talus/model/initial_stress.h>
@@ -55,7 +56,11 @@ struct SolverSettings
   std::string source;               ///< parameter file, for messages
   Vec3 gravity = Vec3(0, 0, -9.81); ///< m/s^2
   ContactSettings contact;
-  JointProperties joint;
+  JointProperties joint; ///< joint material 0 ('Joint properties')
+  /// Joint materials 1, 2, ... ('Joint material N'), and which one each
+  /// contact takes (JointMaterialRule; empty: material 0 for all).
+  std::vector<JointProperties> joint_materials;
+  JointMaterialRule joint_rule;
   std::vector<unsigned int> fixed_groups; ///< group indices of fixed blocks
   std::vector<BlockLoad> loads;
   std::vector<unsigned int> history_blocks; ///< blocks whose motion is recorded
@@ -131,6 +136,8 @@ public:
   /// the joints, dissipated by friction and by damping.
   double gravity_work() const { return gravity_work_; }
   double joint_energy() const;
+  /// The joint materials, 'Joint properties' first.
+  const std::vector<JointProperties>& joints() const { return joints_; }
   double friction_dissipation() const { return friction_work_; }
   double damping_dissipation() const { return damping_work_; }
   /// Every term of the energy balance of blocks and zones, and its error.
@@ -203,6 +210,9 @@ private:
   double* gp_x_ = nullptr; ///< gridpoint arrays during the contact stage
   double* gp_v_ = nullptr;
   double* gp_f_ = nullptr;
+  std::vector<JointProperties> joints_; ///< material 0, then s_.joint_materials
+  /// The stiffest joint spring per unit area of any material, max(kn, ks) (Pa/m).
+  double stiffest_joint() const;
   unsigned int ratio_block_ = 0;
   double dt_ = 0.0, time_ = 0.0, ratio_ = 1.0;
   double gravity_work_ = 0.0, friction_work_ = 0.0, damping_work_ = 0.0;
