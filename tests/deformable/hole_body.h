@@ -114,8 +114,8 @@ struct HoleBody
 };
 
 /// n to one significant digit ("20000" for 21254): zone counts from gmsh,
-/// whose HXT volume mesher does not make the same mesh twice (the counts
-/// move by about 0.5 %).
+/// whose volume mesher gives the same mesh every time but may give
+/// another one in another version of gmsh.
 inline std::string one_digit(unsigned int n)
 {
   unsigned int scale = 1;

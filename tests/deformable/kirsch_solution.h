@@ -99,18 +99,17 @@ struct ZoneHoop
   double r, angle_from_axis, computed, kirsch;
 };
 
-/// Hoop stress of the zones whose centroid lies within `rings` rings of
-/// the wall and `sectors` sectors of the x axis (or the y axis).
-std::vector<ZoneHoop> hoop_near_axis(const TetMesh& m, const std::vector<double>& stress,
-                                     double ring_ratio, double dtheta, int rings, int sectors,
-                                     bool y_axis)
+/// Hoop stress of the stress points (at `where`, their stresses 6 each
+/// in `stress`) that lie within `rings` rings of the wall and `sectors`
+/// sectors of the x axis (or the y axis).
+std::vector<ZoneHoop> hoop_near_axis(const std::vector<Vec3>& where,
+                                     const std::vector<double>& stress, double ring_ratio,
+                                     double dtheta, int rings, int sectors, bool y_axis)
 {
   std::vector<ZoneHoop> out;
-  for (unsigned int z = 0; z < m.n_zones(); ++z)
+  for (std::size_t z = 0; z < where.size(); ++z)
   {
-    Vec3 c = Vec3::Zero();
-    for (unsigned int g : m.zone_gridpoint[z])
-      c += 0.25 * point(m, g);
+    const Vec3& c = where[z];
     const double r = std::hypot(c[0], c[1]), theta = std::atan2(c[1], c[0]);
     const double from_axis = y_axis ? 0.5 * M_PI - theta : theta;
     if (r > a * std::pow(ring_ratio, rings) || from_axis > sectors * dtheta)
@@ -123,6 +122,30 @@ std::vector<ZoneHoop> hoop_near_axis(const TetMesh& m, const std::vector<double>
     out.push_back({r, from_axis, stt, kstt});
   }
   return out;
+}
+
+/// The centroids of the zones (of their four corners).
+std::vector<Vec3> zone_centroids(const TetMesh& m)
+{
+  std::vector<Vec3> out(m.n_zones());
+  for (unsigned int z = 0; z < m.n_zones(); ++z)
+  {
+    Vec3 c = Vec3::Zero();
+    for (unsigned int g : m.zone_gridpoint[z])
+      c += 0.25 * point(m, g);
+    out[z] = c;
+  }
+  return out;
+}
+
+/// Hoop stress of the zones (one stress each) whose centroid lies within
+/// `rings` rings of the wall and `sectors` sectors of the x axis (or the y
+/// axis).
+std::vector<ZoneHoop> hoop_near_axis(const TetMesh& m, const std::vector<double>& stress,
+                                     double ring_ratio, double dtheta, int rings, int sectors,
+                                     bool y_axis)
+{
+  return hoop_near_axis(zone_centroids(m), stress, ring_ratio, dtheta, rings, sectors, y_axis);
 }
 
 /// Wall value of a least-squares fit to the zone values (from `computed`,
