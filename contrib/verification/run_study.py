@@ -155,21 +155,31 @@ def run_talus(talus, prm_text, work, name, timeout):
     return run
 
 
-def decode_array(attributes, text):
-    """One DataArray's numbers: ASCII, or deal.II's binary form (a base64
-    header of four 32-bit numbers: one block, its size, the last block's size,
-    the compressed size; then the base64 of the zlib-compressed values)."""
+def decode_array(attributes, text, header_width=4):
+    """One DataArray's numbers: ASCII, or VTK's compressed binary form (a
+    base64 header of 32-bit numbers (deal.II) or 64-bit ones (talus's own
+    writers, header_type="UInt64"): the number of blocks, the block size, the
+    last block's size and each block's compressed size; then the base64 of
+    the blocks, each a zlib stream)."""
     if 'format="ascii"' in attributes:
         return [float(x) for x in text.split()]
     kind = re.search(r'type="(\w+)"', attributes).group(1)
     code, width = {"Float32": ("f", 4), "Float64": ("d", 8), "Int32": ("i", 4),
                    "UInt8": ("B", 1), "Int64": ("q", 8)}[kind]
-    text = text.strip()
-    end = text.index("=") + 2  # the header ends in "=="
-    header = struct.unpack("<4I", base64.b64decode(text[:end]))
-    if header[0] != 1:
-        raise RuntimeError("VTU array in %d blocks: not read" % header[0])
-    raw = zlib.decompress(base64.b64decode(text[end:]))
+    text = "".join(text.split())
+    word = "<I" if header_width == 4 else "<Q"
+    # The first three numbers, then the whole header once their count is known.
+    first = base64.b64decode(text[:4 * ((3 * header_width + 2) // 3)])[:header_width]
+    n_blocks = struct.unpack(word, first)[0]
+    header_bytes = (3 + n_blocks) * header_width
+    header_chars = 4 * ((header_bytes + 2) // 3)
+    header = struct.unpack("<%d%s" % (3 + n_blocks, word[1]),
+                           base64.b64decode(text[:header_chars])[:header_bytes])
+    data = base64.b64decode(text[header_chars:])
+    raw, at = b"", 0
+    for size in header[3:]:
+        raw += zlib.decompress(data[at:at + size])
+        at += size
     return list(struct.unpack("<%d%s" % (len(raw) // width, code), raw))
 
 
@@ -181,11 +191,12 @@ def read_vtu(path):
     with open(path) as f:
         text = f.read()
     arrays = {}
+    width = 8 if 'header_type="UInt64"' in text[:400] else 4
     points = re.search(r"<Points>\s*<DataArray([^>]*)>(.*?)</DataArray>", text, re.S)
-    arrays["Points"] = decode_array(points.group(1), points.group(2))
+    arrays["Points"] = decode_array(points.group(1), points.group(2), width)
     for m in re.finditer(r'<DataArray([^>]*)Name="([^"]+)"([^>]*)>(.*?)</DataArray>', text, re.S):
         if m.group(2) != "TIME":
-            arrays[m.group(2)] = decode_array(m.group(1) + m.group(3), m.group(4))
+            arrays[m.group(2)] = decode_array(m.group(1) + m.group(3), m.group(4), width)
     n_points = len(arrays["Points"]) // 3
     n_cells = len(arrays["offsets"])
     if "Points" in arrays and n_points != n_cells and n_points == 4 * n_cells:
