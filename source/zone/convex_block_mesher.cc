@@ -168,53 +168,61 @@ BodyEntities add_body(const PolyhedralSurface& body, int& next_point, int& next_
 }
 
 /// The zones gmsh made in one body's volume, with gridpoints put back
-/// exactly on the corner, edge or face gmsh classified them on.
+/// exactly on the corner, edge or face gmsh classified them on. Each node
+/// is read once, from the one entity it lies on (its coordinates are the
+/// same whichever call returns them), and local numbers follow the order in
+/// which the zones first name the nodes.
 BlockTetrahedra take_body(const PolyhedralSurface& body, const BodyEntities& e)
 {
   BlockTetrahedra out;
   std::vector<std::size_t> elements, corners, tags;
   std::vector<double> xyz, parametric;
   gmsh::model::mesh::getElementsByType(4, elements, corners, e.volume); // 4-node tetrahedra
-  std::map<std::size_t, unsigned int> local;
+  if (corners.empty())
+    return out;
+  // gmsh numbers a model's nodes from 1 up, so a dense table from node tag
+  // to local number is small (a std::map here cost 1-2 % of the meshing).
+  const auto [lowest, highest] = std::minmax_element(corners.begin(), corners.end());
+  const std::size_t first_tag = *lowest;
+  constexpr unsigned int unused = ~0u;
+  std::vector<unsigned int> local(*highest - first_tag + 1, unused);
+  unsigned int n_points = 0;
   out.tet.resize(elements.size());
   for (std::size_t z = 0; z < elements.size(); ++z)
     for (int i = 0; i < 4; ++i)
     {
-      const auto [it, fresh] =
-          local.emplace(corners[4 * z + i], static_cast<unsigned int>(local.size()));
-      out.tet[z][i] = it->second;
+      unsigned int& number = local[corners[4 * z + i] - first_tag];
+      if (number == unused)
+        number = n_points++;
+      out.tet[z][i] = number;
     }
-  out.point.resize(local.size());
-  gmsh::model::mesh::getNodes(tags, xyz, parametric, 3, e.volume, true, false);
-  for (std::size_t i = 0; i < tags.size(); ++i)
-  {
-    const auto it = local.find(tags[i]);
-    if (it != local.end())
-      out.point[it->second] = Vec3(xyz[3 * i], xyz[3 * i + 1], xyz[3 * i + 2]);
-  }
-  const auto snap = [&](int dim, int tag, const auto& onto)
+  out.point.resize(n_points);
+  const auto take = [&](int dim, int tag, const auto& onto)
   {
     gmsh::model::mesh::getNodes(tags, xyz, parametric, dim, tag, false, false);
-    for (std::size_t t : tags)
+    for (std::size_t k = 0; k < tags.size(); ++k)
     {
-      const auto it = local.find(t);
-      if (it != local.end())
-        out.point[it->second] = onto(out.point[it->second]);
+      if (tags[k] < first_tag || tags[k] - first_tag >= local.size())
+        continue;
+      const unsigned int number = local[tags[k] - first_tag];
+      if (number != unused)
+        out.point[number] = onto(Vec3(xyz[3 * k], xyz[3 * k + 1], xyz[3 * k + 2]));
     }
   };
+  take(3, e.volume, [](const Vec3& p) { return p; });
   for (std::size_t v = 0; v < body.vertex.size(); ++v)
-    snap(0, e.first_point + static_cast<int>(v), [&](const Vec3&) { return body.vertex[v]; });
+    take(0, e.first_point + static_cast<int>(v), [&](const Vec3&) { return body.vertex[v]; });
   for (std::size_t l = 0; l < e.line_ends.size(); ++l)
   {
     const Vec3 &a = body.vertex[e.line_ends[l].first], &c = body.vertex[e.line_ends[l].second];
-    snap(1, e.first_line + static_cast<int>(l),
+    take(1, e.first_line + static_cast<int>(l),
          [&](const Vec3& p) { return onto_segment(p, a, c); });
   }
   for (std::size_t f = 0; f < e.surfaces.size(); ++f)
   {
     const Vec3& n = body.face_normal[f];
     const Vec3& on_plane = body.vertex[body.face[f][0]];
-    snap(2, e.surfaces[f], [&](const Vec3& p) -> Vec3 { return p - n * n.dot(p - on_plane); });
+    take(2, e.surfaces[f], [&](const Vec3& p) -> Vec3 { return p - n * n.dot(p - on_plane); });
   }
   for (auto& t : out.tet)
     if (signed_volume(out.point[t[0]], out.point[t[1]], out.point[t[2]], out.point[t[3]]) < 0.0)
