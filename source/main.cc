@@ -839,8 +839,19 @@ int run(const std::string& filename, bool check_only = false)
   for (std::size_t e = 0; e < scene.excavations.size(); ++e)
     std::printf("Excavated:    %.9g m^3 (%s; region volume %.9g m^3)\n", report.excavated_volume[e],
                 scene.excavations[e].description.c_str(), scene.excavations[e].region.volume);
-  std::printf("Mass:         %.9g kg (density %g kg/m^3)\n", model.total_volume() * scene.density,
-              scene.density);
+  if (scene.rock_materials.empty())
+    std::printf("Mass:         %.9g kg (density %g kg/m^3)\n", model.total_volume() * scene.density,
+                scene.density);
+  else
+  {
+    double mass = 0.0;
+    for (unsigned int b = 0; b < model.n_blocks(); ++b)
+      mass += scene.density_of(model.group_names[model.group[b]]) * model.volume[b];
+    std::printf("Mass:         %.9g kg (density %g kg/m^3; rock materials:", mass, scene.density);
+    for (const talus::RockMaterialSpec& r : scene.rock_materials)
+      std::printf(" %s %g", r.name.c_str(), r.density);
+    std::printf(")\n");
+  }
   std::map<unsigned int, unsigned int> per_group;
   for (unsigned int g : model.group)
     ++per_group[g];

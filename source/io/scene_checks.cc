@@ -241,27 +241,22 @@ void check_deformable_blocks(const Scene& scene, const BlockModel& model)
     // A rock so soft that its own weight would strain a block by more than
     // a half (rho g L / E, L its height or width) collapses: the zones
     // invert within a few steps and the run can only diverge.
-    const DeformableSpec& d = scene.deformable;
-    const double weight = scene.density * scene.solver.gravity.norm(); // N/m^3
     for (unsigned int b : deformable)
     {
       const double extent = block_extent(model, b);
       const std::string& group = model.group_names[model.group[b]];
-      const bool scaled = std::find(d.scaled_groups.begin(), d.scaled_groups.end(), group) !=
-                          d.scaled_groups.end();
-      const double E = d.material.young() * (scaled ? d.stiffness_ratio : 1.0);
+      const RockMaterialSpec* rock = scene.rock_material_of(group);
+      const double weight = scene.density_of(group) * scene.solver.gravity.norm(); // N/m^3
+      const double E = (rock != nullptr ? rock->zone : scene.deformable.material).young();
       const double strain = weight * extent / E;
       if (strain > 0.5)
-        throw scene_error(scene, "Deformable", scaled ? "Stiffness ratio" : "Young's modulus",
+        throw scene_error(scene, rock != nullptr ? rock->section : "Deformable", "Young's modulus",
                           "makes blocks of group '" + group + "' so soft (E = " + number(E) +
                               " Pa) that their own weight would strain them by about " +
                               number(strain) + " (density x gravity x " + number(extent) +
                               " m / E): they would collapse",
-                          (scaled ? "a stiffness ratio of at least " +
-                                        number(2.0 * weight * extent / d.material.young())
-                                  : "a Young's modulus of at least " +
-                                        number(2.0 * weight * extent) + " Pa") +
-                              " for these blocks (own-weight strain at most 0.5)");
+                          "a Young's modulus of at least " + number(2.0 * weight * extent) +
+                              " Pa for these blocks (own-weight strain at most 0.5)");
     }
   }
   if (!scene.deformable.mesh_file.empty())

@@ -5,6 +5,7 @@
 #include <talus/zone/block_mesher.h>
 
 #include "joint_materials_reader.h"
+#include "rock_materials_reader.h"
 #include "parameter_file.h"
 
 #include <cerrno>
@@ -368,24 +369,7 @@ void declare_deformable(ParameterFile& prm)
   prm.declare("Implicit check", "false", P::Bool(), "true or false",
               "After a static run of elastic zones, solve the same problem implicitly (CG with "
               "algebraic multigrid) and print the difference.");
-  prm.declare("Zone model", "elastic", P::Selection("elastic|mohr-coulomb"),
-              "elastic or mohr-coulomb", "Constitutive model of the zones.");
-  prm.declare("Young's modulus", "5e10", P::Double(), "a number > 0 (Pa)", "E (Pa).");
-  prm.declare("Poisson's ratio", "0.25", P::Double(), "a number > -1 and < 0.5", "nu.");
-  prm.declare("Friction angle", "30", P::Double(), "a number from 0 to below 90 (degrees)",
-              "phi of the Mohr-Coulomb zones (degrees).");
-  prm.declare("Dilation angle", "0", P::Double(), "a number from 0 to the friction angle (degrees)",
-              "psi of the Mohr-Coulomb zones (degrees).");
-  prm.declare("Cohesion", "0", P::Double(), "a number >= 0 (Pa)",
-              "c of the Mohr-Coulomb zones (Pa).");
-  prm.declare("Tensile strength", "0", P::Double(), "a number >= 0 (Pa)",
-              "Tension cut-off of the Mohr-Coulomb zones (Pa).");
-  prm.declare("Stiffness ratio groups", "", P::List(P::Anything()),
-              "group names separated by commas (some of 'Groups')",
-              "Deformable blocks of these groups have their Young's modulus times 'Stiffness "
-              "ratio' (very soft rock beside stiff rock).");
-  prm.declare("Stiffness ratio", "1", P::Double(), "a number > 0",
-              "Young's modulus of the 'Stiffness ratio groups' over 'Young's modulus'.");
+  declare_zone_constants(prm);
   prm.leave();
   prm.enter("Initial stress");
   prm.declare("Stress", "0, 0, 0, 0, 0, 0", P::List(P::Double(), 6, 6, ","),
@@ -493,41 +477,8 @@ void parse_deformable(ParameterFile& prm, Scene& scene)
                         "0, or 'Fine region = box' with 'Fine box min' and 'Fine box max'");
     }
   }
-  const double E = prm.get_double("Young's modulus"), nu = prm.get_double("Poisson's ratio");
-  if (!(E > 0.0))
-    throw prm.error("Young's modulus", "must be positive", "a number > 0 (Pa)");
-  if (!(nu > -1.0 && nu < 0.5))
-    throw prm.error("Poisson's ratio", "must lie between -1 and 0.5 (0.5 would be incompressible)",
-                    "a number > -1 and < 0.5");
-  d.material.set_young_poisson(E, nu);
+  parse_zone_constants(prm, "Deformable", d.material, false);
   d.material.density = scene.density;
-  d.material.model =
-      prm.get("Zone model") == "elastic" ? ZoneModel::elastic : ZoneModel::mohr_coulomb;
-  d.material.friction_angle = prm.get_double("Friction angle");
-  if (!(d.material.friction_angle >= 0.0 && d.material.friction_angle < 90.0))
-    throw prm.error("Friction angle", "must be at least 0 and below 90 degrees",
-                    "a number from 0 to below 90");
-  d.material.dilation_angle = prm.get_double("Dilation angle");
-  if (!(d.material.dilation_angle >= 0.0 && d.material.dilation_angle <= d.material.friction_angle))
-    throw prm.error("Dilation angle", "must lie between 0 and the friction angle",
-                    "a number from 0 to the friction angle (degrees)");
-  d.material.cohesion = prm.get_double("Cohesion");
-  if (!(d.material.cohesion >= 0.0))
-    throw prm.error("Cohesion", "must not be negative", "a number >= 0 (Pa)");
-  d.material.tensile_strength = prm.get_double("Tensile strength");
-  if (!(d.material.tensile_strength >= 0.0))
-    throw prm.error("Tensile strength", "must not be negative", "a number >= 0 (Pa)");
-  for (const std::string& g :
-       dealii::Utilities::split_string_list(prm.get("Stiffness ratio groups")))
-  {
-    if (std::find(d.groups.begin(), d.groups.end(), g) == d.groups.end())
-      throw prm.error("Stiffness ratio groups", "names '" + g + "', which is not in 'Groups'",
-                      "names of deformable groups");
-    d.scaled_groups.push_back(g);
-  }
-  d.stiffness_ratio = prm.get_double("Stiffness ratio");
-  if (!(d.stiffness_ratio > 0.0))
-    throw prm.error("Stiffness ratio", "must be positive", "a number > 0");
   prm.leave();
 
   prm.enter("Initial stress");
@@ -870,9 +821,7 @@ void warn_about_ignored_entries(const ParameterFile& prm, Scene& scene,
                   "Friction angle",
                   "Dilation angle",
                   "Cohesion",
-                  "Tensile strength",
-                  "Stiffness ratio groups",
-                  "Stiffness ratio"},
+                  "Tensile strength"},
                  "'Groups' names no deformable block", scene.warnings);
   std::size_t load = 0;
   for (const auto& [kind, name] : sections)
@@ -889,7 +838,8 @@ Scene read_scene(const std::string& filename, bool prepare_output)
 
   // Numbered subsections exist exactly as the file names them.
   const std::regex numbered(
-      "(Joint set|Joint material|Joint|Excavation|Group contact|Group|Load|Boundary) ([0-9]+)");
+      "(Joint set|Joint material|Joint|Excavation|Group contact|Group|Load|Boundary|Rock "
+      "material) ([0-9]+)");
   std::vector<std::tuple<std::string, long, std::string>> found; // kind, number, name
   if (prm.sections_in_file().size() > max_numbered_sections + 16)
     throw InputError(filename + ": the file has " + std::to_string(prm.sections_in_file().size()) +
@@ -944,6 +894,8 @@ Scene read_scene(const std::string& filename, bool prepare_output)
       declare_joint_material(prm, name);
     else if (kind == "Group contact")
       declare_group_contact(prm, name);
+    else if (kind == "Rock material")
+      declare_rock_material(prm, name);
     else
       declare_group(prm, name);
   }
@@ -985,6 +937,9 @@ Scene read_scene(const std::string& filename, bool prepare_output)
     else if (kind == "Group contact")
       parse_group_contact(prm, name, scene);
   parse_deformable(prm, scene);
+  for (const auto& [kind, name] : numbered_sections)
+    if (kind == "Rock material")
+      parse_rock_material(prm, name, scene);
   warn_about_ignored_entries(prm, scene, numbered_sections);
   scene.used_parameters = prm.used_parameters();
   scene.lines = prm.lines();

@@ -4,6 +4,7 @@
 #include <talus/zone/zone_surface.h>
 
 #include <algorithm>
+#include <array>
 
 namespace talus
 {
@@ -30,9 +31,10 @@ ZoneMaterials zone_materials(const Scene& scene, const BlockModel& model, const 
   const DeformableSpec& d = scene.deformable;
   ZoneMaterials m;
   m.of_zone.resize(mesh.n_zones());
-  // Material index of each (scaled, nodal mixed) pair, made when first used.
+  // Material index of each (rock material, nodal mixed) pair, made when
+  // first used; rock material 0 is that of 'Deformable'.
   constexpr unsigned int none = ~0u;
-  unsigned int index[2][2] = {{none, none}, {none, none}};
+  std::vector<std::array<unsigned int, 2>> index(scene.rock_materials.size() + 1, {none, none});
   for (unsigned int z = 0; z < mesh.n_zones(); ++z)
   {
     if (z > 0 && mesh.zone_block[z] == mesh.zone_block[z - 1])
@@ -41,18 +43,14 @@ ZoneMaterials zone_materials(const Scene& scene, const BlockModel& model, const 
       continue;
     }
     const std::string& group = group_of(model, mesh.zone_block[z]);
-    const bool scaled =
-        std::find(d.scaled_groups.begin(), d.scaled_groups.end(), group) != d.scaled_groups.end();
+    const RockMaterialSpec* rock = scene.rock_material_of(group);
     const bool mixed = d.nodal_mixed(group);
-    unsigned int& i = index[scaled][mixed];
+    unsigned int& i =
+        index[rock == nullptr ? 0 : 1 + (rock - scene.rock_materials.data())][mixed];
     if (i == none)
     {
-      ZoneMaterial material = d.material;
-      if (scaled)
-      {
-        material.bulk_modulus *= d.stiffness_ratio;
-        material.shear_modulus *= d.stiffness_ratio;
-      }
+      ZoneMaterial material = rock == nullptr ? d.material : rock->zone;
+      material.element = d.material.element;
       material.nodal_mixed = mixed;
       i = static_cast<unsigned int>(m.materials.size());
       m.materials.push_back(material);
@@ -105,6 +103,9 @@ BlockSystem build_block_system(const Scene& scene, BlockModel& model)
         scene.has_initial_stress ? &scene.initial_stress : nullptr);
   }
   SolverSettings settings = scene.solver;
+  if (!scene.rock_materials.empty())
+    for (unsigned int b = 0; b < model.n_blocks(); ++b)
+      settings.block_density.push_back(scene.density_of(group_of(model, b)));
   if (scene.has_initial_stress)
     settings.initial_stress = &scene.initial_stress; // the joints there at the start carry it
   s.solver = std::make_unique<RigidSolver>(model, scene.density, settings, s.zones.get(),

@@ -97,7 +97,8 @@ RigidSolver::RigidSolver(BlockModel& blocks, double density, const SolverSetting
   unsigned int n_rigid = 0;
   for (unsigned int b = 0; b < nb; ++b)
   {
-    mass[b] = density * m_.volume[b];
+    const double rho = s_.block_density.empty() ? density : s_.block_density.at(b);
+    mass[b] = rho * m_.volume[b];
     if (!is_deformable_[b])
     {
       mass_sum += mass[b];
@@ -114,7 +115,7 @@ RigidSolver::RigidSolver(BlockModel& blocks, double density, const SolverSetting
     if (s_.principal_inertia && !is_deformable_[b])
     {
       const MassProperties p = compute_mass_properties(m_.polyhedron(b));
-      principal_moments[b] = density * p.principal_moments;
+      principal_moments[b] = rho * p.principal_moments;
       axes[b] = p.principal_axes;
     }
     for (unsigned int g : s_.fixed_groups)

@@ -59,9 +59,6 @@ struct DeformableSpec
   std::string mesh_file;               ///< gmsh file of the body's zones (empty: mesh the block)
   std::shared_ptr<const TetMesh> mesh; ///< the zones read from mesh_file (block 0)
   bool implicit_check = false;         ///< compare a static run with the implicit elastic solve
-  /// Blocks of these groups take `material` with E times stiffness_ratio.
-  std::vector<std::string> scaled_groups;
-  double stiffness_ratio = 1.0;
   /// Blocks of these groups take nodal mixed discretization (eqs. 68-76)
   /// when `material.nodal_mixed` does not give it to every block.
   std::vector<std::string> nodal_mixed_groups;
@@ -73,6 +70,16 @@ struct DeformableSpec
     return material.nodal_mixed || std::find(nodal_mixed_groups.begin(), nodal_mixed_groups.end(),
                                              group) != nodal_mixed_groups.end();
   }
+};
+
+/// A 'Rock material N': what the blocks of its groups are made of.
+struct RockMaterialSpec
+{
+  std::string name;
+  std::vector<std::string> groups;
+  double density = 2600.0; ///< kg/m^3, rigid and deformable blocks
+  ZoneMaterial zone;       ///< deformable blocks (element and nodal mixed from 'Deformable')
+  std::string section;     ///< "Rock material N"
 };
 
 /// A 'Boundary N' of held gridpoints whose reaction (the force the
@@ -125,6 +132,22 @@ struct Scene
   std::vector<std::string> load_groups;  ///< group name of each solver.loads entry
   std::vector<std::string> load_sections; ///< "Load N" of each solver.loads entry
   DeformableSpec deformable;
+  /// Groups made of a material of their own; the others take 'Material'
+  /// and the constants of 'Deformable'.
+  std::vector<RockMaterialSpec> rock_materials;
+  const RockMaterialSpec* rock_material_of(const std::string& group) const
+  {
+    for (const RockMaterialSpec& r : rock_materials)
+      if (std::find(r.groups.begin(), r.groups.end(), group) != r.groups.end())
+        return &r;
+    return nullptr;
+  }
+  /// kg/m^3 of the blocks of `group`.
+  double density_of(const std::string& group) const
+  {
+    const RockMaterialSpec* r = rock_material_of(group);
+    return r != nullptr ? r->density : density;
+  }
   std::vector<GridpointCondition> gridpoint_conditions; ///< from 'Boundary N' (velocity)
   std::vector<FacePressure> face_pressures;             ///< from 'Boundary N' (pressure)
   std::vector<ReactionReport> reactions;                ///< 'Boundary N' with 'Report reaction'

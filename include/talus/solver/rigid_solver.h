@@ -61,6 +61,8 @@ struct SolverSettings
   /// contact takes (JointMaterialRule; empty: material 0 for all).
   std::vector<JointProperties> joint_materials;
   JointMaterialRule joint_rule;
+  /// kg/m^3 of each block (empty: the density given to the solver, for all).
+  std::vector<double> block_density;
   std::vector<unsigned int> fixed_groups; ///< group indices of fixed blocks
   std::vector<BlockLoad> loads;
   std::vector<unsigned int> history_blocks; ///< blocks whose motion is recorded
