@@ -7,6 +7,7 @@
 #include "joint_materials_reader.h"
 #include "rock_materials_reader.h"
 #include "parameter_file.h"
+#include "region_reader.h"
 
 #include <cerrno>
 #include <cmath>
@@ -208,44 +209,18 @@ JointPlaneSpec parse_joint(ParameterFile& prm, const std::string& section, Scene
 void declare_excavation(ParameterFile& prm, const std::string& section)
 {
   prm.enter(section);
-  prm.declare("Shape", "box", P::Selection("box|cylinder"), "box or cylinder",
-              "A box, or a cylinder approximated by a prism with 'Sides' faces (a tunnel).");
-  declare_box(prm, "Corner min", "Corner max", "the box to remove");
-  prm.declare("Axis start", "0, 0, 0", vec3_pattern(), vec3_allowed,
-              "Centre of one end of the cylinder (m).");
-  prm.declare("Axis end", "0, 1, 0", vec3_pattern(), vec3_allowed,
-              "Centre of the other end of the cylinder (m).");
-  prm.declare("Radius", "1", P::Double(), "a number > 0 (m)",
-              "Radius of the circle the prism is inscribed in (m).");
-  prm.declare("Sides", "16", P::Integer(3, 1024), "an integer from 3 to 1024",
-              "Number of flat faces around the cylinder.");
+  declare_region(prm, "the region to remove");
   prm.leave();
 }
 
-ExcavationSpec parse_excavation(ParameterFile& prm, const std::string& section)
+ExcavationSpec parse_excavation(ParameterFile& prm, const std::string& section, const Scene& scene)
 {
   prm.enter(section);
   ExcavationSpec e;
-  if (prm.get("Shape") == "box")
-  {
-    e.region = ConvexRegion::box(read_box(prm, "Corner min", "Corner max"));
-    e.description = section + ": box";
-    e.section = section;
-  }
-  else
-  {
-    const Vec3 a = prm.get_vec3("Axis start"), b = prm.get_vec3("Axis end");
-    const double radius = prm.get_double("Radius");
-    if (!(radius > 0.0))
-      throw prm.error("Radius", "must be positive", "a number > 0 (m)");
-    if (!((b - a).norm() > 0.0))
-      throw prm.error("Axis end", "coincides with 'Axis start'", "a point other than Axis start");
-    const unsigned int sides = static_cast<unsigned int>(prm.get_integer("Sides"));
-    e.region = ConvexRegion::cylinder(a, b, radius, sides);
-    e.description = section + ": cylinder of radius " + prm.get("Radius") + " m, " +
-                    std::to_string(sides) + " sides";
-    e.section = section;
-  }
+  std::string description;
+  e.region = parse_region(prm, scene.brick, description);
+  e.description = section + ": " + description;
+  e.section = section;
   prm.leave();
   return e;
 }
@@ -256,14 +231,15 @@ void declare_group(ParameterFile& prm, const std::string& section)
 {
   prm.enter(section);
   prm.declare("Name", "group", P::Anything(), "any name", "Name given to the selected blocks.");
-  declare_box(prm, "Corner min", "Corner max", "the region whose blocks join the group");
+  declare_region(prm, "the region whose blocks join the group");
   prm.leave();
 }
 
-GroupSpec parse_group(ParameterFile& prm, const std::string& section)
+GroupSpec parse_group(ParameterFile& prm, const std::string& section, const Scene& scene)
 {
   prm.enter(section);
-  GroupSpec g{prm.get("Name"), read_box(prm, "Corner min", "Corner max")};
+  std::string description;
+  GroupSpec g{prm.get("Name"), parse_region(prm, scene.brick, description)};
   prm.leave();
   return g;
 }
@@ -924,9 +900,9 @@ Scene read_scene(const std::string& filename, bool prepare_output)
       scene.joint_plane_sections.push_back(name);
     }
     else if (kind == "Excavation")
-      scene.excavations.push_back(parse_excavation(prm, name));
+      scene.excavations.push_back(parse_excavation(prm, name, scene));
     else if (kind == "Group")
-      scene.groups.push_back(parse_group(prm, name));
+      scene.groups.push_back(parse_group(prm, name, scene));
   }
   parse_solver(prm, scene);
   for (const auto& [kind, name] : numbered_sections)

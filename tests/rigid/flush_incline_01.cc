@@ -37,7 +37,7 @@ void slide(bool flush)
             e.region = talus::ConvexRegion::box({talus::Vec3(0, y, 1), talus::Vec3(1, y + 0.5, 2)});
             scene.excavations.push_back(e);
           }
-        scene.groups[0].region = {talus::Vec3(0, 0, 1), talus::Vec3(1, width, 2)};
+        scene.groups[0].region = talus::Box{talus::Vec3(0, 0, 1), talus::Vec3(1, width, 2)};
         scene.solver.joint.normal_stiffness = 1e10;
         scene.solver.joint.shear_stiffness = 1e10;
         scene.solver.gravity = talus::Vec3(g * std::sin(slope), 0.0, -g * std::cos(slope));

@@ -30,7 +30,7 @@ struct JointPlaneSpec
 struct GroupSpec
 {
   std::string name;
-  Box region;
+  ConvexRegion region;
 };
 
 /// A 'Group contact N': contacts between blocks of groups `a` and `b` that
