@@ -129,20 +129,12 @@ Errors run(unsigned int n_theta, double tolerance_u, double tolerance_wall,
                       wall_fit(zones, false), exact, tolerance_wall);
     // The zones of the first ring and sector: mean hoop stress at their
     // centroids.
-    double computed = 0.0, closed = 0.0;
-    unsigned int n = 0;
-    for (const ZoneHoop& z : zones)
-      if (z.r < a * ring_ratio && z.angle_from_axis < dtheta)
-      {
-        computed += z.computed;
-        closed += z.kirsch;
-        ++n;
-      }
-    talus_test::check(std::string("  sigma_tt, mean of the ") + std::to_string(n) +
+    const WallMean wall = wall_mean(zones, ring_ratio, dtheta);
+    talus_test::check(std::string("  sigma_tt, mean of the ") + std::to_string(wall.n) +
                           " zones at the wall next to theta = " + (y_axis ? "90" : "0") +
                           ", Kirsch at their centroids (Pa)",
-                      computed / n, closed / n, tolerance_centroid);
-    (y_axis ? errors.centroid90 : errors.centroid0) = std::abs(computed / closed - 1.0);
+                      wall.computed, wall.kirsch, tolerance_centroid);
+    (y_axis ? errors.centroid90 : errors.centroid0) = std::abs(wall.computed / wall.kirsch - 1.0);
   }
   // Every zone within 3a: root mean square of the hoop stress error, over p.
   {

@@ -138,6 +138,23 @@ void agrees(const std::string& name, double explicit_answer, double implicit_ans
   within(name, explicit_answer, implicit_answer, 5e-3);
 }
 
+/// The largest difference of the explicit and implicit displacements at the
+/// hole's wall over the largest wall displacement, within 0.5 %.
+void wall_agreement(const TetMesh& mesh, const std::vector<double>& u,
+                    const std::vector<double>& implicit)
+{
+  double largest = 0.0, difference = 0.0;
+  for (unsigned int g = 0; g < mesh.n_gridpoints(); ++g)
+    if (point(mesh, g).head<2>().norm() < a + eps) // on the hole's facets
+      for (int d = 0; d < 2; ++d)
+      {
+        largest = std::max(largest, std::abs(implicit[3 * g + d]));
+        difference = std::max(difference, std::abs(u[3 * g + d] - implicit[3 * g + d]));
+      }
+  agrees("  explicit against implicit, largest wall difference over largest wall displacement",
+         difference / largest + 1.0, 1.0);
+}
+
 /// Where the stresses of a run are measured, and the stresses (6 each).
 struct StressPoints
 {
@@ -207,20 +224,12 @@ void hoop_errors(const StressPoints& s, double ring_ratio, double dtheta, unsign
               wall_fit(zones, false), exact,
               tolerance ? (y_axis ? tolerance->wall90 : tolerance->wall0) : 0.0);
     // The points of the first ring and sector: mean hoop stress.
-    double computed = 0.0, closed = 0.0;
-    unsigned int n = 0;
-    for (const ZoneHoop& z : zones)
-      if (z.r < a * ring_ratio && z.angle_from_axis < dtheta)
-      {
-        computed += z.computed;
-        closed += z.kirsch;
-        ++n;
-      }
-    std::fprintf(stderr, "  %u points at the wall next to the axis\n", n);
+    const WallMean wall = wall_mean(zones, ring_ratio, dtheta);
+    std::fprintf(stderr, "  %u points at the wall next to the axis\n", wall.n);
     (y_axis ? errors.centroid90 : errors.centroid0) =
         error("  sigma_tt, mean of the " + points + " at the wall next to theta = " +
                   (y_axis ? "90" : "0") + ", Kirsch " + at + " (Pa)",
-              computed / n, closed / n,
+              wall.computed, wall.kirsch,
               tolerance ? (y_axis ? tolerance->centroid90 : tolerance->centroid0) : 0.0);
   }
   // Every point within 3a: root mean square of the hoop stress error, over p.
@@ -337,17 +346,7 @@ Errors run(TetMesh mesh, double t, unsigned int n_theta, Zones kind, const Error
            wall_ur(mesh, implicit.displacement, false));
     agrees("  explicit u_r(a, 90) against implicit (m)", u90,
            wall_ur(mesh, implicit.displacement, true));
-    double largest = 0.0, difference = 0.0;
-    for (unsigned int g = 0; g < mesh.n_gridpoints(); ++g)
-      if (point(mesh, g).head<2>().norm() < a + eps) // on the hole's facets
-        for (int d = 0; d < 2; ++d)
-        {
-          largest = std::max(largest, std::abs(implicit.displacement[3 * g + d]));
-          difference =
-              std::max(difference, std::abs(u[3 * g + d] - implicit.displacement[3 * g + d]));
-        }
-    agrees("  explicit against implicit, largest wall difference over largest wall displacement",
-           difference / largest + 1.0, 1.0);
+    wall_agreement(mesh, u, implicit.displacement);
     return errors;
   }
 
@@ -397,17 +396,7 @@ Errors run(TetMesh mesh, double t, unsigned int n_theta, Zones kind, const Error
   const double i90 = wall_ur(mesh, implicit.displacement, true);
   agrees("  explicit u_r(a, 0) against implicit (m)", u0, i0);
   agrees("  explicit u_r(a, 90) against implicit (m)", u90, i90);
-  double largest = 0.0, difference = 0.0;
-  for (unsigned int g = 0; g < mesh.n_gridpoints(); ++g)
-    if (point(mesh, g).head<2>().norm() < a + eps) // on the hole's facets
-      for (int d = 0; d < 2; ++d)
-      {
-        largest = std::max(largest, std::abs(implicit.displacement[3 * g + d]));
-        difference =
-            std::max(difference, std::abs(u[3 * g + d] - implicit.displacement[3 * g + d]));
-      }
-  agrees("  explicit against implicit, largest wall difference over largest wall displacement",
-         difference / largest + 1.0, 1.0);
+  wall_agreement(mesh, u, implicit.displacement);
   // Hoop stress at the wall from the implicit displacements (small
   // strain), fitted the same way.
   const std::vector<double> implicit_stress =

@@ -99,6 +99,29 @@ struct ZoneHoop
   double r, angle_from_axis, computed, kirsch;
 };
 
+/// Mean hoop stress, computed and Kirsch's, of the points of the first
+/// ring (r below a ring_ratio) and the first sector (dtheta) next to the
+/// axis; n is their number.
+struct WallMean
+{
+  double computed = 0.0, kirsch = 0.0;
+  unsigned int n = 0;
+};
+inline WallMean wall_mean(const std::vector<ZoneHoop>& zones, double ring_ratio, double dtheta)
+{
+  WallMean m;
+  for (const ZoneHoop& z : zones)
+    if (z.r < a * ring_ratio && z.angle_from_axis < dtheta)
+    {
+      m.computed += z.computed;
+      m.kirsch += z.kirsch;
+      ++m.n;
+    }
+  m.computed /= m.n;
+  m.kirsch /= m.n;
+  return m;
+}
+
 /// Hoop stress of the stress points (at `where`, their stresses 6 each
 /// in `stress`) that lie within `rings` rings of the wall and `sectors`
 /// sectors of the x axis (or the y axis).
