@@ -350,47 +350,8 @@ Errors run(TetMesh mesh, double t, unsigned int n_theta, Zones kind, const Error
     return errors;
   }
 
-  // The implicit reference on the same mesh: loads are the unbalanced
-  // nodal forces of the initial stress state (f_n = sigma0 A_n / 3 for each
-  // zone, A_n the outward area normal of the face opposite node n), which
-  // cancel inside and on the loaded square sides except for the outer
-  // tractions added below, leaving the excavation loads on the hole.
-  ImplicitElasticProblem problem;
-  problem.mesh = &mesh;
-  problem.zone_bulk.assign(mesh.n_zones(), rock.bulk_modulus);
-  problem.zone_shear.assign(mesh.n_zones(), rock.shear_modulus);
-  problem.fixed.assign(mesh.n_gridpoints(), 0);
-  problem.nodal_force.assign(3 * mesh.n_gridpoints(), 0.0);
-  problem.tolerance = 1e-12;
-  for (unsigned int g = 0; g < mesh.n_gridpoints(); ++g)
-  {
-    const Vec3 x = point(mesh, g);
-    problem.fixed[g] = (std::abs(x[0]) < eps ? 1 : 0) | (std::abs(x[1]) < eps ? 2 : 0) |
-                       (std::abs(x[2]) < eps || std::abs(x[2] - t) < eps ? 4 : 0);
-  }
-  static const int opposite[4][3] = {{1, 2, 3}, {0, 3, 2}, {0, 1, 3}, {0, 2, 1}};
-  for (const auto& z : mesh.zone_gridpoint)
-    for (int n = 0; n < 4; ++n)
-    {
-      const Vec3 p0 = point(mesh, z[opposite[n][0]]);
-      Vec3 area =
-          0.5 * (point(mesh, z[opposite[n][1]]) - p0).cross(point(mesh, z[opposite[n][2]]) - p0);
-      if (area.dot(p0 - point(mesh, z[n])) < 0.0)
-        area = -area;
-      const Vec3 f = Vec3(Sx * area[0], Sy * area[1], Sz * area[2]) / 3.0;
-      for (int d = 0; d < 3; ++d)
-        problem.nodal_force[3 * z[n] + d] += f[d];
-    }
-  for (const auto& face : mesh.face_gridpoint)
-  {
-    const Vec3 p0 = point(mesh, face[0]);
-    const Vec3 c = (p0 + point(mesh, face[1]) + point(mesh, face[2])) / 3.0;
-    const double pressure = std::abs(c[0] - L) < eps ? K * p : std::abs(c[1] - L) < eps ? p : 0.0;
-    const Vec3 area = 0.5 * (point(mesh, face[1]) - p0).cross(point(mesh, face[2]) - p0);
-    for (unsigned int g : face)
-      for (int d = 0; d < 3; ++d)
-        problem.nodal_force[3 * g + d] -= pressure * area[d] / 3.0;
-  }
+  // The implicit reference on the same mesh (kirsch_implicit_problem).
+  const ImplicitElasticProblem problem = kirsch_implicit_problem(mesh, rock, t);
   const ImplicitElasticResult implicit = solve_implicit_elastic(problem);
   const double i0 = wall_ur(mesh, implicit.displacement, false);
   const double i90 = wall_ur(mesh, implicit.displacement, true);

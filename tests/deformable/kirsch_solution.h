@@ -6,6 +6,7 @@
 // stress of the zones near the axes, a least-squares fit to the wall).
 // Shared by kirsch_01 (structured mesh) and kirsch_02 (the mesher's).
 
+#include <talus/zone/implicit_elastic.h>
 #include <talus/zone/tet_mesh.h>
 #include <talus/zone/zone_material.h>
 
@@ -191,3 +192,51 @@ double wall_fit(const std::vector<ZoneHoop>& zones, bool use_kirsch)
   return A.colPivHouseholderQr().solve(b)[0];
 }
 } // namespace
+
+/// The implicit reference on a mesh of the slab (thickness t): loads are
+/// the unbalanced nodal forces of the initial stress state (f_n = sigma0
+/// A_n / 3 for each zone, A_n the outward area normal of the face opposite
+/// node n), which cancel inside and on the loaded square sides except for
+/// the outer tractions added here, leaving the excavation loads on the
+/// hole; rollers on the symmetry planes and both faces of the slab.
+inline ImplicitElasticProblem kirsch_implicit_problem(const TetMesh& mesh, const ZoneMaterial& rock,
+                                                      double t)
+{
+  ImplicitElasticProblem problem;
+  problem.mesh = &mesh;
+  problem.zone_bulk.assign(mesh.n_zones(), rock.bulk_modulus);
+  problem.zone_shear.assign(mesh.n_zones(), rock.shear_modulus);
+  problem.fixed.assign(mesh.n_gridpoints(), 0);
+  problem.nodal_force.assign(3 * mesh.n_gridpoints(), 0.0);
+  problem.tolerance = 1e-12;
+  for (unsigned int g = 0; g < mesh.n_gridpoints(); ++g)
+  {
+    const Vec3 x = point(mesh, g);
+    problem.fixed[g] = (std::abs(x[0]) < eps ? 1 : 0) | (std::abs(x[1]) < eps ? 2 : 0) |
+                       (std::abs(x[2]) < eps || std::abs(x[2] - t) < eps ? 4 : 0);
+  }
+  static const int opposite[4][3] = {{1, 2, 3}, {0, 3, 2}, {0, 1, 3}, {0, 2, 1}};
+  for (const auto& z : mesh.zone_gridpoint)
+    for (int n = 0; n < 4; ++n)
+    {
+      const Vec3 p0 = point(mesh, z[opposite[n][0]]);
+      Vec3 area =
+          0.5 * (point(mesh, z[opposite[n][1]]) - p0).cross(point(mesh, z[opposite[n][2]]) - p0);
+      if (area.dot(p0 - point(mesh, z[n])) < 0.0)
+        area = -area;
+      const Vec3 f = Vec3(Sx * area[0], Sy * area[1], Sz * area[2]) / 3.0;
+      for (int d = 0; d < 3; ++d)
+        problem.nodal_force[3 * z[n] + d] += f[d];
+    }
+  for (const auto& face : mesh.face_gridpoint)
+  {
+    const Vec3 p0 = point(mesh, face[0]);
+    const Vec3 c = (p0 + point(mesh, face[1]) + point(mesh, face[2])) / 3.0;
+    const double pressure = std::abs(c[0] - L) < eps ? K * p : std::abs(c[1] - L) < eps ? p : 0.0;
+    const Vec3 area = 0.5 * (point(mesh, face[1]) - p0).cross(point(mesh, face[2]) - p0);
+    for (unsigned int g : face)
+      for (int d = 0; d < 3; ++d)
+        problem.nodal_force[3 * g + d] -= pressure * area[d] / 3.0;
+  }
+  return problem;
+}
