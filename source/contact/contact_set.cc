@@ -220,6 +220,13 @@ void ContactSet::remove(unsigned int c)
   --n_alive_;
 }
 
+void ContactSet::remove_contacts_of(const std::vector<char>& gone)
+{
+  for (unsigned int c = 0; c < n_slots(); ++c)
+    if (alive[c] && (gone[block_a[c]] || gone[block_b[c]]))
+      remove(c);
+}
+
 void ContactSet::update(const BlockModel& m, const ContactSettings& settings,
                         const std::vector<double>* path)
 {

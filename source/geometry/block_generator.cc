@@ -107,7 +107,11 @@ void BlockGenerator::cut_plane(const Plane& plane, const Box* extent, int origin
   blocks_ = std::move(result);
 }
 
-double BlockGenerator::excavate(const ConvexRegion& region)
+double BlockGenerator::excavate(const ConvexRegion& region) { return split_by(region, false); }
+
+double BlockGenerator::cut_along(const ConvexRegion& region) { return split_by(region, true); }
+
+double BlockGenerator::split_by(const ConvexRegion& region, bool keep)
 {
   double removed = 0.0;
   std::vector<ConvexPolyhedron> result;
@@ -153,10 +157,10 @@ double BlockGenerator::excavate(const ConvexRegion& region)
         break;
       }
     }
-    if (outside)
-      result.push_back(std::move(inside));
-    else
+    if (!outside)
       removed += inside.volume();
+    if (outside || keep)
+      result.push_back(std::move(inside));
   }
   blocks_ = std::move(result);
   return removed;

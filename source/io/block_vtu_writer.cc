@@ -8,8 +8,23 @@ namespace talus
 {
 
 void write_blocks_vtu(const std::string& path, const BlockModel& m,
-                      const std::vector<BlockField>& fields, VtuEncoding encoding)
+                      const std::vector<BlockField>& fields, VtuEncoding encoding,
+                      const std::vector<char>* gone)
 {
+  // The blocks shown: all but those a stage removed.
+  std::vector<unsigned int> shown;
+  for (unsigned int b = 0; b < m.n_blocks(); ++b)
+    if (gone == nullptr || !(*gone)[b])
+      shown.push_back(b);
+  const auto pick = [&](const auto& values, unsigned int components)
+  {
+    std::decay_t<decltype(values)> out;
+    out.reserve(shown.size() * components);
+    for (unsigned int b : shown)
+      for (unsigned int c = 0; c < components; ++c)
+        out.push_back(values[std::size_t(b) * components + c]);
+    return out;
+  };
   write_file_atomically(
       path,
       [&](std::ostream& out)
@@ -17,7 +32,7 @@ void write_blocks_vtu(const std::string& path, const BlockModel& m,
         write_vtu_file_start(out, encoding);
         out << "  <UnstructuredGrid>\n"
             << "    <Piece NumberOfPoints=\"" << m.n_vertices() << "\" NumberOfCells=\""
-            << m.n_blocks() << "\">\n"
+            << shown.size() << "\">\n"
             << "      <Points>\n";
         write_data_array<double>(out, encoding, "Points", 3, m.vertex.size(),
                                  [&](std::size_t first, std::size_t count, double* to)
@@ -29,8 +44,8 @@ void write_blocks_vtu(const std::string& path, const BlockModel& m,
         out << "      </Points>\n      <Cells>\n";
 
         std::vector<std::int64_t> connectivity, offsets, faces, face_offsets;
-        std::vector<std::uint8_t> types(m.n_blocks(), 42); // VTK_POLYHEDRON
-        for (unsigned int b = 0; b < m.n_blocks(); ++b)
+        std::vector<std::uint8_t> types(shown.size(), 42); // VTK_POLYHEDRON
+        for (unsigned int b : shown)
         {
           for (unsigned int v = m.vertex_start[b]; v < m.vertex_start[b + 1]; ++v)
             connectivity.push_back(v);
@@ -51,14 +66,17 @@ void write_blocks_vtu(const std::string& path, const BlockModel& m,
         write_data_array<std::int64_t>(out, encoding, "faceoffsets", 1, face_offsets);
         out << "      </Cells>\n      <CellData Scalars=\"block_id\">\n";
 
-        std::vector<std::int32_t> ids(m.n_blocks());
-        for (unsigned int b = 0; b < m.n_blocks(); ++b)
-          ids[b] = static_cast<std::int32_t>(b);
+        std::vector<std::int32_t> ids;
+        for (unsigned int b : shown)
+          ids.push_back(static_cast<std::int32_t>(b));
         write_data_array<std::int32_t>(out, encoding, "block_id", 1, ids);
-        write_data_array<std::int32_t>(out, encoding, "group", 1, m.group);
-        write_data_array<double>(out, encoding, "volume", 1, m.volume);
+        std::vector<std::int32_t> groups;
+        for (unsigned int b : shown)
+          groups.push_back(static_cast<std::int32_t>(m.group[b]));
+        write_data_array<std::int32_t>(out, encoding, "group", 1, groups);
+        write_data_array<double>(out, encoding, "volume", 1, pick(m.volume, 1));
         for (const BlockField& f : fields)
-          write_data_array<double>(out, encoding, f.name, f.components, f.values);
+          write_data_array<double>(out, encoding, f.name, f.components, pick(f.values, f.components));
         out << "      </CellData>\n    </Piece>\n  </UnstructuredGrid>\n</VTKFile>\n";
       });
 }

@@ -324,6 +324,9 @@ void Checkpoint::write(unsigned long step) const
   out.put(static_cast<std::uint64_t>(long_counters_.size()));
   for (const unsigned long* c : long_counters_)
     out.put(*c);
+  out.put(static_cast<std::uint64_t>(real_values_.size()));
+  for (const double* c : real_values_)
+    out.put(*c);
   out.put(static_cast<unsigned char>(rigid_ != nullptr));
   if (rigid_ != nullptr)
     rigid_->save_state(out);
@@ -367,6 +370,11 @@ unsigned long Checkpoint::restore(const std::string& file)
   if (n != long_counters_.size())
     in.mismatch("output step counters", n, long_counters_.size());
   for (unsigned long* c : long_counters_)
+    in.get(*c);
+  in.get(n);
+  if (n != real_values_.size())
+    in.mismatch("run loop values", n, real_values_.size());
+  for (double* c : real_values_)
     in.get(*c);
   unsigned char present = 0;
   in.get(present);
@@ -538,6 +546,16 @@ void ContactSet::load_state(CheckpointReader& in, unsigned int n_blocks)
 
 void RigidSolver::save_state(CheckpointWriter& out) const
 {
+  // What stages changed, first: loading sets the damper's kind from it.
+  out.tag("stages");
+  out.put(removed_);
+  out.put(fixed);
+  out.put(static_cast<unsigned char>(s_.dynamic));
+  out.put(dt_);
+  out.put(s_.joint_rule.of_joint_set);
+  out.put(s_.joint_rule.of_joint);
+  out.put(s_.joint_rule.n_groups);
+  out.put(s_.joint_rule.of_group_pair);
   out.tag("model");
   out.put(m_.vertex);
   out.put(m_.face_normal);
@@ -580,6 +598,21 @@ void RigidSolver::save_state(CheckpointWriter& out) const
 void RigidSolver::load_state(CheckpointReader& in)
 {
   const std::size_t nb = m_.n_blocks();
+  in.tag("stages");
+  in.get(removed_, nb, "blocks");
+  in.get(fixed, nb, "blocks");
+  unsigned char dynamic = 0;
+  in.get(dynamic);
+  in.get(dt_);
+  s_.dynamic = dynamic != 0;
+  damper_ = Damper(s_.dynamic ? Damping::none : s_.damping, s_.local_damping,
+                   s_.global_damping_ratio, dt_);
+  in.get(s_.joint_rule.of_joint_set);
+  in.get(s_.joint_rule.of_joint);
+  in.get(s_.joint_rule.n_groups);
+  in.get(s_.joint_rule.of_group_pair);
+  if (!s_.joint_rule.trivial())
+    s_.contact.materials = &s_.joint_rule;
   in.tag("model");
   in.get(m_.vertex, m_.vertex.size(), "block vertices");
   in.get(m_.face_normal, m_.face_normal.size(), "block faces");
@@ -618,6 +651,14 @@ void RigidSolver::load_state(CheckpointReader& in)
   growth_watch_.load_state(in);
   in.get(step_);
   in.get(last_output_);
+  // The rotational inertia follows the density scaling of the masses.
+  for (std::size_t b = 0; b < nb; ++b)
+  {
+    const double scale = mass[b] > 0.0 ? inertial_mass[b] / mass[b] : 1.0;
+    inertia[b] = true_inertia_[b] * scale;
+    if (s_.principal_inertia)
+      principal_moments[b] = true_principal_[b] * scale;
+  }
   resumed_ = true;
 }
 

@@ -373,6 +373,20 @@ InputError ParameterFile::error(const std::string& name, const std::string& prob
                         line == 0 ? problem + " (default value)" : problem, allowed);
 }
 
+std::vector<std::string> ParameterFile::sections_in(const std::string& section) const
+{
+  std::vector<std::pair<unsigned int, std::string>> found;
+  const std::string prefix = section + " / ";
+  for (const auto& [path, line] : section_line_)
+    if (path.rfind(prefix, 0) == 0 && path.find(" / ", prefix.size()) == std::string::npos)
+      found.emplace_back(line, path.substr(prefix.size()));
+  std::sort(found.begin(), found.end());
+  std::vector<std::string> names;
+  for (const auto& f : found)
+    names.push_back(f.second);
+  return names;
+}
+
 std::map<std::string, unsigned int> ParameterFile::lines() const
 {
   std::map<std::string, unsigned int> lines;

@@ -27,6 +27,9 @@ public:
 
   /// Names of the top-level subsections the file uses, in order of first use.
   const std::vector<std::string>& sections_in_file() const { return sections_in_file_; }
+  /// Names of the subsections the file opens directly inside `section`
+  /// (a top-level one), in the order of their lines.
+  std::vector<std::string> sections_in(const std::string& section) const;
 
   /// Enters/leaves a subsection for declarations and reads.
   void enter(const std::string& section);

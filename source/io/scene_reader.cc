@@ -8,6 +8,7 @@
 #include "rock_materials_reader.h"
 #include "parameter_file.h"
 #include "region_reader.h"
+#include "stage_reader.h"
 
 #include <cerrno>
 #include <cmath>
@@ -447,6 +448,9 @@ void parse_deformable(ParameterFile& prm, Scene& scene)
     {
       for (const ExcavationSpec& e : scene.excavations)
         d.edge_length.near.push_back(e.region);
+      for (const StageSpec& stage : scene.stages) // where stages will excavate
+        for (const ExcavationSpec& e : stage.excavations)
+          d.edge_length.near.push_back(e.region);
       if (d.edge_length.near.empty())
         throw prm.error("Fine edge length",
                         "asks for fine zones at the excavations, and the scene has none",
@@ -705,7 +709,7 @@ void parse_solver(ParameterFile& prm, Scene& scene)
   s.steps = static_cast<unsigned long>(prm.get_integer("Steps"));
   s.steps = std::min(s.steps, step_limit_from_environment());
   s.target_ratio = prm.get_double("Target ratio");
-  s.local_damping = s.dynamic ? 0.0 : prm.get_double("Local damping");
+  s.local_damping = prm.get_double("Local damping"); // used only when static
   const std::string damping = prm.get("Damping");
   s.damping = damping == "local"      ? Damping::local
               : damping == "combined" ? Damping::combined
@@ -770,6 +774,24 @@ void warn_ignored(const ParameterFile& prm, const std::string& section,
   }
 }
 
+/// The 'Excavation M' nested in stage `stage`, in the order of M.
+std::vector<std::string> stage_excavations(const ParameterFile& prm, const std::string& stage)
+{
+  std::vector<std::pair<long, std::string>> found;
+  const std::regex excavation("Excavation ([0-9]{1,9})");
+  for (const std::string& s : prm.sections_in(stage))
+  {
+    std::smatch m;
+    if (std::regex_match(s, m, excavation))
+      found.emplace_back(std::stol(m[1]), s);
+  }
+  std::sort(found.begin(), found.end());
+  std::vector<std::string> names;
+  for (const auto& f : found)
+    names.push_back(f.second);
+  return names;
+}
+
 void warn_about_ignored_entries(const ParameterFile& prm, Scene& scene,
                                 const std::vector<std::pair<std::string, std::string>>& sections)
 {
@@ -815,7 +837,7 @@ Scene read_scene(const std::string& filename, bool prepare_output)
   // Numbered subsections exist exactly as the file names them.
   const std::regex numbered(
       "(Joint set|Joint material|Joint|Excavation|Group contact|Group|Load|Boundary|Rock "
-      "material) ([0-9]+)");
+      "material|Stage) ([0-9]+)");
   std::vector<std::tuple<std::string, long, std::string>> found; // kind, number, name
   if (prm.sections_in_file().size() > max_numbered_sections + 16)
     throw InputError(filename + ": the file has " + std::to_string(prm.sections_in_file().size()) +
@@ -872,6 +894,8 @@ Scene read_scene(const std::string& filename, bool prepare_output)
       declare_group_contact(prm, name);
     else if (kind == "Rock material")
       declare_rock_material(prm, name);
+    else if (kind == "Stage")
+      declare_stage(prm, name, stage_excavations(prm, name));
     else
       declare_group(prm, name);
   }
@@ -912,6 +936,9 @@ Scene read_scene(const std::string& filename, bool prepare_output)
       parse_boundary(prm, name, scene);
     else if (kind == "Group contact")
       parse_group_contact(prm, name, scene);
+  for (const auto& [kind, name] : numbered_sections)
+    if (kind == "Stage")
+      parse_stage(prm, name, stage_excavations(prm, name), scene);
   parse_deformable(prm, scene);
   for (const auto& [kind, name] : numbered_sections)
     if (kind == "Rock material")

@@ -45,6 +45,17 @@ std::vector<Operation> operations(const Scene& scene, BuildReport* report)
                      if (report)
                        report->excavated_volume.push_back(removed);
                    }});
+  // Where stages will excavate, the model is cut now: the pieces inside are
+  // removed at their stage.
+  for (std::size_t k = 0; k < scene.stages.size(); ++k)
+    for (std::size_t e = 0; e < scene.stages[k].excavations.size(); ++e)
+      ops.push_back({scene.stages[k].excavations[e].section,
+                     [&scene, k, e, report](BlockGenerator& g)
+                     {
+                       const double inside = g.cut_along(scene.stages[k].excavations[e].region);
+                       if (report)
+                         report->stage_excavated_volume.push_back(inside);
+                     }});
   return ops;
 }
 

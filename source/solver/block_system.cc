@@ -34,7 +34,7 @@ ZoneMaterials zone_materials(const Scene& scene, const BlockModel& model, const 
   // Material index of each (rock material, nodal mixed) pair, made when
   // first used; rock material 0 is that of 'Deformable'.
   constexpr unsigned int none = ~0u;
-  std::vector<std::array<unsigned int, 2>> index(scene.rock_materials.size() + 1, {none, none});
+  std::vector<std::array<unsigned int, 2>> index(scene.rock_materials.size() + 1, {{none, none}});
   for (unsigned int z = 0; z < mesh.n_zones(); ++z)
   {
     if (z > 0 && mesh.zone_block[z] == mesh.zone_block[z - 1])

@@ -12,6 +12,7 @@
 #include <petscvec.h>
 
 #include <algorithm>
+#include <map>
 #include <array>
 #include <chrono>
 #include <cmath>
@@ -234,56 +235,8 @@ DeformableSolver::DeformableSolver(const TetMesh& mesh, std::vector<ZoneMaterial
   // Masses: a quarter of each zone's mass to each of its gridpoints; and
   // the stiffness of eq. 86 summed at each gridpoint (eq. 85). The
   // tetrahedra of a hexahedral zone count half, as each overlay fills it.
-  std::vector<double> mass(ng, 0.0), stiffness(ng, 0.0);
-  const auto P = [&](unsigned int g)
-  { return Vec3(mesh_.position[3 * g], mesh_.position[3 * g + 1], mesh_.position[3 * g + 2]); };
-  for (unsigned int z = 0; z < nz; ++z)
-  {
-    const auto& t = mesh_.zone_gridpoint[z];
-    const ZoneMaterial& mat = materials_[material_of_zone_[z]];
-    if (mesh_.quadratic())
-    {
-      // The bound of tet10_mass_and_stiffness is for the undamped cycle.
-      // Local damping (eq. 79) and combined damping (eq. 83) change the
-      // force on a component by -alpha |F| sign(.), so by at most a factor
-      // 1 + alpha (when it adds to a force opposing the motion); the
-      // largest eigenvalue that the step sees grows by that factor at most,
-      // and so must the nodal stiffness.
-      const double damped =
-          !s_.dynamic && (s_.damping == Damping::local || s_.damping == Damping::combined)
-              ? 1.0 + s_.local_damping
-              : 1.0;
-      double m10[10], k10[10];
-      tet10_mass_and_stiffness(mesh_, z, mat.density, mat.bulk_modulus, mat.shear_modulus, m10,
-                               k10);
-      for (int a = 0; a < 10; ++a)
-      {
-        const unsigned int g = a < 4 ? t[a] : mesh_.zone_edge_gridpoint[z][a - 4];
-        mass[g] += m10[a];
-        stiffness[g] += damped * k10[a];
-      }
-      continue;
-    }
-    const double V = (P(t[1]) - P(t[0])).dot((P(t[2]) - P(t[0])).cross(P(t[3]) - P(t[0]))) / 6.0;
-    double b_max = 0.0, largest_face = 0.0;
-    for (int i = 0; i < 4; ++i)
-      for (int j = i + 1; j < 4; ++j)
-      {
-        b_max = std::max(b_max, (P(t[i]) - P(t[j])).norm());
-        for (int k = j + 1; k < 4; ++k)
-          largest_face =
-              std::max(largest_face, 0.5 * (P(t[j]) - P(t[i])).cross(P(t[k]) - P(t[i])).norm());
-      }
-    const double h_min = 3.0 * V / largest_face;
-    const double k_zone =
-        8.0 / 3.0 * (mat.bulk_modulus + 4.0 / 3.0 * mat.shear_modulus) * b_max * b_max / h_min;
-    const double weight = in_hex[z] ? 0.5 : 1.0;
-    for (int a = 0; a < 4; ++a)
-    {
-      mass[t[a]] += weight * 0.25 * mat.density * V;
-      stiffness[t[a]] += weight * k_zone;
-    }
-  }
+  std::vector<double> mass, stiffness;
+  zone_masses(mass, stiffness);
   gravity_force_.assign(3 * ng, 0.0);
   for (unsigned int g = 0; g < ng; ++g)
     for (int d = 0; d < 3; ++d)
@@ -317,6 +270,7 @@ DeformableSolver::DeformableSolver(const TetMesh& mesh, std::vector<ZoneMaterial
   }
   true_mass_ = mass;
   nodal_stiffness_ = stiffness;
+  reference_ = mesh_.position;
 
   // Boundary conditions, by the gridpoints' initial positions.
   held_.assign(ng, 0);
@@ -404,6 +358,63 @@ DeformableSolver::DeformableSolver(const TetMesh& mesh, std::vector<ZoneMaterial
     last_force_.assign(3 * ng, 0.0);
   if (nodal_mixed_)
     plan_nodal_mixed();
+}
+
+void DeformableSolver::zone_masses(std::vector<double>& mass, std::vector<double>& stiffness) const
+{
+  const unsigned int ng = mesh_.n_gridpoints(), nz = mesh_.n_zones();
+  const std::vector<char> in_hex = zones_in_hexes(mesh_);
+  mass.assign(ng, 0.0);
+  stiffness.assign(ng, 0.0);
+  const auto P = [&](unsigned int g)
+  { return Vec3(mesh_.position[3 * g], mesh_.position[3 * g + 1], mesh_.position[3 * g + 2]); };
+  for (unsigned int z = 0; z < nz; ++z)
+  {
+    const auto& t = mesh_.zone_gridpoint[z];
+    const ZoneMaterial& mat = materials_[material_of_zone_[z]];
+    if (mesh_.quadratic())
+    {
+      // The bound of tet10_mass_and_stiffness is for the undamped cycle.
+      // Local damping (eq. 79) and combined damping (eq. 83) change the
+      // force on a component by -alpha |F| sign(.), so by at most a factor
+      // 1 + alpha (when it adds to a force opposing the motion); the
+      // largest eigenvalue that the step sees grows by that factor at most,
+      // and so must the nodal stiffness.
+      const double damped =
+          !s_.dynamic && (s_.damping == Damping::local || s_.damping == Damping::combined)
+              ? 1.0 + s_.local_damping
+              : 1.0;
+      double m10[10], k10[10];
+      tet10_mass_and_stiffness(mesh_, z, mat.density, mat.bulk_modulus, mat.shear_modulus, m10,
+                               k10);
+      for (int a = 0; a < 10; ++a)
+      {
+        const unsigned int g = a < 4 ? t[a] : mesh_.zone_edge_gridpoint[z][a - 4];
+        mass[g] += m10[a];
+        stiffness[g] += damped * k10[a];
+      }
+      continue;
+    }
+    const double V = (P(t[1]) - P(t[0])).dot((P(t[2]) - P(t[0])).cross(P(t[3]) - P(t[0]))) / 6.0;
+    double b_max = 0.0, largest_face = 0.0;
+    for (int i = 0; i < 4; ++i)
+      for (int j = i + 1; j < 4; ++j)
+      {
+        b_max = std::max(b_max, (P(t[i]) - P(t[j])).norm());
+        for (int k = j + 1; k < 4; ++k)
+          largest_face =
+              std::max(largest_face, 0.5 * (P(t[j]) - P(t[i])).cross(P(t[k]) - P(t[i])).norm());
+      }
+    const double h_min = 3.0 * V / largest_face;
+    const double k_zone =
+        8.0 / 3.0 * (mat.bulk_modulus + 4.0 / 3.0 * mat.shear_modulus) * b_max * b_max / h_min;
+    const double weight = in_hex[z] ? 0.5 : 1.0;
+    for (int a = 0; a < 4; ++a)
+    {
+      mass[t[a]] += weight * 0.25 * mat.density * V;
+      stiffness[t[a]] += weight * k_zone;
+    }
+  }
 }
 
 DeformableSolver::~DeformableSolver() = default;
@@ -1139,12 +1150,128 @@ void DeformableSolver::use_time_step(double dt, const std::vector<double>& joint
     throw InputError("the time step " + number(dt) + " s exceeds the stable step of the zones, " +
                      number(stable_time_step_of(true_mass_, k)) + " s (eq. 84)");
   dt_ = dt;
+  joint_stiffness_ = joint_stiffness;
+  set_inertial_masses();
+}
+
+void DeformableSolver::set_inertial_masses()
+{
+  const unsigned int ng = mesh_.n_gridpoints();
+  const bool scaled = !s_.dynamic && s_.density_scaling;
   LocalArray m(petsc_->inertial_mass);
   for (unsigned int g = 0; g < ng; ++g)
+  {
+    const double k = nodal_stiffness_[g] + (g < joint_stiffness_.size() ? joint_stiffness_[g] : 0.0);
     for (int d = 0; d < 3; ++d)
-      m[3 * g + d] = scaled ? std::max(true_mass_[g], k[g] * dt * dt / 4.0) : true_mass_[g];
+      m[3 * g + d] = scaled ? std::max(true_mass_[g], k * dt_ * dt_ / 4.0) : true_mass_[g];
+  }
   damper_ = Damper(s_.dynamic ? Damping::none : s_.damping, s_.local_damping,
                    s_.global_damping_ratio, dt_);
+  if (!s_.dynamic && s_.damping == Damping::combined)
+    last_force_.assign(3 * ng, 0.0);
+}
+
+void DeformableSolver::set_dynamic(bool dynamic)
+{
+  s_.dynamic = dynamic;
+  if (joint_stiffness_.empty() && s_.time_step <= 0.0)
+  {
+    // Alone (no block solver sets the step): eq. 84, or the unit step of
+    // density scaling.
+    std::vector<double> k = nodal_stiffness_;
+    dt_ = !dynamic && s_.density_scaling ? 1.0 : stable_time_step_of(true_mass_, k);
+  }
+  set_inertial_masses();
+}
+
+void DeformableSolver::reset_displacements()
+{
+  reference_ = positions();
+}
+
+void DeformableSolver::remove_zones(std::vector<char> gone)
+{
+  const unsigned int ng = mesh_.n_gridpoints();
+  // A hexahedral zone goes whole: its ten tetrahedra share one mean stress.
+  for (unsigned int h = 0; h < mesh_.n_hexes(); ++h)
+  {
+    bool any = false;
+    for (unsigned int k = 0; k < TetMesh::tets_per_hex; ++k)
+      any |= gone[mesh_.hex_first_zone[h] + k] != 0;
+    for (unsigned int k = 0; k < TetMesh::tets_per_hex && any; ++k)
+      gone[mesh_.hex_first_zone[h] + k] = 1;
+  }
+  // The energy the zones hold leaves the account with them.
+  EnergyAccount before;
+  add_energy(before);
+  const std::vector<double> mass_before = true_mass_;
+  null_zones(gone);
+  {
+    // A gridpoint of removed zones only is held where it is.
+    LocalArray v(petsc_->velocity);
+    for (unsigned int g = 0; g < ng; ++g)
+      if (true_mass_[g] == 0.0 && mass_before[g] > 0.0)
+      {
+        held_[g] = 7u;
+        for (int d = 0; d < 3; ++d)
+        {
+          v[3 * g + d] = held_velocity_[3 * g + d] = 0.0;
+          held_until_[3 * g + d] = std::numeric_limits<double>::infinity();
+        }
+      }
+  }
+  set_inertial_masses();
+  EnergyAccount after;
+  add_energy(after);
+  initial_elastic_ -= after.error() - before.error();
+}
+
+void DeformableSolver::null_zones(const std::vector<char>& gone)
+{
+  const unsigned int nz = mesh_.n_zones(), ng = mesh_.n_gridpoints();
+  if (removed_zone_.empty())
+    removed_zone_.assign(nz, 0);
+  // One null material per element type: no stiffness, no density, elastic
+  // (its stresses stay zero, so its zones add no force).
+  std::map<int, unsigned int> null_of_element;
+  for (unsigned int z = 0; z < nz; ++z)
+  {
+    if (!gone[z] || removed_zone_[z])
+      continue;
+    removed_zone_[z] = 1;
+    ZoneMaterial null = materials_[material_of_zone_[z]];
+    const auto [it, fresh] =
+        null_of_element.emplace(int(null.element), static_cast<unsigned int>(materials_.size()));
+    if (fresh)
+    {
+      null.model = ZoneModel::elastic;
+      null.bulk_modulus = null.shear_modulus = 0.0;
+      null.density = 0.0;
+      null.nodal_mixed = false;
+      materials_.push_back(null);
+    }
+    material_of_zone_[z] = it->second;
+    for (unsigned int q = 0; q < points_per_zone_; ++q)
+    {
+      std::fill_n(&stress_[6 * (points_per_zone_ * z + q)], 6, 0.0);
+      state_[points_per_zone_ * z + q] = 0;
+    }
+  }
+  batch_start_.clear();
+  for (unsigned int z = 0; z < nz; ++z)
+    if (z == 0 || material_of_zone_[z] != material_of_zone_[z - 1])
+      batch_start_.push_back(z);
+  batch_start_.push_back(nz);
+  // Masses and gravity of what remains.
+  std::vector<double> mass, stiffness;
+  zone_masses(mass, stiffness);
+  for (unsigned int g = 0; g < ng; ++g)
+    for (int d = 0; d < 3; ++d)
+      gravity_force_[3 * g + d] += (mass[g] - true_mass_[g]) * s_.gravity[d];
+  true_mass_ = mass;
+  nodal_stiffness_ = stiffness;
+  if (nodal_mixed_)
+    plan_nodal_mixed();
 }
 
 unsigned long DeformableSolver::run_to_ratio(double ratio, unsigned long max_steps)
@@ -1168,7 +1295,7 @@ std::vector<double> DeformableSolver::displacements() const
 {
   std::vector<double> u = positions();
   for (std::size_t i = 0; i < u.size(); ++i)
-    u[i] -= mesh_.position[i];
+    u[i] -= reference_[i];
   return u;
 }
 
@@ -1324,6 +1451,12 @@ void DeformableSolver::elastic_operator(const double* u, double* Ku)
 
 void DeformableSolver::save_state(CheckpointWriter& out) const
 {
+  // What stages changed, first: loading sets the damper's kind from it.
+  out.tag("zone stages");
+  out.put(removed_zone_);
+  out.put(reference_);
+  out.put(static_cast<unsigned char>(s_.dynamic));
+  out.put(dt_);
   out.tag("zones");
   for (const auto* vec :
        {&petsc_->position, &petsc_->velocity, &petsc_->force, &petsc_->inertial_mass})
@@ -1353,6 +1486,20 @@ void DeformableSolver::save_state(CheckpointWriter& out) const
 
 void DeformableSolver::load_state(CheckpointReader& in)
 {
+  in.tag("zone stages");
+  std::vector<char> removed;
+  in.get(removed);
+  if (!removed.empty() && removed.size() != mesh_.n_zones())
+    in.mismatch("removed zones", removed.size(), mesh_.n_zones());
+  in.get(reference_, reference_.size(), "gridpoint reference positions");
+  unsigned char dynamic = 0;
+  in.get(dynamic);
+  in.get(dt_);
+  s_.dynamic = dynamic != 0;
+  damper_ = Damper(s_.dynamic ? Damping::none : s_.damping, s_.local_damping,
+                   s_.global_damping_ratio, dt_);
+  if (!removed.empty())
+    null_zones(removed);
   in.tag("zones");
   const std::size_t ng = mesh_.n_gridpoints();
   std::vector<double> values;

@@ -1,5 +1,6 @@
 #include <talus/base/exceptions.h>
 #include <talus/geometry/mass_properties.h>
+#include <talus/contact/contact_origin.h>
 #include <talus/joint/joint_model.h>
 #include <talus/solver/damper.h>
 #include <talus/solver/deformable_solver.h>
@@ -78,6 +79,7 @@ RigidSolver::RigidSolver(BlockModel& blocks, double density, const SolverSetting
   last_force_.assign(nb, Vec3::Zero());
   last_moment_.assign(nb, Vec3::Zero());
   is_deformable_.assign(nb, 0);
+  removed_.assign(nb, 0);
   if (zones_ != nullptr)
   {
     for (unsigned int b = 0; b < nb; ++b)
@@ -93,17 +95,10 @@ RigidSolver::RigidSolver(BlockModel& blocks, double density, const SolverSetting
     principal_moments.resize(nb);
     axes.resize(nb);
   }
-  double mass_sum = 0.0;
-  unsigned int n_rigid = 0;
   for (unsigned int b = 0; b < nb; ++b)
   {
     const double rho = s_.block_density.empty() ? density : s_.block_density.at(b);
     mass[b] = rho * m_.volume[b];
-    if (!is_deformable_[b])
-    {
-      mass_sum += mass[b];
-      ++n_rigid;
-    }
     // The manual's approximate isotropic inertia, from the mean distance r
     // of the vertices to the centroid (below eq. 45): I = (2/9) m r^2, the
     // factor that makes it exact for a cube.
@@ -142,54 +137,10 @@ RigidSolver::RigidSolver(BlockModel& blocks, double density, const SolverSetting
           spin[b] = load.initial_spin;
       }
   }
-  // Density scaling for statics: no block lighter (in inertia) than the mean.
-  inertial_mass = mass;
-  if (!s_.dynamic && s_.density_scaling && n_rigid > 0)
-    for (unsigned int b = 0; b < nb; ++b)
-    {
-      const double scale = std::max(1.0, mass_sum / n_rigid / mass[b]);
-      inertial_mass[b] *= scale;
-      inertia[b] *= scale;
-      if (s_.principal_inertia)
-        principal_moments[b] *= scale;
-    }
-  dt_ = s_.time_step > 0.0 ? s_.time_step : stable_time_step();
-  if (s_.time_step > 0.0 && s_.time_step_fraction > 0.0)
-  {
-    // A step beyond eq. 87 without its safety fraction cannot be stable.
-    const double limit = stable_time_step() / s_.time_step_fraction;
-    if (s_.time_step > limit)
-      throw InputError(
-          s_.source + ": entry 'Time step' in subsection 'Solver': " + number(s_.time_step) +
-          " s is larger than the stable step of the blocks, " + number(limit) +
-          " s (eq. 87 with frac = 1); allowed: at most that, or 0 for the automatic step");
-  }
-  if (zones_ != nullptr)
-  {
-    // Eq. 85: the joints add their stiffness to the surface gridpoints;
-    // eq. 88: the smaller of the block and zone steps governs.
-    std::vector<double> joint_stiffness(zones_->mesh().n_gridpoints(), 0.0);
-    const double k = stiffest_joint();
-    for (unsigned int b : deformable_blocks_)
-      for (unsigned int f = m_.face_start[b]; f < m_.face_start[b + 1]; ++f)
-      {
-        const unsigned int q = m_.face_loop_start[f];
-        const Vec3& x0 = m_.vertex[m_.face_vertex[q]];
-        const double area = 0.5 * (m_.vertex[m_.face_vertex[q + 1]] - x0)
-                                      .cross(m_.vertex[m_.face_vertex[q + 2]] - x0)
-                                      .norm();
-        for (int j = 0; j < 3; ++j) // each corner's share as its contact spring has it
-          joint_stiffness[vertex_gridpoint_[m_.face_vertex[q + j]]] +=
-              k * area * (m_.face_corner_share.empty() ? 1.0 / 3.0 : m_.face_corner_share[f][j]);
-      }
-    if (s_.time_step <= 0.0 && (s_.dynamic || !s_.density_scaling))
-      dt_ = std::min(dt_, zones_->stable_time_step(joint_stiffness));
-    else if (s_.time_step <= 0.0 && dt_ == 1e300)
-      dt_ = 1.0; // statics, deformable blocks only: unit step, scaled masses
-    zones_->use_time_step(dt_, joint_stiffness);
-  }
-  damper_ = Damper(s_.dynamic ? Damping::none : s_.damping, s_.local_damping,
-                   s_.global_damping_ratio, dt_);
+  true_inertia_ = inertia;
+  if (s_.principal_inertia)
+    true_principal_ = principal_moments;
+  set_masses_and_step();
 
   envelopes_.resize(nb);
   Box all{m_.vertex.empty() ? Vec3::Zero() : m_.vertex[0],
@@ -226,6 +177,158 @@ RigidSolver::RigidSolver(BlockModel& blocks, double density, const SolverSetting
   initial_stored_ += joint_energy();
   kinetic_whole_step_ = initial_stored_ - joint_energy();
   energy_floor_ = 1e-9 * weight_size + 1e-6; // J
+}
+
+void RigidSolver::set_masses_and_step()
+{
+  // Density scaling for statics: no block lighter (in inertia) than the mean.
+  const unsigned int nb = m_.n_blocks();
+  double mass_sum = 0.0;
+  unsigned int n_rigid = 0;
+  for (unsigned int b = 0; b < nb; ++b)
+    if (!is_deformable_[b] && !removed_[b])
+    {
+      mass_sum += mass[b];
+      ++n_rigid;
+    }
+  inertial_mass = mass;
+  inertia = true_inertia_;
+  if (s_.principal_inertia)
+    principal_moments = true_principal_;
+  if (!s_.dynamic && s_.density_scaling && n_rigid > 0)
+    for (unsigned int b = 0; b < nb; ++b)
+    {
+      const double scale = std::max(1.0, mass_sum / n_rigid / mass[b]);
+      inertial_mass[b] *= scale;
+      inertia[b] *= scale;
+      if (s_.principal_inertia)
+        principal_moments[b] *= scale;
+    }
+  dt_ = s_.time_step > 0.0 ? s_.time_step : stable_time_step();
+  if (s_.time_step > 0.0 && s_.time_step_fraction > 0.0)
+  {
+    // A step beyond eq. 87 without its safety fraction cannot be stable.
+    const double limit = stable_time_step() / s_.time_step_fraction;
+    if (s_.time_step > limit)
+      throw InputError(
+          s_.source + ": entry 'Time step' in subsection 'Solver': " + number(s_.time_step) +
+          " s is larger than the stable step of the blocks, " + number(limit) +
+          " s (eq. 87 with frac = 1); allowed: at most that, or 0 for the automatic step");
+  }
+  if (zones_ != nullptr)
+  {
+    // Eq. 85: the joints add their stiffness to the surface gridpoints;
+    // eq. 88: the smaller of the block and zone steps governs.
+    std::vector<double> joint_stiffness(zones_->mesh().n_gridpoints(), 0.0);
+    const double k = stiffest_joint();
+    for (unsigned int b : deformable_blocks_)
+      for (unsigned int f = m_.face_start[b]; f < m_.face_start[b + 1] && !removed_[b]; ++f)
+      {
+        const unsigned int q = m_.face_loop_start[f];
+        const Vec3& x0 = m_.vertex[m_.face_vertex[q]];
+        const double area = 0.5 * (m_.vertex[m_.face_vertex[q + 1]] - x0)
+                                      .cross(m_.vertex[m_.face_vertex[q + 2]] - x0)
+                                      .norm();
+        for (int j = 0; j < 3; ++j) // each corner's share as its contact spring has it
+          joint_stiffness[vertex_gridpoint_[m_.face_vertex[q + j]]] +=
+              k * area * (m_.face_corner_share.empty() ? 1.0 / 3.0 : m_.face_corner_share[f][j]);
+      }
+    if (s_.time_step <= 0.0 && (s_.dynamic || !s_.density_scaling))
+      dt_ = std::min(dt_, zones_->stable_time_step(joint_stiffness));
+    else if (s_.time_step <= 0.0 && dt_ == 1e300)
+      dt_ = 1.0; // statics, deformable blocks only: unit step, scaled masses
+    zones_->use_time_step(dt_, joint_stiffness);
+  }
+  damper_ = Damper(s_.dynamic ? Damping::none : s_.damping, s_.local_damping,
+                   s_.global_damping_ratio, dt_);
+}
+
+void RigidSolver::remove_blocks(const std::vector<unsigned int>& blocks)
+{
+  if (blocks.empty())
+    return;
+  // The energy the removed blocks and their joints hold leaves the account
+  // with them: its error stays what it was.
+  const double error_before = energy_account().error();
+  std::vector<char> zone_block_gone;
+  for (unsigned int b : blocks)
+  {
+    removed_[b] = 1;
+    fixed[b] = 1;
+    velocity[b] = spin[b] = Vec3::Zero();
+    prescribed[b] = 0;
+    applied_force[b] = applied_force_rate[b] = Vec3::Zero();
+  }
+  contacts_.remove_contacts_of(removed_);
+  contacts_.update(m_, s_.contact, &path);
+  if (zones_ != nullptr)
+  {
+    bool any = false;
+    for (unsigned int b : blocks)
+      any |= is_deformable_[b] != 0;
+    if (any)
+    {
+      std::vector<char> zone_gone(zones_->mesh().n_zones(), 0);
+      for (unsigned int z = 0; z < zone_gone.size(); ++z)
+        zone_gone[z] = removed_[zones_->mesh().zone_block[z]];
+      zones_->remove_zones(zone_gone);
+    }
+  }
+  set_masses_and_step();
+  initial_stored_ -= energy_account().error() - error_before;
+}
+
+void RigidSolver::set_fixed(unsigned int b, bool fix)
+{
+  if (removed_[b] || is_deformable_[b])
+    return;
+  fixed[b] = fix ? 1 : 0;
+  velocity[b] = spin[b] = Vec3::Zero();
+}
+
+void RigidSolver::reset_displacements()
+{
+  for (unsigned int b = 0; b < m_.n_blocks(); ++b)
+    displacement[b] = rotation[b] = Vec3::Zero();
+  if (zones_ != nullptr)
+    zones_->reset_displacements();
+}
+
+void RigidSolver::set_dynamic(bool dynamic)
+{
+  if (dynamic == s_.dynamic)
+    return;
+  s_.dynamic = dynamic;
+  if (zones_ != nullptr)
+    zones_->set_dynamic(dynamic);
+  set_masses_and_step();
+}
+
+void RigidSolver::change_joint_material(int origin, unsigned char material)
+{
+  // New contacts on the joint follow the rule; those there now change.
+  if (origin > 0)
+    s_.joint_rule.of_joint_set.resize(std::max<std::size_t>(s_.joint_rule.of_joint_set.size(),
+                                                            origin),
+                                      JointMaterialRule::none);
+  if (origin < 0)
+    s_.joint_rule.of_joint.resize(std::max<std::size_t>(s_.joint_rule.of_joint.size(), -origin),
+                                  JointMaterialRule::none);
+  (origin > 0 ? s_.joint_rule.of_joint_set[origin - 1] : s_.joint_rule.of_joint[-origin - 1]) =
+      material;
+  if (s_.joint_rule.n_groups == 0)
+  {
+    s_.joint_rule.n_groups = static_cast<unsigned int>(m_.group_names.size());
+    s_.joint_rule.of_group_pair.assign(std::size_t(s_.joint_rule.n_groups) *
+                                           s_.joint_rule.n_groups,
+                                       JointMaterialRule::none);
+  }
+  s_.contact.materials = &s_.joint_rule;
+  for (unsigned int c = 0; c < contacts_.n_slots(); ++c)
+    if (contacts_.alive[c] && contact_joint_origin(m_, contacts_, c) == origin)
+      contacts_.material[c] = material;
+  for (unsigned int i = 0; i < contacts_.n_subcontacts(); ++i)
+    contacts_.sc_material[i] = contacts_.material[contacts_.sc_contact[i]];
 }
 
 double RigidSolver::stiffest_joint() const
@@ -289,7 +392,7 @@ void RigidSolver::detect_contacts(bool everything)
   cells_.map(envelopes_);
   cells_.candidate_pairs(envelopes_, everything ? std::vector<char>() : flagged, pairs_);
   for (const auto& [a, b] : pairs_)
-    if (!(fixed[a] && fixed[b]))
+    if (!(fixed[a] && fixed[b]) && !removed_[a] && !removed_[b])
       contacts_.try_create(a, b, m_, s_.contact);
 }
 

@@ -62,6 +62,10 @@ public:
   void update(const BlockModel& blocks, const ContactSettings& settings,
               const std::vector<double>* path = nullptr);
 
+  /// Deletes the contacts of the blocks with `gone[b]` (excavated); their
+  /// sub-contacts go at the next update().
+  void remove_contacts_of(const std::vector<char>& gone);
+
   /// Deformable blocks take part through their surface gridpoints:
   /// `is_deformable` per block, `vertex_gridpoint` per vertex of the block
   /// model (see use_zone_surfaces). Both must outlive the contact set.

@@ -70,6 +70,10 @@ public:
   /// boundary are cut so that exactly the region's volume goes. Returns the
   /// volume removed (m^3).
   double excavate(const ConvexRegion& region);
+  /// Cuts the blocks that the boundary of `region` crosses along it, as
+  /// excavate() does, and keeps every piece: a region to be removed later
+  /// (a stage's excavation). Returns the volume of the pieces inside (m^3).
+  double cut_along(const ConvexRegion& region);
 
   const std::vector<ConvexPolyhedron>& blocks() const { return blocks_; }
   std::vector<ConvexPolyhedron> take_blocks() { return std::move(blocks_); }
@@ -77,6 +81,8 @@ public:
 
 private:
   double tolerance_for(const ConvexPolyhedron& block) const;
+  /// excavate() and cut_along(): the pieces inside are kept with `keep`.
+  double split_by(const ConvexRegion& region, bool keep);
   /// Cuts `block` by `plane`; false (block untouched) when the plane misses
   /// it or a piece would be below the minimum volume.
   /// The cap faces made carry `origin`.

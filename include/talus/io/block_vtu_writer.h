@@ -25,10 +25,11 @@ struct BlockField
 /// Writes every block as one VTK polyhedron cell (type 42) of an XML
 /// unstructured grid, with block id, group and volume as cell data plus any
 /// `fields` (Float64). ParaView shows each block as a solid it can colour
-/// and select.
+/// and select. Blocks with `(*gone)[b]` (removed by a stage) are left out.
 void write_blocks_vtu(const std::string& path, const BlockModel& model,
                       const std::vector<BlockField>& fields = {},
-                      VtuEncoding encoding = VtuEncoding::binary);
+                      VtuEncoding encoding = VtuEncoding::binary,
+                      const std::vector<char>* gone = nullptr);
 
 /// The list of VTU files of a run with their times, written as a PVD file so
 /// that ParaView opens the run as one time series.

@@ -33,7 +33,9 @@ class PvdSeries;
 class RigidSolver;
 struct Scene;
 
-constexpr std::uint32_t checkpoint_format_version = 4; // 4: contacts keep their joint material
+/// 4: contacts keep their joint material; 5: stages (the loop's place,
+/// removed blocks and zones, fixed blocks, mode, joint material rules).
+constexpr std::uint32_t checkpoint_format_version = 5;
 
 /// FNV-1a, 64 bits: a fingerprint, not a cryptographic hash.
 std::uint64_t fnv1a(const void* data, std::size_t size,
@@ -201,6 +203,8 @@ public:
   /// A counter of the output loop (frame numbers, step of the last output).
   void add(unsigned int& counter) { counters_.push_back(&counter); }
   void add(unsigned long& counter) { long_counters_.push_back(&counter); }
+  /// A real number of the run loop (the model time a stage began at, s).
+  void add(double& value) { real_values_.push_back(&value); }
 
   /// Where checkpoints go: `<Output directory>/<Base name>_checkpoint.bin`.
   const std::string& path() const { return path_; }
@@ -232,6 +236,7 @@ private:
   std::vector<PvdSeries*> series_;
   std::vector<unsigned int*> counters_;
   std::vector<unsigned long*> long_counters_;
+  std::vector<double*> real_values_;
 };
 
 } // namespace talus

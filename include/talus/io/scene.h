@@ -50,6 +50,36 @@ struct ExcavationSpec
   std::string section; ///< its subsection, "Excavation N"
 };
 
+/// A joint set or single joint that takes another joint material at a
+/// stage's start ("Joint set 2 = weak").
+struct JointMaterialChange
+{
+  int origin = 0; ///< BlockModel::joint_set_origin(i) or joint_origin(j)
+  unsigned char material = 0;
+};
+
+/// A 'Stage N': what changes at its start, and how its calculation runs.
+/// The stages run in order after the model is built; a scene without any
+/// is one stage with the settings of 'Solver'.
+struct StageSpec
+{
+  std::string section; ///< "Stage N"
+  std::string name;    ///< its 'Name'
+  bool dynamic = false;
+  unsigned long steps = 0;   ///< step limit of this stage
+  double target_ratio = 0.0; ///< statics: stop below this ratio (0: never)
+  double time_limit = 0.0;   ///< s of model time this stage may take (0: no limit)
+  /// Groups whose blocks are removed at the start.
+  std::vector<std::string> excavate_groups;
+  /// Regions removed at the start: the model is cut along their boundaries
+  /// when it is built, and the blocks (zones of a meshed body) whose
+  /// centroid lies inside are removed.
+  std::vector<ExcavationSpec> excavations;
+  std::vector<std::string> fix_groups, free_groups;
+  bool reset_displacements = false;
+  std::vector<JointMaterialChange> joint_materials;
+};
+
 /// Which blocks are deformable and what they are made of.
 struct DeformableSpec
 {
@@ -120,6 +150,8 @@ struct Scene
   /// Resolved into solver.joint_rule by resolve_group_names.
   std::vector<GroupContactSpec> group_contacts;
   std::vector<ExcavationSpec> excavations;
+  /// The 'Stage N' in order (empty: one stage, 'Solver').
+  std::vector<StageSpec> stages;
   std::string default_group = "rock";
   std::vector<GroupSpec> groups;
   OutputSettings output;

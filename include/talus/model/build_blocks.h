@@ -15,6 +15,8 @@ struct BuildReport
 {
   CuttingReport cutting;
   std::vector<double> excavated_volume; ///< m^3, one per excavation in order
+  /// m^3 inside each stage's excavations, in order (cut, removed later).
+  std::vector<double> stage_excavated_volume;
   /// Cuts made and cuts refused by the minimum block volume, per joint set
   /// and per single joint in order (a set that cuts nothing is refused).
   std::vector<std::pair<unsigned long, unsigned long>> joint_set_cuts, joint_cuts;

@@ -178,6 +178,20 @@ public:
   /// The zones whose material has nodal mixed discretization.
   unsigned int nodal_mixed_zones() const;
 
+  /// Stages. Removes zones (`gone[z]`, an excavation): they take a null
+  /// material (no stiffness, no mass, no stress) and their gridpoints lose
+  /// their share of mass and gravity; a gridpoint left without mass is held.
+  /// Hexahedral zones go whole (a tetrahedron of one takes its ten).
+  void remove_zones(std::vector<char> gone);
+  /// Whether zone z was removed.
+  bool zone_removed(unsigned int z) const { return !removed_zone_.empty() && removed_zone_[z]; }
+  /// Displacements start again from zero at the present positions.
+  void reset_displacements();
+  /// Static or dynamic from now on (masses and damping; the time step too
+  /// when the solver runs alone, else the block solver sets it).
+  void set_dynamic(bool dynamic);
+  bool dynamic() const { return s_.dynamic; }
+
   /// Holds every component of gridpoint g at velocity `v` (m/s) from now on.
   void hold_gridpoint(unsigned int g, const Vec3& v);
 
@@ -238,6 +252,18 @@ private:
   std::vector<unsigned char> state_;    ///< per zone
   std::vector<double> gravity_force_;   ///< 3 per gridpoint, N: gravity and gridpoint loads
   std::vector<double> true_mass_;       ///< kg, per gridpoint
+  /// Masses (kg) and the stiffness of eqs. 85-86 (N/m) per gridpoint from
+  /// the zones that remain.
+  void zone_masses(std::vector<double>& mass, std::vector<double>& stiffness) const;
+  /// Inertial masses from the true masses and stiffness (density scaling
+  /// for statics, eq. 84 solved for m), with the joints' stiffness.
+  void set_inertial_masses();
+  /// remove_zones' change of the model (null materials, batches, masses,
+  /// gravity), also made again when a checkpoint is loaded.
+  void null_zones(const std::vector<char>& gone);
+  std::vector<double> joint_stiffness_; ///< N/m per gridpoint, of use_time_step
+  std::vector<double> reference_;       ///< m, 3 per gridpoint: where displacements count from
+  std::vector<char> removed_zone_;      ///< per zone (empty: none removed)
   std::vector<double> nodal_stiffness_; ///< N/m, per gridpoint (eqs. 85-86)
   std::vector<unsigned char> held_;     ///< per gridpoint, bit d: component d held
   std::vector<double> held_velocity_;   ///< 3 per gridpoint, m/s

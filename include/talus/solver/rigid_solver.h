@@ -107,6 +107,27 @@ public:
     face_loads_ = RigidFaceLoads(m_, rigid, loads);
   }
 
+  /// Stages. Removes blocks (an excavation): they lose their contacts and
+  /// stop, and the zones of deformable ones go (DeformableSolver::
+  /// remove_zones); masses and the time step follow.
+  void remove_blocks(const std::vector<unsigned int>& blocks);
+  /// Whether block b was removed.
+  bool removed(unsigned int b) const { return removed_[b] != 0; }
+  const std::vector<char>& removed_blocks() const { return removed_; }
+  /// Holds a rigid block still (fix) or lets it move.
+  void set_fixed(unsigned int b, bool fix);
+  /// Displacements and rotations (and gridpoint displacements) start again
+  /// from zero; forces and stresses stay.
+  void reset_displacements();
+  /// Static (damped, density-scaled) or dynamic from now on: masses, time
+  /// step and damping follow.
+  void set_dynamic(bool dynamic);
+  bool dynamic() const { return s_.dynamic; }
+  /// The contacts on joint set or joint `origin` (BlockModel::
+  /// joint_set_origin, joint_origin), now and later, take joint material
+  /// `material`.
+  void change_joint_material(int origin, unsigned char material);
+
   /// Stable time step of eq. 87 for this model (s).
   double stable_time_step() const;
 
@@ -213,6 +234,12 @@ private:
   double* gp_v_ = nullptr;
   double* gp_f_ = nullptr;
   std::vector<JointProperties> joints_; ///< material 0, then s_.joint_materials
+  /// Inertial masses (density scaling), the time step (eqs. 87-88) and
+  /// the damper, from the settings and the blocks that remain.
+  void set_masses_and_step();
+  std::vector<char> removed_;             ///< per block: excavated by a stage
+  std::vector<double> true_inertia_;      ///< kg m^2, isotropic, before scaling
+  std::vector<Vec3> true_principal_;      ///< kg m^2, before scaling (principal inertia)
   /// The stiffest joint spring per unit area of any material, max(kn, ks) (Pa/m).
   double stiffest_joint() const;
   unsigned int ratio_block_ = 0;

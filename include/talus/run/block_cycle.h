@@ -1,0 +1,63 @@
+#pragma once
+
+#include <talus/base/parallel_environment.h>
+#include <talus/io/block_vtu_writer.h>
+#include <talus/io/contact_vtu_writer.h>
+#include <talus/io/zone_vtu_writer.h>
+#include <talus/run/cycle.h>
+#include <talus/run/run_summary.h>
+#include <talus/solver/block_system.h>
+
+#include <chrono>
+#include <memory>
+#include <string>
+#include <vector>
+
+namespace talus
+{
+
+/// The distinct element cycle of a model of blocks: rigid ones, and
+/// deformable ones with their zones (BlockSystem); contacts between all.
+class BlockCycle : public Cycle
+{
+public:
+  /// Meshes the deformable blocks and builds the solvers (printing the
+  /// summary's lines on zones and the time step); `prefix` is the output
+  /// folder and base name.
+  BlockCycle(Scene& scene, BlockModel& model, const std::string& prefix);
+
+  void step() override;
+  unsigned long steps_done() const override;
+  double time() const override;
+  double dt() const override { return system_.solver->dt(); }
+  double ratio() const override;
+  bool may_stop(unsigned long stage_steps) const override { return stage_steps > 10; }
+  std::vector<std::string> history_columns() const override;
+  std::vector<double> history_row() override;
+  void write_frame(bool diverged) override;
+  void register_checkpoint(Checkpoint& checkpoint) override;
+  RigidSolver* rigid() override { return system_.solver.get(); }
+  DeformableSolver* zones() override { return system_.zones.get(); }
+  void begin_stage(const StageSpec& stage) override;
+  std::string displacement_text() const override;
+  void print_end() override;
+  std::string unbalanced_where() const override;
+
+private:
+  Scene& scene_;
+  BlockModel& model_;
+  std::string prefix_;
+  std::unique_ptr<ParallelEnvironment> parallel_;
+  double meshing_start_; ///< s, steady clock: when the zones began
+  /// Built in place: its solvers hold references to its mesh.
+  BlockSystem system_;
+  PvdSeries block_series_, contact_series_, zone_series_;
+  std::unique_ptr<ZoneWriter> zone_writer_;
+  std::unique_ptr<PointHistory> points_;
+  JointNumbers joint_numbers_;
+  unsigned int frame_ = 0, zone_frame_ = 0;
+  /// The blocks' centroids as built (m): where stage regions select them.
+  std::vector<Vec3> built_centroid_;
+};
+
+} // namespace talus

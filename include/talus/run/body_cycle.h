@@ -1,0 +1,66 @@
+#pragma once
+
+#include <talus/base/parallel_environment.h>
+#include <talus/io/block_vtu_writer.h>
+#include <talus/io/zone_vtu_writer.h>
+#include <talus/run/cycle.h>
+#include <talus/run/run_summary.h>
+#include <talus/solver/deformable_solver.h>
+#include <talus/zone/block_mesher.h>
+
+#include <memory>
+#include <string>
+#include <vector>
+
+namespace talus
+{
+
+/// The zones of one deformable body alone (a scene of one deformable
+/// block, meshed or read from a mesh file): no contacts.
+class BodyCycle : public Cycle
+{
+public:
+  /// Meshes (or reads) the body and builds its solver, printing the
+  /// summary's lines on the zones and the time step.
+  BodyCycle(Scene& scene, BlockModel& model, const std::string& prefix);
+
+  void step() override { solver_->step(); }
+  unsigned long steps_done() const override { return solver_->steps_done(); }
+  double time() const override { return solver_->time(); }
+  double dt() const override { return solver_->dt(); }
+  double ratio() const override { return solver_->unbalanced_ratio(); }
+  /// A boundary moving at a velocity until a time must have stopped.
+  bool may_stop(unsigned long stage_steps) const override
+  {
+    return stage_steps >= 20 && solver_->time() >= moving_until_;
+  }
+  std::vector<std::string> history_columns() const override;
+  std::vector<double> history_row() override;
+  void write_frame(bool diverged) override;
+  void register_checkpoint(Checkpoint& checkpoint) override;
+  DeformableSolver* zones() override { return solver_.get(); }
+  void begin_stage(const StageSpec& stage) override;
+  std::string displacement_text() const override;
+  void print_end() override;
+  std::string unbalanced_where() const override;
+
+  /// The zones of a scene of one deformable block: meshed, or read from its
+  /// mesh file (then ordered and made quadratic as the scene asks).
+  static TetMesh zones_of(const Scene& scene, const BlockModel& model, MeshReport& report);
+
+private:
+  Scene& scene_;
+  BlockModel& model_;
+  std::string prefix_;
+  MeshReport report_;
+  TetMesh mesh_;
+  std::unique_ptr<ParallelEnvironment> parallel_;
+  std::unique_ptr<DeformableSolver> solver_;
+  PvdSeries series_;
+  std::unique_ptr<ZoneWriter> writer_;
+  std::unique_ptr<PointHistory> points_;
+  unsigned int frame_ = 0;
+  double moving_until_ = 0.0; ///< s: the last end time of a boundary velocity
+};
+
+} // namespace talus

@@ -1,0 +1,59 @@
+#pragma once
+
+// The lines of a run's summary that more than one kind of cycle prints, and
+// the records they share: zone frames for ParaView and history points.
+
+#include <talus/io/block_vtu_writer.h>
+#include <talus/io/scene.h>
+#include <talus/io/zone_vtu_writer.h>
+#include <talus/model/block_model.h>
+#include <talus/solver/deformable_solver.h>
+#include <talus/zone/block_mesher.h>
+
+#include <string>
+#include <vector>
+
+namespace talus
+{
+
+/// How the zones' edge length was asked for, for the summary.
+std::string edge_length_text(const EdgeLengthField& f);
+
+/// The summary's lines on the zones' shapes: the radius ratio (1 for a
+/// regular tetrahedron), where the poor zones are, and the gridpoint that
+/// sets the stable step of eq. 84 with its worst zone.
+void print_mesh_quality(const MeshReport& r, const TetMesh& mesh, const DeformableSolver& zones,
+                        const BlockModel& model);
+
+/// The summary's line on the zones about to be meshed: how many and how much
+/// memory, estimated before meshing.
+void print_zone_estimate(const Scene& scene, const BlockModel& model);
+
+/// The summary's line on nodal mixed discretization, when some zones have it.
+void print_nodal_mixed(const DeformableSolver& solver);
+
+/// The summary's lines on the history blocks, with a warning for a fixed one.
+void print_history_blocks(const Scene& scene, const BlockModel& model);
+
+/// The largest displacement of a gridpoint (m).
+double largest_gridpoint_displacement(const DeformableSolver& solver);
+
+/// Writes the zones at their current state as frame `frame` of the zone
+/// series; after a divergence (`with_stress` false) non-finite stresses are
+/// written as 0.
+void write_zone_frame(const Scene& scene, const TetMesh& mesh, const DeformableSolver& solver,
+                      ZoneWriter& writer, PvdSeries& series, unsigned int frame,
+                      bool with_stress = true);
+
+/// History columns of deformable blocks at chosen points: the nearest
+/// gridpoint's displacement and velocity, the nearest zone's stress.
+struct PointHistory
+{
+  std::vector<unsigned int> gridpoint, zone;
+
+  PointHistory(const TetMesh& mesh, const std::vector<Vec3>& points);
+  void add_columns(std::vector<std::string>& columns) const;
+  void add_values(std::vector<double>& row, const DeformableSolver& zones) const;
+};
+
+} // namespace talus

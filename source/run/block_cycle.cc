@@ -1,0 +1,334 @@
+#include <talus/base/memory.h>
+#include <talus/io/checkpoint.h>
+#include <talus/io/scene_checks.h>
+#include <talus/model/build_blocks.h>
+#include <talus/run/block_cycle.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cstdio>
+
+namespace talus
+{
+
+namespace
+{
+double now()
+{
+  return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count();
+}
+
+/// Group names resolved, the summary's zone estimate, and PETSc and MPI for
+/// the zones of a scene with deformable blocks (none without): talus is
+/// serial, so they are started for this process alone.
+std::unique_ptr<ParallelEnvironment> prepare(Scene& scene, BlockModel& model)
+{
+  resolve_group_names(scene, model);
+  print_zone_estimate(scene, model);
+  if (scene.deformable.groups.empty())
+    return nullptr;
+  int argc = 1;
+  char name[] = "talus";
+  char* args[] = {name, nullptr};
+  char** argv = args;
+  return std::make_unique<ParallelEnvironment>(argc, argv);
+}
+} // namespace
+
+BlockCycle::BlockCycle(Scene& scene, BlockModel& model, const std::string& prefix)
+    : scene_(scene), model_(model), prefix_(prefix), parallel_(prepare(scene, model)),
+      meshing_start_(now()),
+      // Deformable blocks among rigid ones: their zones, and their surfaces
+      // as their shapes for the contacts.
+      system_(build_block_system(scene, model)), block_series_(prefix + "_blocks.pvd"),
+      contact_series_(prefix + "_contacts.pvd"), zone_series_(prefix + "_zones.pvd"),
+      built_centroid_(model.centroid)
+{
+  const double meshing_seconds = now() - meshing_start_;
+  check_boundary_selections(scene, model, system_.mesh);
+  const RigidSolver& solver = *system_.solver;
+  const DeformableSolver* zones = system_.zones.get();
+  if (zones)
+  {
+    std::printf("Zones:        %u tetrahedra in %u deformable blocks, %u gridpoints (%s)\n",
+                system_.mesh_report.zones, system_.mesh_report.blocks,
+                system_.mesh_report.gridpoints,
+                edge_length_text(scene.deformable.edge_length).c_str());
+    // Indented "Time =" lines are ignored when test output is compared.
+    std::printf("   Time = %.3f s to mesh and set up the zones (%.3g zones/s); peak memory %s\n",
+                meshing_seconds, system_.mesh_report.zones / meshing_seconds,
+                memory_text(peak_memory()).c_str());
+    if (system_.mesh_report.hexes > 0)
+      std::printf("Hexahedra:    %u (mixed discretization: the tetrahedra are their two overlays "
+                  "of five)\n",
+                  system_.mesh_report.hexes);
+    print_mesh_quality(system_.mesh_report, system_.mesh, *zones, model);
+    print_nodal_mixed(*zones);
+  }
+  if (scene.solver.time_step > 0.0 && solver.stable_time_step() < 1e300)
+    std::printf("Time step:    %.6g s (given; eq. 87 allows %.6g s%s)\n", solver.dt(),
+                solver.stable_time_step() / scene.solver.time_step_fraction,
+                zones ? "; eq. 84 for the zones" : "");
+  else if (scene.solver.time_step > 0.0)
+    std::printf("Time step:    %.6g s (given; eq. 84 for the zones)\n", solver.dt());
+  else
+    std::printf("Time step:    %.6g s (eq. 87, fraction %g%s)\n", solver.dt(),
+                scene.solver.time_step_fraction, zones ? "; eq. 84 for the zones" : "");
+  if (zones)
+    zone_writer_ = std::make_unique<ZoneWriter>(system_.mesh, scene.output.vtu_encoding);
+  points_ = std::make_unique<PointHistory>(system_.mesh, zones ? scene.solver.history_points
+                                                               : std::vector<Vec3>{});
+  if (!zones && !scene.solver.history_points.empty())
+    std::printf("Warning: 'History points' follow deformable blocks; this scene has none\n");
+  // 'Joint set N' and 'Joint N' as N, for the contacts' joint_set and joint.
+  for (const std::string& section : scene.joint_set_sections)
+    joint_numbers_.joint_set_number.push_back(std::stoi(section.substr(section.rfind(' ') + 1)));
+  for (const std::string& section : scene.joint_plane_sections)
+    joint_numbers_.joint_number.push_back(std::stoi(section.substr(section.rfind(' ') + 1)));
+}
+
+void BlockCycle::step()
+{
+  system_.solver->step();
+}
+unsigned long BlockCycle::steps_done() const
+{
+  return system_.solver->steps_done();
+}
+double BlockCycle::time() const
+{
+  return system_.solver->time();
+}
+double BlockCycle::ratio() const
+{
+  return system_.solver->unbalanced_ratio();
+}
+
+std::vector<std::string> BlockCycle::history_columns() const
+{
+  std::vector<std::string> columns{"step",
+                                   "time (s)",
+                                   "unbalanced ratio",
+                                   "kinetic energy (J)",
+                                   "work of gravity (J)",
+                                   "joint elastic energy (J)",
+                                   "friction dissipation (J)",
+                                   "damping dissipation (J)",
+                                   "work of boundaries (J)",
+                                   "zone elastic energy (J)",
+                                   "plastic dissipation (J)",
+                                   "energy balance error (J)"};
+  for (unsigned int b : scene_.solver.history_blocks)
+    for (const char* q : {"ux", "uy", "uz", "vx", "vy", "vz"})
+      columns.push_back("block " + std::to_string(b) + " " + q + (q[0] == 'u' ? " (m)" : " (m/s)"));
+  points_->add_columns(columns);
+  return columns;
+}
+
+std::vector<double> BlockCycle::history_row()
+{
+  const RigidSolver& solver = *system_.solver;
+  const EnergyAccount e = solver.energy_account();
+  std::vector<double> row{double(solver.steps_done()),
+                          solver.time(),
+                          solver.unbalanced_ratio(),
+                          e.kinetic,
+                          e.gravity_work,
+                          e.joint_elastic,
+                          e.friction,
+                          e.damping,
+                          e.boundary_work,
+                          e.zone_elastic,
+                          e.plastic,
+                          e.error()};
+  for (unsigned int b : scene_.solver.history_blocks)
+    for (const Vec3* q : {&solver.displacement[b], &solver.velocity[b]})
+      for (int d = 0; d < 3; ++d)
+        row.push_back((*q)[d]);
+  if (system_.zones)
+    points_->add_values(row, *system_.zones);
+  return row;
+}
+
+void BlockCycle::write_frame(bool diverged)
+{
+  if (!scene_.output.write_vtu)
+    return;
+  const RigidSolver& solver = *system_.solver;
+  char name[64];
+  std::snprintf(name, sizeof name, "_blocks_%05u.vtu", frame_++);
+  const std::string vtu = scene_.output.base_name + name;
+  std::vector<BlockField> fields{{"displacement", 3, {}}, {"velocity", 3, {}}, {"rotation", 3, {}}};
+  for (unsigned int b = 0; b < model_.n_blocks(); ++b)
+    for (int d = 0; d < 3; ++d)
+    {
+      fields[0].values.push_back(solver.displacement[b][d]);
+      fields[1].values.push_back(solver.velocity[b][d]);
+      fields[2].values.push_back(solver.rotation[b][d]);
+    }
+  write_blocks_vtu(scene_.output.directory + "/" + vtu, model_, fields, scene_.output.vtu_encoding,
+                   &solver.removed_blocks());
+  block_series_.add(solver.time(), vtu);
+  if (diverged)
+  {
+    if (system_.zones)
+      write_zone_frame(scene_, system_.mesh, *system_.zones, *zone_writer_, zone_series_,
+                       zone_frame_++, false);
+    return;
+  }
+  std::snprintf(name, sizeof name, "_contacts_%05u.vtu", frame_ - 1);
+  const std::string contacts_vtu = scene_.output.base_name + name;
+  write_contacts_vtu(scene_.output.directory + "/" + contacts_vtu, solver.contacts(), model_,
+                     joint_numbers_, scene_.output.vtu_encoding);
+  contact_series_.add(solver.time(), contacts_vtu);
+  if (system_.zones)
+    write_zone_frame(scene_, system_.mesh, *system_.zones, *zone_writer_, zone_series_,
+                     zone_frame_++);
+}
+
+void BlockCycle::register_checkpoint(Checkpoint& checkpoint)
+{
+  for (PvdSeries* s : {&block_series_, &contact_series_, &zone_series_})
+    checkpoint.add(*s);
+  checkpoint.add(frame_);
+  checkpoint.add(zone_frame_);
+}
+
+void BlockCycle::begin_stage(const StageSpec& stage)
+{
+  RigidSolver& solver = *system_.solver;
+  // Excavations: the blocks of the groups named, and those whose centroid
+  // (as built) lies in a region, which the model was cut along.
+  std::vector<unsigned int> gone;
+  double volume = 0.0;
+  const double on_face = 1e-9 * scene_.brick.diagonal();
+  for (unsigned int b = 0; b < model_.n_blocks(); ++b)
+  {
+    if (solver.removed(b))
+      continue;
+    bool go = std::find(stage.excavate_groups.begin(), stage.excavate_groups.end(),
+                        model_.group_names[model_.group[b]]) != stage.excavate_groups.end();
+    for (const ExcavationSpec& e : stage.excavations)
+      go |= e.region.contains(built_centroid_[b], on_face);
+    if (go)
+    {
+      gone.push_back(b);
+      volume += model_.volume[b];
+    }
+  }
+  if (!gone.empty())
+  {
+    solver.remove_blocks(gone);
+    std::printf("  Excavated:  %zu blocks, %.9g m^3\n", gone.size(), volume);
+  }
+  unsigned int fixed = 0, freed = 0;
+  for (unsigned int b = 0; b < model_.n_blocks(); ++b)
+  {
+    const std::string& g = model_.group_names[model_.group[b]];
+    if (std::find(stage.fix_groups.begin(), stage.fix_groups.end(), g) != stage.fix_groups.end() &&
+        !solver.fixed[b] && !solver.removed(b))
+    {
+      solver.set_fixed(b, true);
+      ++fixed;
+    }
+    if (std::find(stage.free_groups.begin(), stage.free_groups.end(), g) !=
+            stage.free_groups.end() &&
+        solver.fixed[b] && !solver.removed(b))
+    {
+      solver.set_fixed(b, false);
+      ++freed;
+    }
+  }
+  if (fixed + freed > 0)
+    std::printf("  Fixed:      %u blocks held, %u let go\n", fixed, freed);
+  for (const JointMaterialChange& c : stage.joint_materials)
+    solver.change_joint_material(c.origin, c.material);
+  if (!stage.joint_materials.empty())
+    std::printf("  Joints:     %zu joint sets or joints change material\n",
+                stage.joint_materials.size());
+  if (stage.dynamic != solver.dynamic())
+  {
+    solver.set_dynamic(stage.dynamic);
+    std::printf("  Mode:       %s, time step %.6g s\n", stage.dynamic ? "dynamic" : "static",
+                solver.dt());
+  }
+  if (stage.reset_displacements)
+    solver.reset_displacements();
+}
+
+std::string BlockCycle::displacement_text() const
+{
+  const RigidSolver& solver = *system_.solver;
+  unsigned int moved_most = 0;
+  for (unsigned int b = 0; b < model_.n_blocks(); ++b)
+    if (solver.displacement[b].norm() > solver.displacement[moved_most].norm())
+      moved_most = b;
+  char text[160];
+  std::snprintf(text, sizeof text, "%.6g m (block %u)", solver.displacement[moved_most].norm(),
+                moved_most);
+  std::string s = text;
+  if (system_.zones)
+  {
+    std::snprintf(text, sizeof text, ", gridpoints %.6g m",
+                  largest_gridpoint_displacement(*system_.zones));
+    s += text;
+  }
+  return s;
+}
+
+void BlockCycle::print_end()
+{
+  const RigidSolver& solver = *system_.solver;
+  const SolverReport r = solver.report();
+  std::printf("Steps:        %lu (time %.6g s)\n", r.steps, r.time);
+  std::printf("Contacts:     %u with %u sub-contacts\n", r.contacts, r.subcontacts);
+  if (scene_.joint_material_names.size() > 1)
+  {
+    // Which material the contacts took: the check that the rules say what
+    // was meant.
+    std::vector<unsigned int> count(scene_.joint_material_names.size(), 0);
+    const ContactSet& cs = solver.contacts();
+    for (unsigned int c = 0; c < cs.n_slots(); ++c)
+      if (cs.alive[c])
+        ++count[cs.material[c]];
+    std::printf("Joint materials:");
+    for (std::size_t k = 0; k < count.size(); ++k)
+      std::printf("%s %s %u", k == 0 ? "" : ",", scene_.joint_material_names[k].c_str(), count[k]);
+    std::printf(" contacts\n");
+  }
+  std::printf("Unbalanced force ratio: %.3g\n", r.ratio);
+  unsigned int moved_most = 0;
+  for (unsigned int b = 0; b < model_.n_blocks(); ++b)
+    if (solver.displacement[b].norm() > solver.displacement[moved_most].norm())
+      moved_most = b;
+  if (model_.n_blocks() > 0)
+    std::printf("Largest displacement: %.6g m (block %u)\n", solver.displacement[moved_most].norm(),
+                moved_most);
+  for (unsigned int b : scene_.solver.history_blocks)
+    std::printf("Block %u displacement: %.9g, %.9g, %.9g m\n", b, solver.displacement[b][0],
+                solver.displacement[b][1], solver.displacement[b][2]);
+  const double total = r.seconds_detection + r.seconds_planes + r.seconds_forces + r.seconds_motion;
+  std::printf(
+      "   Time = %.3f s in the cycle: detection %.0f %%, common planes %.0f %%, forces %.0f %%, "
+      "motion %.0f %%\n",
+      total, 100 * r.seconds_detection / total, 100 * r.seconds_planes / total,
+      100 * r.seconds_forces / total, 100 * r.seconds_motion / total);
+  if (system_.zones)
+    std::printf("Largest gridpoint displacement: %.6g m\n",
+                largest_gridpoint_displacement(*system_.zones));
+  std::printf("Output:       %s_blocks.pvd, %s_contacts.pvd, %s%s_history.csv\n", prefix_.c_str(),
+              prefix_.c_str(), system_.zones ? (prefix_ + "_zones.pvd, ").c_str() : "",
+              prefix_.c_str());
+}
+
+std::string BlockCycle::unbalanced_where() const
+{
+  const unsigned int b = system_.solver->unbalanced_block();
+  const Vec3& c = model_.centroid[b];
+  char where[200];
+  std::snprintf(where, sizeof where, "block %u (group %s, centroid %.4g, %.4g, %.4g m)", b,
+                model_.group_names[model_.group[b]].c_str(), c[0], c[1], c[2]);
+  return where;
+}
+
+} // namespace talus

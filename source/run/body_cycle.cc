@@ -1,0 +1,269 @@
+#include <talus/io/checkpoint.h>
+#include <talus/io/scene_checks.h>
+#include <talus/run/body_cycle.h>
+#include <talus/solver/block_system.h>
+#include <talus/solver/implicit_check.h>
+#include <talus/zone/tet10_mesh.h>
+
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+
+namespace talus
+{
+
+namespace
+{
+/// Solves the static elastic problem of the body implicitly, the explicit
+/// kernels' own discrete problem, and prints how far the explicit answer is
+/// from it: at the history points (or the gridpoint of largest
+/// displacement) and the largest difference anywhere.
+void implicit_check(const Scene& scene, DeformableSolver& solver)
+{
+  const auto refuse = [](const std::string& why)
+  { std::printf("Implicit check: not made (%s)\n", why.c_str()); };
+  if (scene.solver.dynamic)
+    return refuse("the run is dynamic");
+  if (scene.deformable.material.model != ZoneModel::elastic)
+    return refuse("the zones are not elastic");
+  if (scene.has_initial_stress)
+    return refuse("the zones have an initial stress");
+  if (!scene.stages.empty())
+    return refuse("the run has stages");
+  for (const GridpointCondition& c : scene.gridpoint_conditions)
+    if (c.velocity.norm() > 0.0 || c.velocity_gradient.norm() > 0.0)
+      return refuse("a boundary moves at a velocity");
+  ImplicitCheck check;
+  try
+  {
+    check = check_implicitly(solver, scene.solver.history_points);
+  }
+  catch (const SolverError& e)
+  {
+    return refuse(e.what());
+  }
+  std::printf("Implicit check: the explicit kernels' operator applied matrix-free, %s with AMG of "
+              "the 4-node stiffness, %u iterations\n",
+              check.implicit.method, check.implicit.iterations);
+  for (const ImplicitCheckPoint& p : check.points)
+  {
+    const Vec3 &e = p.explicit_displacement, &i = p.implicit_displacement;
+    std::printf("Implicit check: %s (%.6g, %.6g, %.6g), gridpoint %u: explicit (%.6g, %.6g, %.6g) "
+                "m, implicit (%.6g, %.6g, %.6g) m\n",
+                scene.solver.history_points.empty() ? "largest displacement at" : "history point",
+                p.position[0], p.position[1], p.position[2], p.gridpoint, e[0], e[1], e[2], i[0],
+                i[1], i[2]);
+  }
+  std::printf("Implicit check: largest displacement component %.6g m; largest difference from "
+              "the explicit answer %.3g m, %.2g of it\n",
+              check.largest, check.difference,
+              check.largest > 0.0 ? check.difference / check.largest : 0.0);
+}
+
+std::unique_ptr<ParallelEnvironment> petsc_for_this_process()
+{
+  int argc = 1;
+  char name[] = "talus";
+  char* args[] = {name, nullptr};
+  char** argv = args;
+  return std::make_unique<ParallelEnvironment>(argc, argv);
+}
+} // namespace
+
+TetMesh BodyCycle::zones_of(const Scene& scene, const BlockModel& model, MeshReport& report)
+{
+  if (scene.deformable.mesh_file.empty())
+    return mesh_deformable_blocks(scene, model, {0}, report);
+  TetMesh mesh = *scene.deformable.mesh;
+  // Read in slabs, before the body's group was known.
+  order_for_locality(mesh, deformable_zone_order(scene, model));
+  if (scene.deformable.material.element == ZoneElement::tet10)
+    make_quadratic(mesh);
+  report = measure_mesh(mesh);
+  return mesh;
+}
+
+BodyCycle::BodyCycle(Scene& scene, BlockModel& model, const std::string& prefix)
+    : scene_(scene), model_(model), prefix_(prefix), series_(prefix + "_zones.pvd")
+{
+  print_zone_estimate(scene, model);
+  mesh_ = zones_of(scene, model, report_);
+  const bool from_file = !scene.deformable.mesh_file.empty();
+  check_boundary_selections(scene, model, mesh_);
+  std::printf(
+      "Zones:        %u %s, %u gridpoints, %u boundary faces (%s; largest edge %.4g m, "
+      "smallest height %.4g m), zone volume %.9g m^3\n",
+      report_.zones, mesh_.quadratic() ? "10-node tetrahedra" : "tetrahedra", report_.gridpoints,
+      report_.boundary_faces,
+      from_file ? ("from " + std::filesystem::path(scene.deformable.mesh_file).filename().string())
+                      .c_str()
+                : edge_length_text(scene.deformable.edge_length).c_str(),
+      report_.largest_edge, report_.smallest_height, report_.zone_volume);
+  if (report_.hexes > 0)
+    std::printf("Hexahedra:    %u (mixed discretization: the tetrahedra are their two overlays of "
+                "five)\n",
+                report_.hexes);
+  parallel_ = petsc_for_this_process();
+  ZoneMaterials materials = zone_materials(scene, model, mesh_);
+  solver_ = std::make_unique<DeformableSolver>(
+      mesh_, std::move(materials.materials), std::move(materials.of_zone), scene.solver,
+      scene.gridpoint_conditions, scene.face_pressures,
+      scene.has_initial_stress ? &scene.initial_stress : nullptr);
+  print_mesh_quality(report_, mesh_, *solver_, model);
+  print_nodal_mixed(*solver_);
+  std::printf("Time step:    %.6g s (eq. 84%s)\n", solver_->dt(),
+              !scene.solver.dynamic && scene.solver.density_scaling ? ", density scaling: unit step"
+                                                                    : "");
+  writer_ = std::make_unique<ZoneWriter>(mesh_, scene.output.vtu_encoding);
+  points_ = std::make_unique<PointHistory>(mesh_, scene.solver.history_points);
+  for (const GridpointCondition& c : scene.gridpoint_conditions)
+    if (std::isfinite(c.velocity_until))
+      moving_until_ = std::max(moving_until_, c.velocity_until);
+}
+
+std::vector<std::string> BodyCycle::history_columns() const
+{
+  std::vector<std::string> columns{"step", "time (s)", "unbalanced ratio",
+                                   "largest displacement (m)"};
+  points_->add_columns(columns);
+  for (const ReactionReport& r : scene_.reactions)
+    for (const char* q : {" reaction x (N)", " reaction y (N)", " reaction z (N)"})
+      columns.push_back(r.name + q);
+  // The energy account (see EnergyAccount), last so that the columns
+  // before keep their places.
+  for (const char* q : {"kinetic energy (J)", "work of gravity (J)", "work of boundaries (J)",
+                        "zone elastic energy (J)", "plastic dissipation (J)",
+                        "damping dissipation (J)", "energy balance error (J)"})
+    columns.push_back(q);
+  return columns;
+}
+
+std::vector<double> BodyCycle::history_row()
+{
+  const DeformableSolver& solver = *solver_;
+  std::vector<double> row{double(solver.steps_done()), solver.time(), solver.unbalanced_ratio(),
+                          largest_gridpoint_displacement(solver)};
+  points_->add_values(row, solver);
+  for (const ReactionReport& r : scene_.reactions)
+  {
+    const Vec3 f = -solver.support_force(r.region, r.held);
+    row.insert(row.end(), {f[0], f[1], f[2]});
+  }
+  EnergyAccount e;
+  solver.add_energy(e);
+  row.insert(row.end(), {e.kinetic, e.gravity_work, e.boundary_work, e.zone_elastic, e.plastic,
+                         e.damping, e.error()});
+  return row;
+}
+
+void BodyCycle::write_frame(bool diverged)
+{
+  if (scene_.output.write_vtu)
+    write_zone_frame(scene_, mesh_, *solver_, *writer_, series_, frame_++, !diverged);
+}
+
+void BodyCycle::register_checkpoint(Checkpoint& checkpoint)
+{
+  checkpoint.add(series_);
+  checkpoint.add(frame_);
+}
+
+void BodyCycle::begin_stage(const StageSpec& stage)
+{
+  // A body alone is not cut: a region removes the zones whose centroid
+  // lies inside it (exactly its volume when the mesh follows its boundary).
+  if (!stage.excavations.empty())
+  {
+    const std::vector<double> x = solver_->positions();
+    std::vector<char> gone(mesh_.n_zones(), 0);
+    unsigned int count = 0;
+    double volume = 0.0;
+    for (unsigned int z = 0; z < mesh_.n_zones(); ++z)
+    {
+      if (solver_->zone_removed(z))
+        continue;
+      const auto& t = mesh_.zone_gridpoint[z];
+      Vec3 c = Vec3::Zero(), p[4];
+      for (int a = 0; a < 4; ++a)
+      {
+        p[a] = Vec3(mesh_.position[3 * t[a]], mesh_.position[3 * t[a] + 1],
+                    mesh_.position[3 * t[a] + 2]);
+        c += 0.25 * p[a];
+      }
+      for (const ExcavationSpec& e : stage.excavations)
+        if (e.region.contains(c, 0.0))
+          gone[z] = 1;
+      if (gone[z])
+      {
+        ++count;
+        volume += std::abs((p[1] - p[0]).dot((p[2] - p[0]).cross(p[3] - p[0]))) / 6.0;
+      }
+    }
+    solver_->remove_zones(gone);
+    // Hexahedral zones count twice, once per overlay.
+    std::printf("  Excavated:  %u zones, %.9g m^3\n", count,
+                report_.hexes > 0 ? 0.5 * volume : volume);
+  }
+  if (stage.dynamic != solver_->dynamic())
+  {
+    solver_->set_dynamic(stage.dynamic);
+    std::printf("  Mode:       %s, time step %.6g s\n", stage.dynamic ? "dynamic" : "static",
+                solver_->dt());
+  }
+  if (stage.reset_displacements)
+    solver_->reset_displacements();
+}
+
+std::string BodyCycle::displacement_text() const
+{
+  char text[64];
+  std::snprintf(text, sizeof text, "%.6g m (gridpoints)", largest_gridpoint_displacement(*solver_));
+  return text;
+}
+
+void BodyCycle::print_end()
+{
+  const DeformableSolver& solver = *solver_;
+  std::printf("Steps:        %lu (time %.6g s)\n", solver.steps_done(), solver.time());
+  std::printf("Unbalanced force ratio: %.3g\n", solver.unbalanced_ratio());
+  std::printf("Largest displacement: %.6g m\n", largest_gridpoint_displacement(solver));
+  {
+    EnergyAccount e;
+    solver.add_energy(e);
+    std::printf("Energy balance error: %.2g of the largest energy term (%.6g J; history has "
+                "every term)\n",
+                e.scale() > 0.0 ? std::abs(e.error()) / e.scale() : 0.0, e.scale());
+  }
+  unsigned int yielding = 0; // zones with a yielding stress point
+  const unsigned int per_zone = solver.stress_points_per_zone();
+  for (unsigned int z = 0; z < mesh_.n_zones(); ++z)
+  {
+    bool any = false;
+    for (unsigned int q = 0; q < per_zone; ++q)
+      any |= solver.plastic_state()[per_zone * z + q] != 0;
+    yielding += any;
+  }
+  if (scene_.deformable.material.model == ZoneModel::mohr_coulomb)
+    std::printf("Plastic zones: %u of %u\n", yielding, mesh_.n_zones());
+  for (const ReactionReport& r : scene_.reactions)
+  {
+    const Vec3 f = -solver.support_force(r.region, r.held);
+    std::printf("Reaction of %s on the body: %.9g, %.9g, %.9g N\n", r.name.c_str(), f[0], f[1],
+                f[2]);
+  }
+  if (scene_.deformable.implicit_check)
+    implicit_check(scene_, *solver_);
+  std::printf("Output:       %s_zones.pvd, %s_history.csv\n", prefix_.c_str(), prefix_.c_str());
+}
+
+std::string BodyCycle::unbalanced_where() const
+{
+  const unsigned int g = solver_->unbalanced_gridpoint();
+  const std::vector<double> x = solver_->positions();
+  char where[160];
+  std::snprintf(where, sizeof where, "gridpoint %u at %.4g, %.4g, %.4g m", g, x[3 * g],
+                x[3 * g + 1], x[3 * g + 2]);
+  return where;
+}
+
+} // namespace talus

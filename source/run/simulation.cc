@@ -1,0 +1,323 @@
+#include <talus/base/exceptions.h>
+#include <talus/io/checkpoint.h>
+#include <talus/io/file_output.h>
+#include <talus/io/history_file.h>
+#include <talus/io/scene_checks.h>
+#include <talus/run/block_cycle.h>
+#include <talus/run/body_cycle.h>
+#include <talus/run/simulation.h>
+
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <map>
+
+namespace talus
+{
+
+namespace
+{
+double seconds_since(std::chrono::steady_clock::time_point t)
+{
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t).count();
+}
+
+/// Whether the scene is one deformable body alone (no contacts to find).
+bool body_alone(const Scene& scene, const BlockModel& model)
+{
+  return !scene.deformable.groups.empty() && model.n_blocks() == 1;
+}
+
+/// Warns, and returns exit_not_in_equilibrium, when a static stage with a
+/// target ratio ended above it; 0 otherwise.
+int static_stage_end(const StageSpec& stage, const RunEnd& end, bool staged)
+{
+  if (stage.dynamic || stage.target_ratio <= 0.0 || end.ratio < stage.target_ratio)
+    return 0;
+  const std::string where = staged ? "'" + stage.section + "' stopped at its step limit ('Steps'"
+                                   : "the run stopped at its step limit ('Steps'";
+  std::printf("Warning: %s = %lu) with the unbalanced force ratio at %.3g, above 'Target ratio' "
+              "= %g: the model is not in equilibrium (exit code %d); the largest unbalanced "
+              "force is on %s; raise 'Steps', or set 'Target ratio' = 0 to run a fixed number "
+              "of steps\n",
+              where.c_str(), stage.steps, end.ratio, stage.target_ratio, exit_not_in_equilibrium,
+              end.where.c_str());
+  return exit_not_in_equilibrium;
+}
+} // namespace
+
+Simulation::Simulation(const std::string& parameter_file, std::string restart_from, bool check_only)
+    : parameter_file_(parameter_file), restart_from_(std::move(restart_from)),
+      check_only_(check_only)
+{
+  // A restart writes into the checkpoint's folder, prepared there; a check
+  // prepares nothing.
+  scene_ = read_scene(parameter_file_, restart_from_.empty() && !check_only_);
+  if (!restart_from_.empty())
+    continue_in_checkpoint_folder(restart_from_, scene_);
+  // read_scene has checked every value and prepared the output folder;
+  // what needs the blocks is checked before anything is written.
+  model_ = build_blocks(scene_, report_);
+  check_built_model(scene_, model_, report_);
+  resolve_history_blocks(scene_, model_);
+  prefix_ = scene_.output.directory + "/" + scene_.output.base_name;
+}
+
+Simulation::~Simulation() = default;
+
+std::vector<StageSpec> Simulation::stages() const
+{
+  if (!scene_.stages.empty())
+    return scene_.stages;
+  StageSpec one;
+  one.section = "Solver";
+  one.name = "run";
+  one.dynamic = scene_.solver.dynamic;
+  one.steps = scene_.solver.steps;
+  one.target_ratio = scene_.solver.target_ratio;
+  return {one};
+}
+
+void Simulation::print_model() const
+{
+  const Scene& scene = scene_;
+  const BlockModel& model = model_;
+  std::printf("talus: scene %s\n", std::filesystem::path(parameter_file_).filename().c_str());
+  std::printf("Blocks:       %u\n", model.n_blocks());
+  std::printf("Faces:        %u\n", model.n_faces());
+  std::printf("Vertices:     %u\n", model.n_vertices());
+  std::printf("Total volume: %.9g m^3 (brick %.9g m^3)\n", model.total_volume(),
+              scene.brick.volume());
+  for (std::size_t e = 0; e < scene.excavations.size(); ++e)
+    std::printf("Excavated:    %.9g m^3 (%s; region volume %.9g m^3)\n",
+                report_.excavated_volume[e], scene.excavations[e].description.c_str(),
+                scene.excavations[e].region.volume);
+  std::size_t k = 0;
+  for (const StageSpec& stage : scene.stages)
+    for (const ExcavationSpec& e : stage.excavations)
+      if (k < report_.stage_excavated_volume.size())
+        std::printf("To excavate:  %.9g m^3 (%s; region volume %.9g m^3)\n",
+                    report_.stage_excavated_volume[k++], e.description.c_str(), e.region.volume);
+  if (scene.rock_materials.empty())
+    std::printf("Mass:         %.9g kg (density %g kg/m^3)\n", model.total_volume() * scene.density,
+                scene.density);
+  else
+  {
+    double mass = 0.0;
+    for (unsigned int b = 0; b < model.n_blocks(); ++b)
+      mass += scene.density_of(model.group_names[model.group[b]]) * model.volume[b];
+    std::printf("Mass:         %.9g kg (density %g kg/m^3; rock materials:", mass, scene.density);
+    for (const RockMaterialSpec& r : scene.rock_materials)
+      std::printf(" %s %g", r.name.c_str(), r.density);
+    std::printf(")\n");
+  }
+  std::map<unsigned int, unsigned int> per_group;
+  for (unsigned int g : model.group)
+    ++per_group[g];
+  for (const auto& [g, count] : per_group)
+    std::printf("Group %-8s %u blocks\n", model.group_names[g].c_str(), count);
+  std::printf("Cuts:         %lu\n", report_.cutting.cuts);
+  if (report_.cutting.skipped_slivers > 0)
+    std::printf("Warning: %lu cuts were not made because a piece would have been smaller than "
+                "the minimum block volume %g m^3 (smallest %.3g m^3 near %.4g, %.4g, %.4g)\n",
+                report_.cutting.skipped_slivers, scene.cutting.minimum_volume,
+                report_.cutting.smallest_refused, report_.cutting.smallest_refused_at[0],
+                report_.cutting.smallest_refused_at[1], report_.cutting.smallest_refused_at[2]);
+  print_history_blocks(scene, model);
+}
+
+void Simulation::check_calculation()
+{
+  std::printf("talus: scene %s\n", std::filesystem::path(parameter_file_).filename().c_str());
+  std::printf("Blocks:       %u\n", model_.n_blocks());
+  print_zone_estimate(scene_, model_);
+  unsigned long steps = 0;
+  for (const StageSpec& s : stages())
+    steps += s.steps;
+  if (steps == 0)
+    return;
+  // What the first step needs: the zones and the solvers, whose checks
+  // refuse an unstable time step and the like.
+  std::unique_ptr<ParallelEnvironment> parallel;
+  if (!scene_.deformable.groups.empty())
+  {
+    int argc = 1;
+    char name[] = "talus";
+    char* args[] = {name, nullptr};
+    char** argv = args;
+    parallel = std::make_unique<ParallelEnvironment>(argc, argv);
+  }
+  if (body_alone(scene_, model_))
+  {
+    MeshReport report;
+    const TetMesh mesh = BodyCycle::zones_of(scene_, model_, report);
+    check_boundary_selections(scene_, model_, mesh);
+    ZoneMaterials materials = zone_materials(scene_, model_, mesh);
+    const DeformableSolver solver(mesh, std::move(materials.materials),
+                                  std::move(materials.of_zone), scene_.solver,
+                                  scene_.gridpoint_conditions, scene_.face_pressures,
+                                  scene_.has_initial_stress ? &scene_.initial_stress : nullptr);
+    std::printf("Zones:        %u, %u gridpoints\n", report.zones, report.gridpoints);
+    std::printf("Time step:    %.6g s\n", solver.dt());
+    return;
+  }
+  resolve_group_names(scene_, model_);
+  const BlockSystem system = build_block_system(scene_, model_);
+  check_boundary_selections(scene_, model_, system.mesh);
+  if (system.zones)
+    std::printf("Zones:        %u in %u deformable blocks, %u gridpoints\n",
+                system.mesh_report.zones, system.mesh_report.blocks, system.mesh_report.gridpoints);
+  std::printf("Time step:    %.6g s\n", system.solver->dt());
+}
+
+int Simulation::run()
+{
+  const auto start = std::chrono::steady_clock::now();
+  if (check_only_)
+  {
+    // The cycles print what they build (zones, time step); nothing is written.
+    check_calculation();
+    std::printf("Check:        no problem found; nothing was written\n");
+    return 0;
+  }
+  write_file_atomically(prefix_ + "_used_parameters.prm",
+                        [&](std::ostream& out) { out << scene_.used_parameters; });
+  print_model();
+  const std::vector<StageSpec> stages = this->stages();
+  unsigned long total_steps = 0;
+  for (const StageSpec& s : stages)
+    total_steps += s.steps;
+  if (total_steps == 0)
+  {
+    // The model only.
+    if (scene_.output.write_vtu)
+    {
+      PvdSeries series(prefix_ + "_blocks.pvd");
+      const std::string vtu = scene_.output.base_name + "_blocks_00000.vtu";
+      write_blocks_vtu(scene_.output.directory + "/" + vtu, model_, {}, scene_.output.vtu_encoding);
+      series.add(0.0, vtu);
+      std::printf("Output:       %s_blocks.pvd\n", prefix_.c_str());
+    }
+    std::printf("   Time = %.3f s (blocks and output)\n", seconds_since(start));
+    return 0;
+  }
+  const double built_seconds = seconds_since(start);
+
+  std::unique_ptr<Cycle> cycle;
+  if (body_alone(scene_, model_))
+    cycle = std::make_unique<BodyCycle>(scene_, model_, prefix_);
+  else
+    cycle = std::make_unique<BlockCycle>(scene_, model_, prefix_);
+  const bool staged = !scene_.stages.empty();
+  std::vector<std::string> columns = cycle->history_columns();
+  if (staged)
+    columns.push_back("stage");
+  Checkpoint checkpoint(scene_, model_, cycle->rigid(), cycle->zones(), restart_from_);
+  HistoryFile history(prefix_ + "_history.csv", columns, 100, restart_from_.empty());
+  ProgressLine progress(total_steps);
+  // The loop's place: the stage (0-based), the step it began at, the steps
+  // of the last history row and output frame.
+  unsigned int stage_index = 0, stage_begun = 0;
+  unsigned long stage_start = 0, last_row = 0, last_output = 0;
+  double stage_start_time = 0.0; // s
+  checkpoint.add(history);
+  cycle->register_checkpoint(checkpoint);
+  checkpoint.add(stage_index);
+  checkpoint.add(stage_begun);
+  checkpoint.add(stage_start);
+  checkpoint.add(last_row);
+  checkpoint.add(last_output);
+  checkpoint.add(stage_start_time);
+  if (!restart_from_.empty())
+  {
+    const unsigned long step = checkpoint.restore(restart_from_);
+    std::printf("Restarted:    from %s at step %lu\n",
+                std::filesystem::path(restart_from_).filename().c_str(), step);
+  }
+  const auto record = [&]()
+  {
+    std::vector<double> row = cycle->history_row();
+    if (staged)
+      row.push_back(stage_index + 1);
+    history.record(row);
+    last_row = cycle->steps_done();
+  };
+  const auto output = [&]()
+  {
+    cycle->write_frame(false);
+    last_output = cycle->steps_done();
+  };
+  int exit_code = 0;
+  for (; stage_index < stages.size(); ++stage_index)
+  {
+    const StageSpec& stage = stages[stage_index];
+    if (stage_begun <= stage_index)
+    {
+      // A new stage (a restart inside one has begun it already).
+      if (staged)
+        std::printf("Stage %u:      %s (%s)\n", stage_index + 1, stage.name.c_str(),
+                    stage.section.c_str());
+      cycle->begin_stage(stage);
+      stage_begun = stage_index + 1;
+      stage_start = cycle->steps_done();
+      stage_start_time = cycle->time();
+      if (stage_index == 0 && restart_from_.empty())
+      {
+        output();
+        record();
+      }
+    }
+    try
+    {
+      while (cycle->steps_done() - stage_start < stage.steps)
+      {
+        cycle->step();
+        const unsigned long n = cycle->steps_done();
+        if (n % scene_.solver.history_interval == 0)
+          record();
+        progress.update(n, cycle->time(), cycle->ratio());
+        if (scene_.solver.output_interval > 0 && n - last_output >= scene_.solver.output_interval)
+          output();
+        if (!stage.dynamic && stage.target_ratio > 0.0 && cycle->may_stop(n - stage_start) &&
+            cycle->ratio() < stage.target_ratio)
+          break;
+        // Half a step of slack: the step that reaches the limit ends it.
+        if (stage.time_limit > 0.0 &&
+            cycle->time() - stage_start_time > stage.time_limit - 0.5 * cycle->dt())
+          break;
+        checkpoint.after_step(n);
+      }
+    }
+    catch (const DivergenceError&)
+    {
+      // The last good state: nothing moved after the fault was found.
+      cycle->write_frame(true);
+      progress.finish();
+      throw;
+    }
+    if (last_row != cycle->steps_done())
+      record();
+    if (last_output != cycle->steps_done())
+      output();
+    progress.finish();
+    const RunEnd end{cycle->ratio(), cycle->unbalanced_where()};
+    if (staged)
+      std::printf("  Steps:      %lu (to step %lu, time %.6g s), unbalanced force ratio %.3g; "
+                  "largest displacement %s\n",
+                  cycle->steps_done() - stage_start, cycle->steps_done(), cycle->time(), end.ratio,
+                  cycle->displacement_text().c_str());
+    else
+      cycle->print_end();
+    if (static_stage_end(stage, end, staged) != 0)
+      exit_code = exit_not_in_equilibrium;
+  }
+  if (staged)
+    cycle->print_end();
+  // Indented "Time =" lines are ignored when test output is compared.
+  std::printf("   Time = %.3f s (blocks %.3f s, then the calculation and output %.3f s)\n",
+              seconds_since(start), built_seconds, seconds_since(start) - built_seconds);
+  return exit_code;
+}
+
+} // namespace talus
