@@ -37,4 +37,17 @@ ParallelEnvironment::ParallelEnvironment(int& argc, char**& argv)
 
 ParallelEnvironment::~ParallelEnvironment() = default;
 
+std::unique_ptr<ParallelEnvironment> ParallelEnvironment::unless_running()
+{
+  int running = 0;
+  MPI_Initialized(&running);
+  if (running)
+    return nullptr;
+  int argc = 1;
+  char name[] = "talus";
+  char* args[] = {name, nullptr};
+  char** argv = args;
+  return std::make_unique<ParallelEnvironment>(argc, argv);
+}
+
 } // namespace talus

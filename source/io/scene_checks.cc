@@ -111,6 +111,49 @@ void check_model_size(const Scene& scene)
                       "a spacing that leaves fewer blocks, or a machine with more memory");
 }
 
+namespace
+{
+/// The checks of check_built_model on stages: every group a stage names
+/// holds blocks, every region it excavates holds rock, and a deformable
+/// body alone (which has no blocks to remove or hold) is only excavated by
+/// regions.
+template <typename HasBlocks>
+void check_stages(const Scene& scene, const BlockModel& model, const BuildReport& report,
+                  const HasBlocks& check_has_blocks)
+{
+  const bool body = !scene.deformable.groups.empty() && model.n_blocks() == 1;
+  std::size_t k = 0;
+  for (const StageSpec& stage : scene.stages)
+  {
+    const std::pair<const char*, const std::vector<std::string>*> lists[] = {
+        {"Excavate groups", &stage.excavate_groups},
+        {"Fix groups", &stage.fix_groups},
+        {"Free groups", &stage.free_groups}};
+    for (const auto& [entry, groups] : lists)
+    {
+      if (body && !groups->empty())
+        throw scene_error(scene, stage.section, entry,
+                          "the scene is one deformable body, with no blocks to remove or hold",
+                          "an 'Excavation M' in the stage to remove zones, 'Boundary N' to hold "
+                          "gridpoints");
+      for (const std::string& g : *groups)
+        check_has_blocks(stage.section, entry, g);
+    }
+    if (body && !stage.joint_materials.empty())
+      throw scene_error(scene, stage.section, "Joint materials",
+                        "the scene is one deformable body, without joints",
+                        "no 'Joint materials' in a scene of one body");
+    // A body from a mesh file is not cut: its zones are checked once read.
+    if (scene.deformable.mesh_file.empty())
+      for (const ExcavationSpec& e : stage.excavations)
+        if (!(k < report.stage_excavated_volume.size() && report.stage_excavated_volume[k++] > 0.0))
+          throw scene_error(scene, e.section, "",
+                            "removes no rock (the region lies outside the blocks)",
+                            "a region that overlaps the model");
+  }
+}
+} // namespace
+
 void check_built_model(const Scene& scene, const BlockModel& model, const BuildReport& report)
 {
   const auto cuts_nothing =
@@ -178,6 +221,7 @@ void check_built_model(const Scene& scene, const BlockModel& model, const BuildR
   };
   for (const std::string& g : scene.fixed_groups)
     check_has_blocks("Solver", "Fixed groups", g);
+  check_stages(scene, model, report, check_has_blocks);
   for (std::size_t l = 0; l < scene.load_groups.size(); ++l)
     check_has_blocks(scene.load_sections.at(l), "Group", scene.load_groups[l]);
 

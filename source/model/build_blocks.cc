@@ -47,7 +47,8 @@ std::vector<Operation> operations(const Scene& scene, BuildReport* report)
                    }});
   // Where stages will excavate, the model is cut now: the pieces inside are
   // removed at their stage.
-  for (std::size_t k = 0; k < scene.stages.size(); ++k)
+  // A body read from a mesh file is not cut: its zones are removed.
+  for (std::size_t k = 0; k < scene.stages.size() && scene.deformable.mesh_file.empty(); ++k)
     for (std::size_t e = 0; e < scene.stages[k].excavations.size(); ++e)
       ops.push_back({scene.stages[k].excavations[e].section,
                      [&scene, k, e, report](BlockGenerator& g)

@@ -27,11 +27,7 @@ std::unique_ptr<ParallelEnvironment> prepare(Scene& scene, BlockModel& model)
   print_zone_estimate(scene, model);
   if (scene.deformable.groups.empty())
     return nullptr;
-  int argc = 1;
-  char name[] = "talus";
-  char* args[] = {name, nullptr};
-  char** argv = args;
-  return std::make_unique<ParallelEnvironment>(argc, argv);
+  return ParallelEnvironment::unless_running();
 }
 } // namespace
 

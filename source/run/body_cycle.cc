@@ -60,14 +60,6 @@ void implicit_check(const Scene& scene, DeformableSolver& solver)
               check.largest > 0.0 ? check.difference / check.largest : 0.0);
 }
 
-std::unique_ptr<ParallelEnvironment> petsc_for_this_process()
-{
-  int argc = 1;
-  char name[] = "talus";
-  char* args[] = {name, nullptr};
-  char** argv = args;
-  return std::make_unique<ParallelEnvironment>(argc, argv);
-}
 } // namespace
 
 TetMesh BodyCycle::zones_of(const Scene& scene, const BlockModel& model, MeshReport& report)
@@ -103,7 +95,7 @@ BodyCycle::BodyCycle(Scene& scene, BlockModel& model, const std::string& prefix)
     std::printf("Hexahedra:    %u (mixed discretization: the tetrahedra are their two overlays of "
                 "five)\n",
                 report_.hexes);
-  parallel_ = petsc_for_this_process();
+  parallel_ = ParallelEnvironment::unless_running();
   ZoneMaterials materials = zone_materials(scene, model, mesh_);
   solver_ = std::make_unique<DeformableSolver>(
       mesh_, std::move(materials.materials), std::move(materials.of_zone), scene.solver,
@@ -119,6 +111,29 @@ BodyCycle::BodyCycle(Scene& scene, BlockModel& model, const std::string& prefix)
   for (const GridpointCondition& c : scene.gridpoint_conditions)
     if (std::isfinite(c.velocity_until))
       moving_until_ = std::max(moving_until_, c.velocity_until);
+  // Before anything is written: a stage's region must hold zones.
+  for (const StageSpec& stage : scene.stages)
+    for (const ExcavationSpec& e : stage.excavations)
+    {
+      bool any = false;
+      for (unsigned int z = 0; z < mesh_.n_zones() && !any; ++z)
+        any = e.region.contains(zone_centroid(z), 0.0);
+      if (!any)
+        throw scene_error(scene, e.section, "",
+                          "removes no zone (no zone's centroid lies in the region)",
+                          "a region that holds zones of the body");
+    }
+}
+
+Vec3 BodyCycle::zone_centroid(unsigned int z) const
+{
+  Vec3 c = Vec3::Zero();
+  for (int a = 0; a < 4; ++a)
+  {
+    const unsigned int g = mesh_.zone_gridpoint[z][a];
+    c += 0.25 * Vec3(mesh_.position[3 * g], mesh_.position[3 * g + 1], mesh_.position[3 * g + 2]);
+  }
+  return c;
 }
 
 std::vector<std::string> BodyCycle::history_columns() const

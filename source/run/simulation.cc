@@ -64,6 +64,15 @@ Simulation::Simulation(const std::string& parameter_file, std::string restart_fr
   prefix_ = scene_.output.directory + "/" + scene_.output.base_name;
 }
 
+Simulation::Simulation(Scene scene)
+    : parameter_file_(scene.parameter_file), check_only_(false), scene_(std::move(scene))
+{
+  model_ = build_blocks(scene_, report_);
+  check_built_model(scene_, model_, report_);
+  resolve_history_blocks(scene_, model_);
+  prefix_ = scene_.output.directory + "/" + scene_.output.base_name;
+}
+
 Simulation::~Simulation() = default;
 
 std::vector<StageSpec> Simulation::stages() const
@@ -141,13 +150,7 @@ void Simulation::check_calculation()
   // refuse an unstable time step and the like.
   std::unique_ptr<ParallelEnvironment> parallel;
   if (!scene_.deformable.groups.empty())
-  {
-    int argc = 1;
-    char name[] = "talus";
-    char* args[] = {name, nullptr};
-    char** argv = args;
-    parallel = std::make_unique<ParallelEnvironment>(argc, argv);
-  }
+    parallel = ParallelEnvironment::unless_running();
   if (body_alone(scene_, model_))
   {
     MeshReport report;

@@ -1005,6 +1005,8 @@ std::pair<double, double> DeformableSolver::elastic_energy(const double* x) cons
   double all = 0.0, plastic = 0.0;
   for (unsigned int z = 0; z < mesh_.n_zones(); ++z)
   {
+    if (zone_removed(z)) // no stress, no stiffness
+      continue;
     const ZoneMaterial& mat = materials_[material_of_zone_[z]];
     double volume[4];
     if (mesh_.quadratic())

@@ -8,7 +8,9 @@
 // each ray from the centre (so that the zones stay about as long as they are
 // wide, small at the wall and large far out); deal.II extrudes them into one
 // layer of hexahedra and splits each into 24 tetrahedra (symmetric in z, no
-// preferred diagonal), which become the zones of block 0.
+// preferred diagonal), which become the zones of block 0. With `filled`,
+// the hole holds zones too, on the same wall gridpoints (an O-grid: a
+// square core and rings from it to the wall), to be excavated later.
 
 #include <talus/solver/deformable_solver.h>
 #include <talus/zone/block_mesher.h>
@@ -28,6 +30,7 @@ struct HoleMesh
   double thickness = 0.1; ///< slab thickness, m
   bool square = false;    ///< outer boundary the square [0, R]^2 instead of a circle
   unsigned int n_theta = 8, n_r = 16;
+  bool filled = false; ///< zones inside the hole too (n_theta even)
 
   /// Distance from the centre to the outer boundary along angle theta.
   double outer(double theta) const
@@ -62,6 +65,8 @@ struct HoleMesh
         cell.vertices[3] = id(i + 1, j + 1);
         cells.push_back(cell);
       }
+    if (filled)
+      fill_hole(vertices, cells);
     dealii::Triangulation<2> plane;
     plane.create_triangulation(vertices, cells, dealii::SubCellData());
     dealii::Triangulation<3> slab, tets;
@@ -70,6 +75,53 @@ struct HoleMesh
     talus::TetMesh mesh;
     talus::append_tetrahedra(mesh, tets, 0);
     return mesh;
+  }
+
+  /// The O-grid inside the hole: a square core of side a/2 in h x h cells
+  /// (h = n_theta / 2) whose two outer sides, n_theta segments, face the
+  /// n_theta wall segments across `layers` rings of cells.
+  void fill_hole(std::vector<dealii::Point<2>>& vertices,
+                 std::vector<dealii::CellData<2>>& cells) const
+  {
+    const unsigned int n = n_theta, h = n / 2;
+    const unsigned int layers = std::max(2u, static_cast<unsigned int>(std::lround(n / M_PI)));
+    const double s = 0.5 * a;
+    const unsigned int core0 = static_cast<unsigned int>(vertices.size());
+    for (unsigned int q = 0; q <= h; ++q)
+      for (unsigned int p = 0; p <= h; ++p)
+        vertices.emplace_back(s * p / h, s * q / h);
+    const auto core = [&](unsigned int p, unsigned int q) { return core0 + q * (h + 1) + p; };
+    // Point k of the core's outer sides, from (s, 0) up to (s, s), then to (0, s).
+    const auto side = [&](unsigned int k) { return k <= h ? core(h, k) : core(n - k, h); };
+    const unsigned int ring0 = static_cast<unsigned int>(vertices.size());
+    for (unsigned int l = 1; l < layers; ++l)
+      for (unsigned int k = 0; k <= n; ++k)
+      {
+        const dealii::Point<2> from = vertices[side(k)], to = vertices[k * (n_r + 1)];
+        const double w = double(l) / layers;
+        // Exact zeros on the symmetry planes, so that regions find them.
+        vertices.emplace_back(k == n ? 0.0 : (1.0 - w) * from[0] + w * to[0],
+                              k == 0 ? 0.0 : (1.0 - w) * from[1] + w * to[1]);
+      }
+    const auto ring = [&](unsigned int l, unsigned int k)
+    {
+      return l == 0 ? side(k) : l == layers ? k * (n_r + 1) : ring0 + (l - 1) * (n + 1) + k;
+    };
+    const auto add = [&](unsigned int v0, unsigned int v1, unsigned int v2, unsigned int v3)
+    {
+      dealii::CellData<2> cell;
+      cell.vertices[0] = v0;
+      cell.vertices[1] = v1;
+      cell.vertices[2] = v2;
+      cell.vertices[3] = v3;
+      cells.push_back(cell);
+    };
+    for (unsigned int q = 0; q < h; ++q)
+      for (unsigned int p = 0; p < h; ++p)
+        add(core(p, q), core(p + 1, q), core(p, q + 1), core(p + 1, q + 1));
+    for (unsigned int l = 0; l < layers; ++l)
+      for (unsigned int k = 0; k < n; ++k)
+        add(ring(l, k), ring(l + 1, k), ring(l, k + 1), ring(l + 1, k + 1));
   }
 };
 

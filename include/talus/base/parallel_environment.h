@@ -13,6 +13,10 @@ public:
   ParallelEnvironment(int& argc, char**& argv);
   ~ParallelEnvironment();
 
+  /// One for this process alone (talus is serial), or none when MPI runs
+  /// already (a test that holds its own around several runs).
+  static std::unique_ptr<ParallelEnvironment> unless_running();
+
 private:
   struct Impl;
   std::unique_ptr<Impl> impl_;

@@ -49,6 +49,9 @@ public:
   static TetMesh zones_of(const Scene& scene, const BlockModel& model, MeshReport& report);
 
 private:
+  /// The centroid of zone z's corners as built (m).
+  Vec3 zone_centroid(unsigned int z) const;
+
   Scene& scene_;
   BlockModel& model_;
   std::string prefix_;

@@ -24,6 +24,9 @@ public:
   /// `check_only`: read, build and check, write nothing.
   Simulation(const std::string& parameter_file, std::string restart_from = "",
              bool check_only = false);
+  /// A scene already read (and perhaps changed: tests run one scene in
+  /// several modes); its output folder must exist.
+  explicit Simulation(Scene scene);
   ~Simulation();
 
   /// Runs every stage; returns the exit code: 0, or 4 when a static stage

@@ -1,0 +1,130 @@
+// Stages with deformable blocks, in every zone formulation: two deformable
+// 1 m cubes (E = 1e8 Pa, nu = 0) stacked on a fixed rigid base on joints
+// of kn = 1e9 Pa/m (parameters/verification/staged_stack.prm). Stage 1
+// settles under gravity; stage 2 excavates the top cube (a region the
+// model was cut along) and resets displacements; stage 3 runs 0.002 s of
+// dynamics. Removing the top cube's weight W = 2600 x 9.81 = 25506 N lets
+// the lower cube rise: its base by W / kn = 2.5506e-5 m at the joint, its
+// top face by that plus W h / (E A) = 2.5506e-4 m of elastic rebound
+// (uniaxial, nu = 0, h = A = 1): 2.80566e-4 m. Checked at the middle of
+// the lower cube's top face (a history point; the contact between two
+// meshed cubes spreads the weight a few tenths of a percent unevenly over
+// the face, so 1 %), and:
+//  - the removed cube's gridpoints are held and, after the reset, at zero;
+//  - the energy balance error does not change over the excavation stage
+//    (the energy the removed cube held leaves the account with it);
+//  - stage 3 (dynamic, from rest) keeps the lower cube where it is.
+// The before figure: with the removed zones keeping their mass (null
+// material of density 2600) the rebound is 0 and every check fails.
+
+#include <talus/base/parallel_environment.h>
+#include <talus/io/scene.h>
+#include <talus/run/simulation.h>
+
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <string>
+#include <unistd.h>
+
+#include "../tests.h"
+
+using namespace talus;
+
+namespace
+{
+/// The history file's rows as numbers, and its column names.
+std::vector<std::vector<double>> read_history(const std::string& file,
+                                              std::vector<std::string>& columns)
+{
+  std::ifstream in(file);
+  std::string line;
+  std::getline(in, line);
+  std::stringstream header(line);
+  for (std::string c; std::getline(header, c, ',');)
+    columns.push_back(c);
+  std::vector<std::vector<double>> rows;
+  while (std::getline(in, line))
+  {
+    std::vector<double> row;
+    std::stringstream values(line);
+    for (std::string v; std::getline(values, v, ',');)
+      row.push_back(std::stod(v));
+    rows.push_back(row);
+  }
+  return rows;
+}
+
+double column(const std::vector<double>& row, const std::vector<std::string>& columns,
+              const std::string& name)
+{
+  for (std::size_t k = 0; k < columns.size(); ++k)
+    if (columns[k] == name)
+      return row.at(k);
+  std::printf("no column %s\n", name.c_str());
+  return NAN;
+}
+} // namespace
+
+int main(int argc, char** argv)
+{
+  ParallelEnvironment env(argc, argv);
+  const double W = 2600 * 9.81, kn = 1e9, E = 1e8;
+  const double rebound = W / kn + W / E;
+  for (const auto& [element, nodal_mixed, name] :
+       {std::tuple{ZoneElement::tet4, false, "tet4"}, std::tuple{ZoneElement::tet4, true, "nmd"},
+        std::tuple{ZoneElement::tet10, false, "tet10"},
+        std::tuple{ZoneElement::hex_mixed, false, "hex-mixed"}})
+  {
+    Scene scene = read_scene(
+        std::string(SOURCE_DIR) + "/../../parameters/verification/staged_stack.prm", false);
+    scene.deformable.material.element = element;
+    scene.deformable.material.nodal_mixed = nodal_mixed;
+    scene.output.directory = std::string("output_stages_02_") + name;
+    scene.output.write_vtu = false;
+    std::filesystem::create_directories(scene.output.directory);
+    // The run's summary is not what this test compares.
+    std::fflush(stdout);
+    const int saved = dup(1);
+    std::freopen("/dev/null", "w", stdout);
+    const int code = Simulation(scene).run();
+    std::fflush(stdout);
+    dup2(saved, 1);
+    close(saved);
+    std::printf("%s: exit code %d\n", name, code);
+    std::vector<std::string> columns;
+    const std::vector<std::vector<double>> rows = read_history(
+        scene.output.directory + "/" + scene.output.base_name + "_history.csv", columns);
+    const auto last_of_stage = [&](int stage) -> const std::vector<double>&
+    {
+      const std::vector<double>* found = &rows.front();
+      for (const std::vector<double>& r : rows)
+        if (column(r, columns, "stage") == stage)
+          found = &r;
+      return *found;
+    };
+    const std::vector<double>& end2 = last_of_stage(2);
+    const std::vector<double>& end3 = last_of_stage(3);
+    talus_test::check_within(std::string("  ") + name +
+                                 ": stage 2, rise of the lower cube's top face (m)",
+                             column(end2, columns, "point 0 uz (m)"), rebound, 0.01);
+    talus_test::check_within(std::string("  ") + name + ": stage 2, rise of its base (m)",
+                             column(end2, columns, "point 1 uz (m)"), W / kn, 0.01);
+    std::printf("  %s: the removed cube's gridpoint after the reset: %s\n", name,
+                column(end2, columns, "point 2 uz (m)") == 0.0 ? "at zero" : "MOVED (WRONG)");
+    // The change over the stage: nodal mixed discretization's account is
+    // off by some 2e-3 of the work of gravity from the start (a known
+    // error of its own, left for [dynamics]).
+    const double change = std::abs(column(end2, columns, "energy balance error (J)") -
+                                   column(last_of_stage(1), columns, "energy balance error (J)"));
+    const double gravity = std::abs(column(end2, columns, "work of gravity (J)"));
+    std::printf("  %s: the energy balance error changes by less than 1e-3 of the work of "
+                "gravity over the excavation stage: %s\n",
+                name, change < 1e-3 * gravity ? "OK" : "WRONG");
+    talus_test::check_within(std::string("  ") + name + ": stage 3 (dynamic) keeps it there (m)",
+                             column(end3, columns, "point 0 uz (m)"),
+                             column(end2, columns, "point 0 uz (m)"), 1e-3);
+  }
+}
