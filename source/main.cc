@@ -7,6 +7,7 @@
 #include <talus/io/block_vtu_writer.h>
 #include <talus/io/checkpoint.h>
 #include <talus/io/contact_vtu_writer.h>
+#include <talus/io/factor_of_safety_run.h>
 #include <talus/io/file_output.h>
 #include <talus/io/history_file.h>
 #include <talus/io/scene.h>
@@ -877,7 +878,9 @@ int run(const std::string& filename, bool check_only = false)
     std::printf("Output:       %s_blocks.pvd\n", prefix.c_str());
   }
   int exit_code = 0;
-  if (scene.solver.steps > 0)
+  if (scene.strength_reduction.enabled)
+    exit_code = talus::run_factor_of_safety(scene, model, prefix);
+  else if (scene.solver.steps > 0)
   {
     const RunEnd end = !scene.deformable.groups.empty() && model.n_blocks() == 1
                            ? solve_deformable(scene, model, prefix)
