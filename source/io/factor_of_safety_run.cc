@@ -23,9 +23,10 @@ namespace
 /// The end of an unstable trial as one frame of each series: blocks (with
 /// displacement, velocity, rotation), contacts and zones (displacement,
 /// velocity at the gridpoints; plastic state per zone).
-void write_mechanism(const Scene& scene, const BlockSystem& system, const BlockModel& model,
-                     const std::string& prefix)
+void write_mechanism(const Scene& scene, const TrialView& view, const std::string& prefix)
 {
+  const BlockSystem& system = view.system;
+  const BlockModel& model = view.model;
   const RigidSolver& solver = *system.solver;
   const std::string& folder = scene.output.directory;
   const std::string& base = scene.output.base_name;
@@ -33,7 +34,7 @@ void write_mechanism(const Scene& scene, const BlockSystem& system, const BlockM
   for (unsigned int b = 0; b < model.n_blocks(); ++b)
     for (int d = 0; d < 3; ++d)
     {
-      fields[0].values.push_back(solver.displacement[b][d]);
+      fields[0].values.push_back(solver.displacement[b][d] - view.start_displacement[b][d]);
       fields[1].values.push_back(solver.velocity[b][d]);
       fields[2].values.push_back(solver.rotation[b][d]);
     }
@@ -60,10 +61,13 @@ void write_mechanism(const Scene& scene, const BlockSystem& system, const BlockM
     shown_zone_values(system.mesh, x, zones.stress(), zones.plastic_state(), stress, state);
   std::vector<ZoneField> cells{{"plastic_state", 1, {}}};
   cells[0].values.assign(state.begin(), state.end());
+  std::vector<double> u = zones.displacements();
+  if (view.start_gridpoint_displacement.size() == u.size())
+    for (std::size_t i = 0; i < u.size(); ++i)
+      u[i] -= view.start_gridpoint_displacement[i];
   ZoneWriter(system.mesh, scene.output.vtu_encoding)
       .write(folder + "/" + base + "_zones_00000.vtu", x,
-             {{"displacement", 3, zones.displacements()}, {"velocity", 3, zones.velocities()}},
-             cells, zones.time());
+             {{"displacement", 3, u}, {"velocity", 3, zones.velocities()}}, cells, zones.time());
   PvdSeries(prefix + "_zones.pvd").add(zones.time(), base + "_zones_00000.vtu");
 }
 
@@ -97,7 +101,7 @@ int run_factor_of_safety(Scene& scene, BlockModel& model, const std::string& pre
   std::vector<std::string> columns{"step",
                                    "time (s)",
                                    "unbalanced ratio",
-                                   "largest block displacement (m)",
+                                   "largest displacement (m)",
                                    "kinetic energy (J)",
                                    "work of gravity (J)",
                                    "joint elastic energy (J)",
@@ -110,32 +114,40 @@ int run_factor_of_safety(Scene& scene, BlockModel& model, const std::string& pre
   std::vector<std::vector<double>> rows; // of the trial running
   bool checked = scene.deformable.groups.empty(); // else at the first trial's start
   TrialHooks hooks;
-  hooks.record = [&](const BlockSystem& system)
+  hooks.record = [&](const TrialView& view)
   {
-    const RigidSolver& solver = *system.solver;
+    const RigidSolver& solver = *view.system.solver;
     if (!checked) // the boundaries' selections, once the zones exist
     {
-      check_boundary_selections(scene, model, system.mesh);
+      check_boundary_selections(scene, model, view.system.mesh);
       checked = true;
     }
-    if (solver.steps_done() == 0)
+    if (solver.steps_done() == view.start_step)
       rows.clear();
-    double largest = 0.0;
-    for (unsigned int b = 0; b < model.n_blocks(); ++b)
-      largest = std::max(largest, solver.displacement[b].norm());
+    // Steps, time and displacements since the initial state; the energy
+    // account runs on from the start of the initial equilibrium.
     const EnergyAccount e = solver.energy_account();
-    std::vector<double> row{double(solver.steps_done()), solver.time(), solver.unbalanced_ratio(),
-                            largest, e.kinetic, e.gravity_work, e.joint_elastic, e.friction,
-                            e.damping, e.error()};
+    std::vector<double> row{double(solver.steps_done() - view.start_step),
+                            solver.time(),
+                            solver.unbalanced_ratio(),
+                            view.largest_displacement(),
+                            e.kinetic,
+                            e.gravity_work,
+                            e.joint_elastic,
+                            e.friction,
+                            e.damping,
+                            e.error()};
     for (unsigned int b : s.history_blocks)
-      for (const Vec3* q : {&solver.displacement[b], &solver.velocity[b]})
+    {
+      const Vec3 u = solver.displacement[b] - view.start_displacement[b];
+      for (const Vec3* q : {&u, &solver.velocity[b]})
         for (int d = 0; d < 3; ++d)
           row.push_back((*q)[d]);
+    }
     rows.push_back(std::move(row));
   };
   double mechanism_factor = 0.0;
-  hooks.finished = [&](const BlockSystem& system, const BlockModel& trial_model,
-                       const StrengthReductionTrial& t)
+  hooks.finished = [&](const TrialView& view, const StrengthReductionTrial& t)
   {
     // Each unstable trial replaces the mechanism written before: the last
     // one, nearest the limit, stays.
@@ -154,7 +166,7 @@ int run_factor_of_safety(Scene& scene, BlockModel& model, const std::string& pre
       }
     }
     if (scene.output.write_vtu)
-      write_mechanism(scene, system, trial_model, prefix);
+      write_mechanism(scene, view, prefix);
   };
   const StrengthReductionResult r =
       factor_of_safety(scene, model, hooks,

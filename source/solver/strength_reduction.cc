@@ -95,7 +95,8 @@ double DisplacementWatch::late_growth() const
 }
 
 StrengthReductionTrial judge_trial(double factor, bool reached_target, unsigned long steps,
-                                   double ratio, const DisplacementWatch& watch)
+                                   double ratio, const DisplacementWatch& watch,
+                                   double rest_displacement)
 {
   StrengthReductionTrial t;
   t.factor = factor;
@@ -104,7 +105,8 @@ StrengthReductionTrial judge_trial(double factor, bool reached_target, unsigned 
   t.ratio = ratio;
   t.displacement = watch.last();
   t.late_growth = watch.late_growth();
-  t.stable = reached_target && t.late_growth <= creep_fraction * t.displacement;
+  t.stable = reached_target &&
+             t.late_growth <= std::max(creep_fraction * t.displacement, rest_displacement);
   return t;
 }
 

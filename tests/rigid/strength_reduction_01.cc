@@ -74,9 +74,9 @@ int main()
     settled.add(n, 1e-3 * (1.0 - std::exp(-double(n) / 80.0)));
     creeping.add(n, 1e-4 + 1e-6 * double(n));
   }
-  const StrengthReductionTrial a = judge_trial(1.0, true, 1000, 8e-6, settled);
-  const StrengthReductionTrial b = judge_trial(1.0, true, 1000, 8e-6, creeping);
-  const StrengthReductionTrial c = judge_trial(1.0, false, 1000, 3e-3, settled);
+  const StrengthReductionTrial a = judge_trial(1.0, true, 1000, 8e-6, settled, 0.0);
+  const StrengthReductionTrial b = judge_trial(1.0, true, 1000, 8e-6, creeping, 0.0);
+  const StrengthReductionTrial c = judge_trial(1.0, false, 1000, 3e-3, settled, 0.0);
   std::printf("equilibrium: %s (growth %.1e of the displacement): %s\n",
               a.stable ? "stable" : "unstable", a.late_growth / a.displacement,
               talus_test::verdict(a.stable));
@@ -85,5 +85,14 @@ int main()
               talus_test::verdict(!b.stable));
   std::printf("target ratio not reached: %s: %s\n", c.stable ? "stable" : "unstable",
               talus_test::verdict(!c.stable));
+  // At rest: 1e-12 m of round-off grown by half is below a rest
+  // displacement of 1e-6 m.
+  DisplacementWatch noise;
+  noise.add(0, 0.0);
+  noise.add(15, 1e-12);
+  noise.add(18, 1.5e-12);
+  std::printf("round-off at rest: %s: %s\n",
+              judge_trial(1.0, true, 18, 9e-6, noise, 1e-6).stable ? "stable" : "unstable",
+              talus_test::verdict(judge_trial(1.0, true, 18, 9e-6, noise, 1e-6).stable));
   std::printf("%s\n%s\n%s\n", trial_line(a).c_str(), trial_line(b).c_str(), trial_line(c).c_str());
 }

@@ -81,9 +81,16 @@ private:
 /// almost no unbalanced force, which local damping does not stop, is not
 /// at rest). A clean equilibrium converges geometrically: its last quarter
 /// adds some 1e-4 of the displacement; steady creep adds about a quarter.
+/// A growth below `rest_displacement` (m) is rest whatever the fraction: a
+/// model already at rest moves by round-off, 1e-12 m, which can grow by
+/// half in a few steps.
 constexpr double creep_fraction = 0.01;
 StrengthReductionTrial judge_trial(double factor, bool reached_target, unsigned long steps,
-                                   double ratio, const DisplacementWatch& watch);
+                                   double ratio, const DisplacementWatch& watch,
+                                   double rest_displacement);
+/// The rest displacement of judge_trial for a scene: this fraction of the
+/// contact tolerance (CTOL).
+constexpr double rest_fraction_of_tolerance = 1e-3;
 
 /// One summary line of a trial: "Trial F = 1.234: stable, ratio 8.2e-06 at
 /// step 2345" or "Trial F = 2: unstable, ratio 0.0123 at the step limit 20000,
