@@ -177,9 +177,12 @@ int run_factor_of_safety(Scene& scene, BlockModel& model, const std::string& pre
     const auto line = scene.lines.find("Solver / Mode");
     throw InputError::at(scene.parameter_file, line == scene.lines.end() ? 0 : line->second,
                          "Solver", "Mode", "factor of safety: " + r.failure,
-                         "a model that is stable at some F and fails at a larger one, between "
-                         "F = " + number(f.smallest_factor) + " and " +
-                             number(f.largest_factor));
+                         r.trials.empty()
+                             ? "a model that comes to rest under its loads (every block "
+                               "supported, 'Steps' enough to reach 'Target ratio')"
+                             : "a model that is stable at some F and fails at a larger one, "
+                               "between F = " + number(f.smallest_factor) + " and " +
+                                   number(f.largest_factor));
   }
   std::printf("Factor of safety: %.4g (between %.6g and %.6g, %zu trials)\n", r.factor(),
               r.stable_factor, r.unstable_factor, r.trials.size());
