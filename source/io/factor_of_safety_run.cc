@@ -107,6 +107,9 @@ int run_factor_of_safety(Scene& scene, BlockModel& model, const std::string& pre
                                    "joint elastic energy (J)",
                                    "friction dissipation (J)",
                                    "damping dissipation (J)",
+                                   "work of boundaries (J)",
+                                   "zone elastic energy (J)",
+                                   "plastic dissipation (J)",
                                    "energy balance error (J)"};
   for (unsigned int b : s.history_blocks)
     for (const char* q : {"ux", "uy", "uz", "vx", "vy", "vz"})
@@ -128,7 +131,7 @@ int run_factor_of_safety(Scene& scene, BlockModel& model, const std::string& pre
     // account runs on from the start of the initial equilibrium.
     const EnergyAccount e = solver.energy_account();
     std::vector<double> row{double(solver.steps_done() - view.start_step),
-                            solver.time(),
+                            solver.time() - view.start_time,
                             solver.unbalanced_ratio(),
                             view.largest_displacement(),
                             e.kinetic,
@@ -136,6 +139,9 @@ int run_factor_of_safety(Scene& scene, BlockModel& model, const std::string& pre
                             e.joint_elastic,
                             e.friction,
                             e.damping,
+                            e.boundary_work,
+                            e.zone_elastic,
+                            e.plastic,
                             e.error()};
     for (unsigned int b : s.history_blocks)
     {

@@ -161,7 +161,7 @@ StrengthReductionTrials::StrengthReductionTrials(const Scene& scene, const Block
   const BlockSystem system = build_block_system(strong, copy);
   const std::vector<Vec3> at_rest(copy.n_blocks(), Vec3::Zero());
   const std::vector<double> none;
-  const TrialView view{factor, system, copy, 0, at_rest, none};
+  const TrialView view{factor, system, copy, 0, 0.0, at_rest, none};
   initial_ = run_to_target(strong, view, {});
   CheckpointWriter out;
   system.solver->save_state(out);
@@ -172,6 +172,7 @@ StrengthReductionTrials::StrengthReductionTrials(const Scene& scene, const Block
   }
   state_ = out.bytes();
   start_step_ = system.solver->steps_done();
+  start_time_ = system.solver->time();
   start_displacement_ = system.solver->displacement;
 }
 
@@ -187,8 +188,8 @@ StrengthReductionTrial StrengthReductionTrials::run(double factor, const TrialHo
   system.solver->load_state(in);
   if (system.zones)
     system.zones->load_state(in);
-  const TrialView view{factor,       system, copy, start_step_, start_displacement_,
-                       start_gridpoint_displacement_};
+  const TrialView view{factor,      system,      copy, start_step_, start_time_,
+                       start_displacement_, start_gridpoint_displacement_};
   return run_to_target(reduced, view, hooks);
 }
 

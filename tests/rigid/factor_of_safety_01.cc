@@ -98,8 +98,54 @@ end
   return r.factor();
 }
 
+/// What reduce_strengths does to every strength: tan(phi)/F, c/F, T/F on
+/// each joint material, the dilation angle capped at the reduced friction
+/// angle; Mohr-Coulomb zones only with 'Reduce zone strength'.
+void check_reduction()
+{
+  const double deg = M_PI / 180.0, F = 2.0;
+  talus::Scene s;
+  s.solver.joint.friction_angle = 40;
+  s.solver.joint.cohesion = 1e5;
+  s.solver.joint.tensile_strength = 5e4;
+  s.solver.joint.dilation_angle = 30;
+  talus::JointProperties second;
+  second.friction_angle = 20;
+  second.cohesion = 3e3;
+  s.solver.joint_materials = {second};
+  s.deformable.material.model = talus::ZoneModel::mohr_coulomb;
+  s.deformable.material.friction_angle = 35;
+  s.deformable.material.cohesion = 2e6;
+  s.deformable.material.tensile_strength = 1e6;
+  s.rock_materials.resize(1);
+  s.rock_materials[0].zone = s.deformable.material;
+  talus::Scene joints_only = s;
+  talus::reduce_strengths(joints_only, F);
+  const talus::JointProperties& j = joints_only.solver.joint;
+  const bool joints = std::abs(std::tan(j.friction_angle * deg) - std::tan(40 * deg) / F) < 1e-12 &&
+                      j.cohesion == 5e4 && j.tensile_strength == 2.5e4 &&
+                      j.dilation_angle == j.friction_angle &&
+                      std::abs(std::tan(joints_only.solver.joint_materials[0].friction_angle * deg) -
+                               std::tan(20 * deg) / F) < 1e-12 &&
+                      joints_only.solver.joint_materials[0].cohesion == 1.5e3 &&
+                      joints_only.solver.joint_materials[0].dilation_angle == 0;
+  const bool zones_kept = joints_only.deformable.material.cohesion == 2e6 &&
+                          joints_only.rock_materials[0].zone.friction_angle == 35;
+  s.strength_reduction.reduce_zone_strength = true;
+  talus::reduce_strengths(s, F);
+  const talus::ZoneMaterial& z = s.rock_materials[0].zone;
+  const bool zones = std::abs(std::tan(z.friction_angle * deg) - std::tan(35 * deg) / F) < 1e-12 &&
+                     z.cohesion == 1e6 && z.tensile_strength == 5e5 &&
+                     s.deformable.material.cohesion == 1e6;
+  std::printf("reduction by F = 2: joint materials %s, zones kept without 'Reduce zone strength' "
+              "%s, reduced with it %s\n",
+              talus_test::verdict(joints), talus_test::verdict(zones_kept),
+              talus_test::verdict(zones));
+}
+
 int main()
 {
+  check_reduction();
   const double deg = M_PI / 180.0, g = 9.81, A = 2.0, W = 2650 * 0.4 * g;
   talus_test::check_within("F, a = 30, phi = 35", factor_of_safety(30, 35, 0),
                            std::tan(35 * deg) / std::tan(30 * deg), 0.005);

@@ -39,6 +39,7 @@ struct TrialView
   const BlockSystem& system;
   const BlockModel& model;
   unsigned long start_step = 0;           ///< the step of the initial state
+  double start_time = 0.0;                ///< s, its model time
   const std::vector<Vec3>& start_displacement; ///< m, of each block in the initial state
   const std::vector<double>& start_gridpoint_displacement; ///< m, 3 per gridpoint (zones)
   /// The largest displacement of a block or gridpoint since the initial state (m).
@@ -77,6 +78,7 @@ private:
   StrengthReductionTrial initial_;
   std::string state_; ///< the initial state (RigidSolver and zones' save_state)
   unsigned long start_step_ = 0;
+  double start_time_ = 0.0;
   std::vector<Vec3> start_displacement_;
   std::vector<double> start_gridpoint_displacement_;
 };
