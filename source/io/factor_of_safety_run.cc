@@ -114,7 +114,7 @@ int run_factor_of_safety(Scene& scene, BlockModel& model, const std::string& pre
   for (unsigned int b : s.history_blocks)
     for (const char* q : {"ux", "uy", "uz", "vx", "vy", "vz"})
       columns.push_back("block " + std::to_string(b) + " " + q + (q[0] == 'u' ? " (m)" : " (m/s)"));
-  std::vector<std::vector<double>> rows; // of the trial running
+  std::vector<std::vector<double>> rows;          // of the trial running
   bool checked = scene.deformable.groups.empty(); // else at the first trial's start
   TrialHooks hooks;
   hooks.record = [&](const TrialView& view)
@@ -174,10 +174,9 @@ int run_factor_of_safety(Scene& scene, BlockModel& model, const std::string& pre
     if (scene.output.write_vtu)
       write_mechanism(scene, view, prefix);
   };
-  const StrengthReductionResult r =
-      factor_of_safety(scene, model, hooks,
-                       [](const StrengthReductionTrial& t)
-                       { std::printf("%s\n", trial_line(t).c_str()); });
+  const StrengthReductionResult r = factor_of_safety(
+      scene, model, hooks,
+      [](const StrengthReductionTrial& t) { std::printf("%s\n", trial_line(t).c_str()); });
   if (!r.found)
   {
     const auto line = scene.lines.find("Solver / Mode");
@@ -187,19 +186,18 @@ int run_factor_of_safety(Scene& scene, BlockModel& model, const std::string& pre
                              ? "a model that comes to rest under its loads (every block "
                                "supported, 'Steps' enough to reach 'Target ratio')"
                              : "a model that is stable at some F and fails at a larger one, "
-                               "between F = " + number(f.smallest_factor) + " and " +
-                                   number(f.largest_factor));
+                               "between F = " +
+                                   number(f.smallest_factor) + " and " + number(f.largest_factor));
   }
   std::printf("Factor of safety: %.4g (between %.6g and %.6g, %zu trials)\n", r.factor(),
               r.stable_factor, r.unstable_factor, r.trials.size());
-  std::printf("Mechanism:    the last unstable trial (F = %.6g): %s%s_history.csv\n",
-              mechanism_factor,
-              scene.output.write_vtu
-                  ? (prefix + "_blocks.pvd, " + prefix + "_contacts.pvd, " +
-                     (scene.deformable.groups.empty() ? "" : prefix + "_zones.pvd, "))
-                        .c_str()
-                  : "",
-              prefix.c_str());
+  std::printf(
+      "Mechanism:    the last unstable trial (F = %.6g): %s%s_history.csv\n", mechanism_factor,
+      scene.output.write_vtu ? (prefix + "_blocks.pvd, " + prefix + "_contacts.pvd, " +
+                                (scene.deformable.groups.empty() ? "" : prefix + "_zones.pvd, "))
+                                   .c_str()
+                             : "",
+      prefix.c_str());
   return 0;
 }
 

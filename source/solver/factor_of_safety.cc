@@ -96,9 +96,8 @@ StrengthReductionTrial run_to_target(const Scene& scene, const TrialView& view,
   {
     note = std::string("diverged (") + e.what() + ")";
   }
-  StrengthReductionTrial t =
-      judge_trial(view.factor, reached_target, n, solver.unbalanced_ratio(), watch,
-                  rest_fraction_of_tolerance * s.contact.tolerance);
+  StrengthReductionTrial t = judge_trial(view.factor, reached_target, n, solver.unbalanced_ratio(),
+                                         watch, rest_fraction_of_tolerance * s.contact.tolerance);
   if (!note.empty())
   {
     t.stable = false;
@@ -188,8 +187,13 @@ StrengthReductionTrial StrengthReductionTrials::run(double factor, const TrialHo
   system.solver->load_state(in);
   if (system.zones)
     system.zones->load_state(in);
-  const TrialView view{factor,      system,      copy, start_step_, start_time_,
-                       start_displacement_, start_gridpoint_displacement_};
+  const TrialView view{factor,
+                       system,
+                       copy,
+                       start_step_,
+                       start_time_,
+                       start_displacement_,
+                       start_gridpoint_displacement_};
   return run_to_target(reduced, view, hooks);
 }
 

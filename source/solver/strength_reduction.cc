@@ -114,8 +114,10 @@ std::string trial_line(const StrengthReductionTrial& t)
 {
   char text[400];
   if (t.stable)
-    std::snprintf(text, sizeof text, "Trial F = %.6g: stable, ratio %.2g at step %lu, largest "
-                  "displacement %.3g m", t.factor, t.ratio, t.steps, t.displacement);
+    std::snprintf(text, sizeof text,
+                  "Trial F = %.6g: stable, ratio %.2g at step %lu, largest "
+                  "displacement %.3g m",
+                  t.factor, t.ratio, t.steps, t.displacement);
   else if (!t.note.empty())
     std::snprintf(text, sizeof text, "Trial F = %.6g: unstable, %s at step %lu", t.factor,
                   t.note.c_str(), t.steps);

@@ -52,9 +52,10 @@ int main(int argc, char** argv)
       slide += std::sqrt(dx * dx + dz * dz) / n;
     }
   };
-  const StrengthReductionResult r = factor_of_safety(
-      scene, model, hooks,
-      [](const StrengthReductionTrial& t) { std::fprintf(stderr, "  %s\n", trial_line(t).c_str()); });
+  const StrengthReductionResult r =
+      factor_of_safety(scene, model, hooks,
+                       [](const StrengthReductionTrial& t)
+                       { std::fprintf(stderr, "  %s\n", trial_line(t).c_str()); });
   std::printf("found: %s; mechanism in %s zones\n", r.found ? "yes" : "no",
               zones > 0 ? "the" : "NO");
   talus_test::check_within("F of the deformable block", r.factor(),

@@ -89,10 +89,10 @@ end
   talus::BuildReport report;
   talus::BlockModel model = talus::build_blocks(scene, report);
   talus::resolve_group_names(scene, model);
-  const talus::StrengthReductionResult r = talus::factor_of_safety(
-      scene, model, {},
-      [](const talus::StrengthReductionTrial& t)
-      { std::fprintf(stderr, "  %s\n", talus::trial_line(t).c_str()); });
+  const talus::StrengthReductionResult r =
+      talus::factor_of_safety(scene, model, {},
+                              [](const talus::StrengthReductionTrial& t)
+                              { std::fprintf(stderr, "  %s\n", talus::trial_line(t).c_str()); });
   std::printf("slider: %u blocks, volume %.6g m^3; found: %s\n", model.n_blocks(), model.volume[1],
               r.found ? "yes" : "no");
   return r.factor();
@@ -122,13 +122,13 @@ void check_reduction()
   talus::Scene joints_only = s;
   talus::reduce_strengths(joints_only, F);
   const talus::JointProperties& j = joints_only.solver.joint;
-  const bool joints = std::abs(std::tan(j.friction_angle * deg) - std::tan(40 * deg) / F) < 1e-12 &&
-                      j.cohesion == 5e4 && j.tensile_strength == 2.5e4 &&
-                      j.dilation_angle == j.friction_angle &&
-                      std::abs(std::tan(joints_only.solver.joint_materials[0].friction_angle * deg) -
-                               std::tan(20 * deg) / F) < 1e-12 &&
-                      joints_only.solver.joint_materials[0].cohesion == 1.5e3 &&
-                      joints_only.solver.joint_materials[0].dilation_angle == 0;
+  const bool joints =
+      std::abs(std::tan(j.friction_angle * deg) - std::tan(40 * deg) / F) < 1e-12 &&
+      j.cohesion == 5e4 && j.tensile_strength == 2.5e4 && j.dilation_angle == j.friction_angle &&
+      std::abs(std::tan(joints_only.solver.joint_materials[0].friction_angle * deg) -
+               std::tan(20 * deg) / F) < 1e-12 &&
+      joints_only.solver.joint_materials[0].cohesion == 1.5e3 &&
+      joints_only.solver.joint_materials[0].dilation_angle == 0;
   const bool zones_kept = joints_only.deformable.material.cohesion == 2e6 &&
                           joints_only.rock_materials[0].zone.friction_angle == 35;
   s.strength_reduction.reduce_zone_strength = true;

@@ -107,8 +107,8 @@ subsection Solver
   set Fixed groups = rock
 end
 )",
-                  nS[0], nS[1], nS[2], -nA[0], -nA[1], -nA[2], -nB[0], -nB[1], -nB[2], nS[0],
-                  nS[1], nS[2]);
+                  nS[0], nS[1], nS[2], -nA[0], -nA[1], -nA[2], -nB[0], -nB[1], -nB[2], nS[0], nS[1],
+                  nS[2]);
     prm << text;
   }
   talus::Scene scene = talus::read_scene(file, false);
@@ -132,10 +132,10 @@ end
     if (!t.stable)
       slide = view.system.solver->displacement[wedge] - view.start_displacement[wedge];
   };
-  const talus::StrengthReductionResult r = talus::factor_of_safety(
-      scene, model, hooks,
-      [](const talus::StrengthReductionTrial& t)
-      { std::fprintf(stderr, "  %s\n", talus::trial_line(t).c_str()); });
+  const talus::StrengthReductionResult r =
+      talus::factor_of_safety(scene, model, hooks,
+                              [](const talus::StrengthReductionTrial& t)
+                              { std::fprintf(stderr, "  %s\n", talus::trial_line(t).c_str()); });
   std::printf("found: %s\n", r.found ? "yes" : "no");
 
   Vec3 i = nA.cross(nB).normalized();

@@ -56,15 +56,16 @@ int main()
 
   s.initial_factor = 1.0;
   r = find_factor_of_safety([](double f) { return fake(f, 1e9); }, s);
-  std::printf("stable at every factor: found %s after %zu trials (last F = %g): %s\n",
-              r.found ? "yes" : "no", r.trials.size(), r.trials.back().factor,
-              talus_test::verdict(!r.found && r.trials.size() == 8 && r.trials.back().factor == 100));
+  std::printf(
+      "stable at every factor: found %s after %zu trials (last F = %g): %s\n",
+      r.found ? "yes" : "no", r.trials.size(), r.trials.back().factor,
+      talus_test::verdict(!r.found && r.trials.size() == 8 && r.trials.back().factor == 100));
   std::printf("  message: %s\n", r.failure.c_str());
   r = find_factor_of_safety([](double f) { return fake(f, 0.0); }, s);
-  std::printf("unstable at every factor: found %s after %zu trials (last F = %g): %s\n",
-              r.found ? "yes" : "no", r.trials.size(), r.trials.back().factor,
-              talus_test::verdict(!r.found && r.trials.size() == 8 &&
-                                  r.trials.back().factor == 0.01));
+  std::printf(
+      "unstable at every factor: found %s after %zu trials (last F = %g): %s\n",
+      r.found ? "yes" : "no", r.trials.size(), r.trials.back().factor,
+      talus_test::verdict(!r.found && r.trials.size() == 8 && r.trials.back().factor == 0.01));
 
   // Judging: 1000 steps to the target; displacement converging
   // geometrically (equilibrium) or growing linearly (creep).

@@ -38,8 +38,8 @@ struct TrialView
   double factor = 1.0;
   const BlockSystem& system;
   const BlockModel& model;
-  unsigned long start_step = 0;           ///< the step of the initial state
-  double start_time = 0.0;                ///< s, its model time
+  unsigned long start_step = 0;                ///< the step of the initial state
+  double start_time = 0.0;                     ///< s, its model time
   const std::vector<Vec3>& start_displacement; ///< m, of each block in the initial state
   const std::vector<double>& start_gridpoint_displacement; ///< m, 3 per gridpoint (zones)
   /// The largest displacement of a block or gridpoint since the initial state (m).

@@ -15,12 +15,12 @@ namespace talus
 /// (factor_of_safety.h runs trials on a scene).
 struct StrengthReductionSettings
 {
-  bool enabled = false;         ///< 'Mode = factor of safety'
-  double tolerance = 0.005;     ///< the search stops when (unstable - stable) <= tolerance * stable
-  double initial_factor = 1.0;  ///< the first trial's F
+  bool enabled = false;        ///< 'Mode = factor of safety'
+  double tolerance = 0.005;    ///< the search stops when (unstable - stable) <= tolerance * stable
+  double initial_factor = 1.0; ///< the first trial's F
   bool reduce_zone_strength = false; ///< also Mohr-Coulomb zones' c, tan(phi), T
-  double smallest_factor = 0.01; ///< the bracket is not sought below this F
-  double largest_factor = 100.0; ///< nor above this one
+  double smallest_factor = 0.01;     ///< the bracket is not sought below this F
+  double largest_factor = 100.0;     ///< nor above this one
 };
 
 /// What one trial did and how it was judged.
@@ -39,11 +39,11 @@ struct StrengthReductionTrial
 /// The outcome of the search.
 struct StrengthReductionResult
 {
-  bool found = false;          ///< a stable and an unstable trial bracket F
-  double stable_factor = 0.0;  ///< the largest stable F tried
-  double unstable_factor = 0.0; ///< the smallest unstable F tried
+  bool found = false;                         ///< a stable and an unstable trial bracket F
+  double stable_factor = 0.0;                 ///< the largest stable F tried
+  double unstable_factor = 0.0;               ///< the smallest unstable F tried
   std::vector<StrengthReductionTrial> trials; ///< in the order run
-  std::string failure;          ///< when not found: why (for the message)
+  std::string failure;                        ///< when not found: why (for the message)
   /// The factor of safety: the middle of the bracket.
   double factor() const { return 0.5 * (stable_factor + unstable_factor); }
 };
@@ -53,9 +53,9 @@ struct StrengthReductionResult
 /// unstable) until one stable and one unstable trial exist, within
 /// [smallest_factor, largest_factor]; then bisects until the bracket is
 /// narrower than `tolerance` of its stable end.
-StrengthReductionResult find_factor_of_safety(
-    const std::function<StrengthReductionTrial(double factor)>& trial,
-    const StrengthReductionSettings& settings);
+StrengthReductionResult
+find_factor_of_safety(const std::function<StrengthReductionTrial(double factor)>& trial,
+                      const StrengthReductionSettings& settings);
 
 /// The largest displacement of a trial as it runs, to tell a clean
 /// equilibrium from a creeping limit state (judge_trial).
