@@ -205,15 +205,16 @@ factor_of_safety(const Scene& scene, const BlockModel& model, const TrialHooks& 
   if (!trials.initial().stable)
   {
     StrengthReductionResult r;
-    char text[400];
+    char text[1000];
+    const StrengthReductionTrial& t = trials.initial();
     std::snprintf(text, sizeof text,
                   "the model does not come to rest even with its strengths multiplied by %g "
                   "(the initial state of every trial; unbalanced-force ratio %.2g after %lu "
-                  "steps%s): a block with no support, or 'Steps' too few to reach 'Target "
+                  "steps%s%s): a block with no support, or 'Steps' too few to reach 'Target "
                   "ratio'",
-                  1.0 / scene.strength_reduction.smallest_factor, trials.initial().ratio,
-                  trials.initial().steps,
-                  trials.initial().reached_target ? ", its displacement still growing" : "");
+                  1.0 / scene.strength_reduction.smallest_factor, t.ratio, t.steps,
+                  t.reached_target ? ", its displacement still growing" : "",
+                  t.note.empty() ? "" : ("; " + t.note).c_str());
     r.failure = text;
     return r;
   }
