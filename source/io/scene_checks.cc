@@ -122,6 +122,11 @@ void check_stages(const Scene& scene, const BlockModel& model, const BuildReport
                   const HasBlocks& check_has_blocks)
 {
   const bool body = !scene.deformable.groups.empty() && model.n_blocks() == 1;
+  if (scene.strength_reduction.enabled && !scene.stages.empty())
+    throw scene_error(scene, "Solver", "Mode",
+                      "the factor of safety is searched for the model as built, and this scene "
+                      "has stages",
+                      "'static' or 'dynamic' with stages; 'factor of safety' without them");
   std::size_t k = 0;
   for (const StageSpec& stage : scene.stages)
   {

@@ -607,8 +607,10 @@ unsigned long step_limit_from_environment()
 void declare_solver(ParameterFile& prm)
 {
   prm.enter("Solver");
-  prm.declare("Mode", "static", P::Selection("static|dynamic"), "static or dynamic",
-              "static: damped to equilibrium; dynamic: undamped motion in time.");
+  prm.declare("Mode", "static", P::Selection("static|dynamic|factor of safety"),
+              "static, dynamic or factor of safety",
+              "static: damped to equilibrium; dynamic: undamped motion in time; factor of "
+              "safety: static trials with the strengths divided by F, bisected on F.");
   prm.declare("Steps", "0", P::Integer(0), "an integer >= 0",
               "Step limit; 0 builds and writes the model only.");
   prm.declare("Target ratio", "1e-5", P::Double(0.0), "a number >= 0",
@@ -648,6 +650,13 @@ void declare_solver(ParameterFile& prm)
               "Steps between history rows.");
   prm.declare("Output interval", "0", P::Integer(0), "an integer >= 0 (0: first and last)",
               "Steps between VTU files.");
+  prm.declare("Factor tolerance", "0.005", P::Double(1e-6, 1.0), "a number from 1e-6 to 1",
+              "Factor of safety: the search stops when the bracket is narrower than this "
+              "fraction of its stable end.");
+  prm.declare("Initial factor", "1", P::Double(0.01, 100.0), "a number from 0.01 to 100",
+              "Factor of safety: F of the first trial.");
+  prm.declare("Reduce zone strength", "false", P::Bool(), "true or false",
+              "Factor of safety: divide the Mohr-Coulomb zones' strengths by F too.");
   prm.leave();
 
   prm.enter("Contacts");
@@ -737,6 +746,21 @@ void parse_solver(ParameterFile& prm, Scene& scene)
     s.history_blocks.push_back(static_cast<unsigned int>(std::stoul(b)));
   s.history_interval = static_cast<unsigned int>(prm.get_integer("History interval"));
   s.output_interval = static_cast<unsigned long>(prm.get_integer("Output interval"));
+  StrengthReductionSettings& f = scene.strength_reduction;
+  f.enabled = prm.get("Mode") == "factor of safety";
+  f.tolerance = prm.get_double("Factor tolerance");
+  f.initial_factor = prm.get_double("Initial factor");
+  f.reduce_zone_strength = prm.get_bool("Reduce zone strength");
+  if (f.enabled && !(s.target_ratio > 0.0))
+    throw prm.error("Target ratio",
+                    "must be positive with 'Mode' = factor of safety (a trial is stable when "
+                    "its unbalanced-force ratio falls below it)",
+                    "a number > 0, e.g. 1e-5");
+  if (f.enabled && s.steps == 0)
+    throw prm.error("Steps",
+                    "must be positive with 'Mode' = factor of safety (the step limit of each "
+                    "trial)",
+                    "an integer > 0");
   prm.leave();
 
   prm.enter("Contacts");
@@ -800,6 +824,16 @@ void warn_about_ignored_entries(const ParameterFile& prm, Scene& scene,
         prm, "Solver",
         {"Target ratio", "Damping", "Local damping", "Global damping ratio", "Density scaling"},
         "'Mode' is dynamic (undamped, every one of 'Steps')", scene.warnings);
+  if (scene.strength_reduction.enabled)
+    warn_ignored(prm, "Solver", {"Output interval"},
+                 "'Mode' is factor of safety (the last unstable trial's end is written)",
+                 scene.warnings);
+  if (scene.strength_reduction.enabled)
+    warn_ignored(prm, "Output", {"Checkpoint interval"},
+                 "'Mode' is factor of safety (trials write no checkpoints)", scene.warnings);
+  else
+    warn_ignored(prm, "Solver", {"Factor tolerance", "Initial factor", "Reduce zone strength"},
+                 "'Mode' is not factor of safety", scene.warnings);
   if (scene.deformable.groups.empty())
     warn_ignored(prm, "Deformable",
                  {"Edge length",
@@ -943,6 +977,12 @@ Scene read_scene(const std::string& filename, bool prepare_output)
   for (const auto& [kind, name] : numbered_sections)
     if (kind == "Rock material")
       parse_rock_material(prm, name, scene);
+  if (scene.strength_reduction.enabled && !scene.deformable.mesh_file.empty())
+  {
+    prm.enter("Deformable");
+    throw prm.error("Mesh file", "is not taken with 'Mode' = factor of safety",
+                    "empty (the blocks meshed by talus) with 'Mode' = factor of safety");
+  }
   warn_about_ignored_entries(prm, scene, numbered_sections);
   scene.used_parameters = prm.used_parameters();
   scene.lines = prm.lines();

@@ -1,5 +1,6 @@
 #include <talus/base/exceptions.h>
 #include <talus/io/checkpoint.h>
+#include <talus/io/factor_of_safety_run.h>
 #include <talus/io/file_output.h>
 #include <talus/io/history_file.h>
 #include <talus/io/scene_checks.h>
@@ -187,6 +188,12 @@ int Simulation::run()
   write_file_atomically(prefix_ + "_used_parameters.prm",
                         [&](std::ostream& out) { out << scene_.used_parameters; });
   print_model();
+  if (scene_.strength_reduction.enabled)
+  {
+    const int code = run_factor_of_safety(scene_, model_, prefix_);
+    std::printf("   Time = %.3f s (blocks and the search)\n", seconds_since(start));
+    return code;
+  }
   const std::vector<StageSpec> stages = this->stages();
   unsigned long total_steps = 0;
   for (const StageSpec& s : stages)

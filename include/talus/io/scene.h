@@ -5,6 +5,7 @@
 #include <talus/io/vtu_encoding.h>
 #include <talus/solver/deformable_solver.h>
 #include <talus/solver/rigid_solver.h>
+#include <talus/solver/strength_reduction.h>
 #include <talus/zone/edge_length_field.h>
 
 #include <algorithm>
@@ -157,6 +158,8 @@ struct Scene
   OutputSettings output;
   /// The calculation (steps = 0: build and write the model only).
   SolverSettings solver;
+  /// 'Mode' = factor of safety: the search and its settings.
+  StrengthReductionSettings strength_reduction;
   std::vector<std::string> fixed_groups; ///< names; resolved to solver.fixed_groups
   /// m: the blocks containing or nearest to these points join
   /// solver.history_blocks (resolve_history_blocks).

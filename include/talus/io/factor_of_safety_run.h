@@ -1,0 +1,21 @@
+#pragma once
+
+#include <talus/io/scene.h>
+#include <talus/model/block_model.h>
+
+#include <string>
+
+namespace talus
+{
+
+/// 'Mode' = factor of safety: runs the strength-reduction search on the
+/// built `model` (solver/factor_of_safety.h), prints one summary line per
+/// trial and the factor of safety, and writes the failure mechanism (the
+/// end of the last unstable trial) as the run's output under `prefix`
+/// (<prefix>_blocks.pvd, _contacts.pvd, _zones.pvd with deformable blocks,
+/// _history.csv of that trial). Returns the exit code (0); throws
+/// InputError (exit code 1) when no bracket is found between F = 0.01 and
+/// 100.
+int run_factor_of_safety(Scene& scene, BlockModel& model, const std::string& prefix);
+
+} // namespace talus
