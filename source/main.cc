@@ -495,6 +495,9 @@ RunEnd solve_deformable(talus::Scene& scene, talus::BlockModel& model, const std
   if (last_output != solver.steps_done())
     output();
   std::printf("Steps:        %lu (time %.6g s)\n", solver.steps_done(), solver.time());
+  if (scene.solver.water.active())
+    std::printf("%s\n", water_summary(scene.solver.water, solver.water_faces_below(),
+                                       solver.water_force()).c_str());
   std::printf("Unbalanced force ratio: %.3g\n", solver.unbalanced_ratio());
   std::printf("Largest displacement: %.6g m\n", largest_gridpoint_displacement(solver));
   {
@@ -649,7 +652,8 @@ RunEnd solve(talus::Scene& scene, talus::BlockModel& model, talus::PvdSeries& se
     std::snprintf(name, sizeof name, "_contacts_%05u.vtu", frame - 1);
     const std::string contacts_vtu = scene.output.base_name + name;
     write_contacts_vtu(scene.output.directory + "/" + contacts_vtu, solver.contacts(), model,
-                       joint_numbers, scene.output.vtu_encoding);
+                       joint_numbers, scene.output.vtu_encoding, &scene.solver.water,
+                       scene.solver.gravity.norm());
     contact_series.add(time, contacts_vtu);
     if (zones)
       write_zone_frame(scene, mesh, *zones, *zone_writer, zone_series, zone_frame++);
@@ -686,6 +690,8 @@ RunEnd solve(talus::Scene& scene, talus::BlockModel& model, talus::PvdSeries& se
   progress.finish();
   std::printf("Steps:        %lu (time %.6g s)\n", r.steps, r.time);
   std::printf("Contacts:     %u with %u sub-contacts\n", r.contacts, r.subcontacts);
+  if (scene.solver.water.active())
+    std::printf("%s\n", solver.water_summary().c_str());
   if (scene.joint_material_names.size() > 1)
   {
     // Which material the contacts took: the check that the rules say what

@@ -8,6 +8,7 @@
 #include "rock_materials_reader.h"
 #include "parameter_file.h"
 #include "region_reader.h"
+#include "water_reader.h"
 
 #include <cerrno>
 #include <cmath>
@@ -854,6 +855,7 @@ Scene read_scene(const std::string& filename, bool prepare_output)
   declare_output(prm);
   declare_solver(prm);
   declare_deformable(prm);
+  declare_water(prm);
   for (const auto& [kind, name] : numbered_sections)
   {
     if (kind == "Joint set")
@@ -905,6 +907,7 @@ Scene read_scene(const std::string& filename, bool prepare_output)
       scene.groups.push_back(parse_group(prm, name, scene));
   }
   parse_solver(prm, scene);
+  parse_water(prm, scene);
   for (const auto& [kind, name] : numbered_sections)
     if (kind == "Load")
       parse_load(prm, name, scene);

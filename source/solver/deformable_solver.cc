@@ -1,6 +1,7 @@
 #include <talus/base/exceptions.h>
 #include <talus/io/checkpoint.h>
 #include <talus/solver/deformable_solver.h>
+#include <talus/solver/water_loads.h>
 #include <talus/zone/hex_mixed.h>
 #include <talus/zone/nodal_mixed.h>
 #include <talus/zone/tet10_mesh.h>
@@ -388,8 +389,22 @@ DeformableSolver::DeformableSolver(const TetMesh& mesh, std::vector<ZoneMaterial
     press(mesh_.face_gridpoint[f], in_hex[mesh_.face_zone[f]] ? 0.5 : 1.0);
   for (const auto& face : mesh_.second_overlay_face_gridpoint)
     press(face, 0.5);
+  if (s_.water.active())
+  {
+    // Water on every boundary face, in contact or not (water_loads.h).
+    for (unsigned int f = 0; f < mesh_.n_faces(); ++f)
+    {
+      water_faces_.push_back(mesh_.face_gridpoint[f]);
+      water_weight_.push_back(in_hex[mesh_.face_zone[f]] ? 0.5 : 1.0);
+    }
+    for (const auto& face : mesh_.second_overlay_face_gridpoint)
+    {
+      water_faces_.push_back(face);
+      water_weight_.push_back(0.5);
+    }
+  }
   force_size_.assign(3 * ng, 0.0);
-  if (!pressed_faces_.empty())
+  if (!pressed_faces_.empty() || !water_faces_.empty())
     pressure_force_.assign(3 * ng, 0.0);
   std::tie(initial_elastic_, initial_plastic_elastic_) = elastic_energy(mesh_.position.data());
   {
@@ -475,6 +490,48 @@ void DeformableSolver::external_forces(const double* x, double* f)
     {
       const unsigned int g = pressed_faces_[k][a];
       const Vec3 share = face_share_[k][a] * load;
+      for (int d = 0; d < 3; ++d)
+      {
+        f[3 * g + d] += share[d];
+        force_size_[3 * g + d] += std::abs(share[d]);
+        pressure_force_[3 * g + d] += share[d];
+      }
+    }
+  }
+  if (!water_faces_.empty())
+    add_water(x, f);
+}
+
+void DeformableSolver::add_water(const double* x, double* f)
+{
+  // The hydrostatic pressure of the water in the current geometry: on each
+  // corner, -n times its consistent share of the pressure (exact for the
+  // linear pressure under a plane surface; the resultant and its moment are
+  // those of the pressure on the face). A 10-node zone's face takes it on
+  // its four sub-triangles as a 4-node one would: the same resultant.
+  const double gamma = s_.water.density * s_.gravity.norm();
+  water_faces_below_ = 0;
+  water_force_.setZero();
+  const double highest = s_.water.table.highest();
+  for (std::size_t k = 0; k < water_faces_.size(); ++k)
+  {
+    const auto& t = water_faces_[k];
+    const Vec3 a(x[3 * t[0]], x[3 * t[0] + 1], x[3 * t[0] + 2]);
+    const Vec3 b(x[3 * t[1]], x[3 * t[1] + 1], x[3 * t[1] + 2]);
+    const Vec3 c(x[3 * t[2]], x[3 * t[2] + 1], x[3 * t[2] + 2]);
+    if (std::min({a.z(), b.z(), c.z()}) >= highest)
+      continue;
+    TriangleWater w;
+    integrate_water(s_.water.table, gamma, a, b, c, w);
+    if (!(w.force > 0.0))
+      continue;
+    ++water_faces_below_;
+    const Vec3 n = (b - a).cross(c - a).normalized(); // outward
+    for (int j = 0; j < 3; ++j)
+    {
+      const unsigned int g = t[j];
+      const Vec3 share = -water_weight_[k] * w.corner[j] * n;
+      water_force_ += share;
       for (int d = 0; d < 3; ++d)
       {
         f[3 * g + d] += share[d];
