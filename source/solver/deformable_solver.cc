@@ -502,7 +502,8 @@ void DeformableSolver::external_forces(const double* x, double* f)
     add_water(x, f);
 }
 
-void DeformableSolver::add_water(const double* x, double* f)
+template <typename Add>
+unsigned int DeformableSolver::water_shares(const double* x, Add&& add) const
 {
   // The hydrostatic pressure of the water in the current geometry: on each
   // corner, -n times its consistent share of the pressure (exact for the
@@ -510,9 +511,8 @@ void DeformableSolver::add_water(const double* x, double* f)
   // those of the pressure on the face). A 10-node zone's face takes it on
   // its four sub-triangles as a 4-node one would: the same resultant.
   const double gamma = s_.water.density * s_.gravity.norm();
-  water_faces_below_ = 0;
-  water_force_.setZero();
   const double highest = s_.water.table.highest();
+  unsigned int below = 0;
   for (std::size_t k = 0; k < water_faces_.size(); ++k)
   {
     const auto& t = water_faces_[k];
@@ -525,21 +525,28 @@ void DeformableSolver::add_water(const double* x, double* f)
     integrate_water(s_.water.table, gamma, a, b, c, w);
     if (!(w.force > 0.0))
       continue;
-    ++water_faces_below_;
+    ++below;
     const Vec3 n = (b - a).cross(c - a).normalized(); // outward
     for (int j = 0; j < 3; ++j)
-    {
-      const unsigned int g = t[j];
-      const Vec3 share = -water_weight_[k] * w.corner[j] * n;
-      water_force_ += share;
-      for (int d = 0; d < 3; ++d)
-      {
-        f[3 * g + d] += share[d];
-        force_size_[3 * g + d] += std::abs(share[d]);
-        pressure_force_[3 * g + d] += share[d];
-      }
-    }
+      add(t[j], Vec3(-water_weight_[k] * w.corner[j] * n));
   }
+  return below;
+}
+
+void DeformableSolver::add_water(const double* x, double* f)
+{
+  water_force_.setZero();
+  water_faces_below_ = water_shares(x,
+                                    [&](unsigned int g, const Vec3& share)
+                                    {
+                                      water_force_ += share;
+                                      for (int d = 0; d < 3; ++d)
+                                      {
+                                        f[3 * g + d] += share[d];
+                                        force_size_[3 * g + d] += std::abs(share[d]);
+                                        pressure_force_[3 * g + d] += share[d];
+                                      }
+                                    });
 }
 
 void DeformableSolver::zone_forces()
@@ -1329,6 +1336,11 @@ ImplicitElasticProblem DeformableSolver::implicit_problem() const
       for (int d = 0; d < 3; ++d)
         p.nodal_force[3 * pressed_faces_[k][a] + d] += face_share_[k][a] * load[d];
   }
+  water_shares(mesh_.position.data(), [&](unsigned int g, const Vec3& share)
+               {
+                 for (int d = 0; d < 3; ++d)
+                   p.nodal_force[3 * g + d] += share[d];
+               });
   p.fixed = held_;
   return p;
 }

@@ -18,10 +18,15 @@
 // normal and shear forces, N tan(phi) / S) against the closed form within
 // 1 %; then static runs at phi_limit + 0.5 deg (stands) and - 0.5 deg
 // (slides), and, for the before figure, - 0.5 deg without water (stands).
+// The contacts' VTU (binary, read back) holds at each sub-contact the
+// pore pressure rho_w g H (1 - x / B) of the base.
 
 #include <cmath>
 #include <cstdio>
 
+#include <talus/io/contact_vtu_writer.h>
+
+#include "../io/vtu_reading.h"
 #include "../tests.h"
 #include "rigid_scene.h"
 
@@ -87,6 +92,20 @@ int main()
     talus_test::check_within("sliding factor from the joint's forces, N tan(phi) / S",
                             normal * tan_phi / shear.norm(), exact, 0.01);
     std::printf("stands: %s\n", talus_test::verdict(d.settled && std::abs(d.moved()) < 1e-3));
+    // The pore pressure in the contacts' file, against the closed form.
+    write_contacts_vtu("dam_contacts.vtu", cs, d.s.model, JointNumbers{{}, {1}},
+                       VtuEncoding::binary, &d.s.scene.solver.water, g);
+    const std::vector<vtu_reading::Array> arrays = vtu_reading::read_arrays("dam_contacts.vtu");
+    const vtu_reading::Array p = vtu_reading::find(arrays, "pore_pressure");
+    double worst = p.values.size() == cs.n_subcontacts() ? 0.0 : 1.0;
+    for (std::size_t i = 0; i < p.values.size() && i < cs.n_subcontacts(); ++i)
+    {
+      const double x = cs.sc_position[i].x();
+      worst = std::max(worst, std::abs(p.values[i] - 1000.0 * g * H * (1 - x / B)));
+    }
+    std::printf("pore_pressure of the %u sub-contacts in the contacts' VTU, rho_w g H (1 - x / B), "
+                "within 1e-4 of rho_w g H: %s\n",
+                cs.n_subcontacts(), talus_test::verdict(worst < 1e-4 * 1000.0 * g * H));
   }
   const Dam above(phi_limit + 0.5, true), below(phi_limit - 0.5, true),
       dry(phi_limit - 0.5, false);

@@ -126,7 +126,7 @@ public:
   unsigned int stress_points_per_zone() const { return points_per_zone_; }
   const std::vector<unsigned char>& plastic_state() const { return state_; }
   /// The same problem for the implicit elastic reference solve: gravity and
-  /// face pressures as nodal forces on the initial geometry, held
+  /// face pressures (and the water) as nodal forces on the initial geometry, held
   /// components prescribed at zero (only meaningful for elastic zones
   /// without initial stress, held at rest), and the 4-node stiffness that
   /// preconditions it (hexahedral zones' tetrahedra at half weight, 10-node
@@ -326,6 +326,11 @@ private:
   std::vector<double> water_weight_;
   unsigned int water_faces_below_ = 0;
   Vec3 water_force_ = Vec3::Zero();
+  /// Calls add(gridpoint, force) with each corner's share of the water on
+  /// the boundary faces at positions x (N); returns the faces below the
+  /// surface.
+  template <typename Add>
+  unsigned int water_shares(const double* x, Add&& add) const;
   /// Adds the water on the boundary faces at positions x to f, force_size_
   /// and pressure_force_.
   void add_water(const double* x, double* f);
