@@ -496,8 +496,9 @@ RunEnd solve_deformable(talus::Scene& scene, talus::BlockModel& model, const std
     output();
   std::printf("Steps:        %lu (time %.6g s)\n", solver.steps_done(), solver.time());
   if (scene.solver.water.active())
-    std::printf("%s\n", water_summary(scene.solver.water, solver.water_faces_below(),
-                                       solver.water_force()).c_str());
+    std::printf("%s\n",
+                water_summary(scene.solver.water, solver.water_faces_below(), solver.water_force())
+                    .c_str());
   std::printf("Unbalanced force ratio: %.3g\n", solver.unbalanced_ratio());
   std::printf("Largest displacement: %.6g m\n", largest_gridpoint_displacement(solver));
   {

@@ -19,10 +19,9 @@ std::vector<double> grid_axis(const ParameterFile& prm, const char* name)
     throw prm.error(name, "is missing for 'Phreatic surface = table'", list_allowed);
   for (std::size_t i = 1; i < v.size(); ++i)
     if (!(v[i] > v[i - 1]))
-      throw prm.error(name,
-                      "is not strictly ascending (" + number(v[i - 1]) + " then " + number(v[i]) +
-                          ")",
-                      list_allowed);
+      throw prm.error(
+          name, "is not strictly ascending (" + number(v[i - 1]) + " then " + number(v[i]) + ")",
+          list_allowed);
   return v;
 }
 } // namespace
@@ -32,8 +31,7 @@ void declare_water(ParameterFile& prm)
   prm.enter("Water");
   prm.declare("Density", "1000", P::Double(), "a number > 0 and at most 1e5 (kg/m^3)",
               "Density of the water (kg/m^3).");
-  prm.declare("Phreatic surface", "none", P::Selection("none|plane|table"),
-              "none, plane or table",
+  prm.declare("Phreatic surface", "none", P::Selection("none|plane|table"), "none, plane or table",
               "none: no water; plane: a horizontal 'Level' or a plane through 'Point' with "
               "'Normal'; table: heights on a grid ('X values', 'Y values', 'Heights').");
   prm.declare("Level", "0", P::Double(), "a number (m)", "Height z_w of a horizontal surface (m).");
@@ -61,7 +59,8 @@ void parse_water(ParameterFile& prm, Scene& scene)
                     "a number > 0 and at most 1e5 (kg/m^3)");
   const std::string surface = prm.get("Phreatic surface");
   const std::map<std::string, unsigned int> lines = prm.lines();
-  const auto set = [&](const char* entry) { return lines.count(std::string("Water / ") + entry) > 0; };
+  const auto set = [&](const char* entry)
+  { return lines.count(std::string("Water / ") + entry) > 0; };
   if (surface != "none" && !(scene.solver.gravity.norm() > 0.0))
     throw prm.error("Phreatic surface", "gives water without weight: 'Gravity' of 'Solver' is zero",
                     "none, or a gravity that is not zero");

@@ -1336,7 +1336,8 @@ ImplicitElasticProblem DeformableSolver::implicit_problem() const
       for (int d = 0; d < 3; ++d)
         p.nodal_force[3 * pressed_faces_[k][a] + d] += face_share_[k][a] * load[d];
   }
-  water_shares(mesh_.position.data(), [&](unsigned int g, const Vec3& share)
+  water_shares(mesh_.position.data(),
+               [&](unsigned int g, const Vec3& share)
                {
                  for (int d = 0; d < 3; ++d)
                    p.nodal_force[3 * g + d] += share[d];

@@ -31,7 +31,8 @@ void add_linear_piece(double gamma, const Corner& p, const Corner& q, const Corn
   const double sum_d = p.depth + q.depth + r.depth;
   const double w = gamma * area / 12.0;
   out.force += gamma * area * sum_d / 3.0;
-  out.first_moment += w * (p.depth * p.x + q.depth * q.x + r.depth * r.x + sum_d * (p.x + q.x + r.x));
+  out.first_moment +=
+      w * (p.depth * p.x + q.depth * q.x + r.depth * r.x + sum_d * (p.x + q.x + r.x));
   for (int k = 0; k < 3; ++k)
     out.corner[k] += w * (p.depth * p.bary[k] + q.depth * q.bary[k] + r.depth * r.bary[k] +
                           sum_d * (p.bary[k] + q.bary[k] + r.bary[k]));
@@ -95,8 +96,9 @@ void integrate_water(const WaterTable& table, double gamma, const Vec3& a, const
 {
   if (table.empty())
     return;
-  const auto corner = [&](const Vec3& x, int k)
-  { return Corner{x, table.height(x.x(), x.y()) - x.z(), Vec3::Unit(k)}; };
+  const auto corner = [&](const Vec3& x, int k) {
+    return Corner{x, table.height(x.x(), x.y()) - x.z(), Vec3::Unit(k)};
+  };
   const Corner ca = corner(a, 0), cb = corner(b, 1), cc = corner(c, 2);
   int level = 0;
   if (!table.linear() && table.spacing() > 0.0)
@@ -167,8 +169,8 @@ void WaterLoads::add(const BlockModel& m, std::vector<Vec3>& force, std::vector<
   }
 }
 
-void WaterLoads::account(const std::vector<Vec3>& velocity, const std::vector<Vec3>& spin,
-                         double h, double dt, double& boundary_work, double& kinetic) const
+void WaterLoads::account(const std::vector<Vec3>& velocity, const std::vector<Vec3>& spin, double h,
+                         double dt, double& boundary_work, double& kinetic) const
 {
   for (std::size_t k = 0; k < block_.size(); ++k)
   {

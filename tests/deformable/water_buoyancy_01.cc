@@ -28,9 +28,8 @@ const double g = 9.81, V = 2.0, rho = 2650.0, rho_w = 1000.0;
 /// The joint's normal force (N, compression positive) once settled.
 double joint_force(ZoneElement element, double level, bool water)
 {
-  Scene scene = read_scene(std::string(SOURCE_DIR) +
-                               "/../../parameters/verification/deformable_on_incline.prm",
-                           false);
+  Scene scene = read_scene(
+      std::string(SOURCE_DIR) + "/../../parameters/verification/deformable_on_incline.prm", false);
   scene.solver.gravity = Vec3(0, 0, -g);
   scene.solver.dynamic = false; // statics, as a 'Mode = static' file would read
   scene.solver.local_damping = 0.8;

@@ -72,13 +72,14 @@ int main()
     const double exact = (W - uplift) * tan_phi / thrust;
     std::printf("closed form sliding factor at phi = 20 deg: %.4f\n", exact);
     const Vec3 water = d.s.solver->water_loads().total_force();
-    std::printf("dam weight from the model: %s\n",
-                talus_test::verdict(talus_test::relative_error(d.s.solver->mass[1] * g, W) < 1e-12));
+    std::printf(
+        "dam weight from the model: %s\n",
+        talus_test::verdict(talus_test::relative_error(d.s.solver->mass[1] * g, W) < 1e-12));
     talus_test::check_within("horizontal water force (thrust)", water.x(), thrust, 1e-3);
     talus_test::check_within("vertical water force (uplift)", water.z(), uplift, 1e-3);
     talus_test::check_within("sliding factor from the applied water forces",
-                            (d.s.solver->mass[1] * g - water.z()) * tan_phi / water.x(), exact,
-                            0.01);
+                             (d.s.solver->mass[1] * g - water.z()) * tan_phi / water.x(), exact,
+                             0.01);
     // The joint's own forces: every sub-contact is on the dam's base.
     const ContactSet& cs = d.s.solver->contacts();
     double normal = 0.0;
@@ -90,7 +91,7 @@ int main()
     }
     talus_test::check_within("base normal force N = W - U", normal, W - uplift, 0.01);
     talus_test::check_within("sliding factor from the joint's forces, N tan(phi) / S",
-                            normal * tan_phi / shear.norm(), exact, 0.01);
+                             normal * tan_phi / shear.norm(), exact, 0.01);
     std::printf("stands: %s\n", talus_test::verdict(d.settled && std::abs(d.moved()) < 1e-3));
     // The pore pressure in the contacts' file, against the closed form.
     write_contacts_vtu("dam_contacts.vtu", cs, d.s.model, JointNumbers{{}, {1}},
@@ -107,8 +108,7 @@ int main()
                 "within 1e-4 of rho_w g H: %s\n",
                 cs.n_subcontacts(), talus_test::verdict(worst < 1e-4 * 1000.0 * g * H));
   }
-  const Dam above(phi_limit + 0.5, true), below(phi_limit - 0.5, true),
-      dry(phi_limit - 0.5, false);
+  const Dam above(phi_limit + 0.5, true), below(phi_limit - 0.5, true), dry(phi_limit - 0.5, false);
   std::printf("at phi_limit + 0.5 deg: %s (expected: stands)\n",
               above.settled && std::abs(above.moved()) < 1e-3 ? "stands" : "SLIDES");
   std::printf("at phi_limit - 0.5 deg: %s (expected: slides)\n",

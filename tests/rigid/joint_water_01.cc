@@ -57,8 +57,8 @@ double threshold()
 struct Outcome
 {
   bool settled;
-  double slid;  ///< m, down the slope
-  Vec3 water;   ///< N, the water force on the block at the start
+  double slid; ///< m, down the slope
+  Vec3 water;  ///< N, the water force on the block at the start
 };
 
 Outcome run(double a, bool water)
@@ -106,8 +106,9 @@ int main()
   const double exact = rho_w * g * 2.0 / std::cos(a_below);
   talus_test::print_value(stderr, "water force normal to the slope (N)", below.water.dot(normal),
                           exact, "\n");
-  std::printf("water force normal to the slope, rho_w g V / cos a: relative error below 1e-12: %s\n",
-              talus_test::verdict(talus_test::relative_error(below.water.dot(normal), exact) < 1e-12));
+  std::printf(
+      "water force normal to the slope, rho_w g V / cos a: relative error below 1e-12: %s\n",
+      talus_test::verdict(talus_test::relative_error(below.water.dot(normal), exact) < 1e-12));
   std::printf("water force along the slope: %s\n",
               talus_test::verdict(std::abs(below.water.cross(normal).norm()) < 1e-9 * exact));
   std::printf("at threshold - 0.2 deg: %s (expected: stable)\n",

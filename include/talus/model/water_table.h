@@ -30,8 +30,7 @@ public:
   static WaterTable plane(const Vec3& point, const Vec3& normal);
   /// Heights z_w at the grid points (x[i], y[j]), row-major: heights[j * nx + i];
   /// x and y strictly ascending (one value of either: constant along it).
-  static WaterTable grid(std::vector<double> x, std::vector<double> y,
-                         std::vector<double> heights);
+  static WaterTable grid(std::vector<double> x, std::vector<double> y, std::vector<double> heights);
 
   Kind kind() const { return kind_; }
   bool empty() const { return kind_ == Kind::none; }

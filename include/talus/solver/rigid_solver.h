@@ -239,7 +239,7 @@ private:
   /// Blocks that moved more than the contact tolerance in the last step,
   /// with that move (m, eq. 1's measure).
   std::vector<std::pair<unsigned int, double>> too_fast_;
-  bool warned_fast_ = false; ///< the warning of check_reach() was given
+  bool warned_fast_ = false;  ///< the warning of check_reach() was given
   RigidFaceLoads face_loads_; ///< pressures and tractions on rigid blocks' faces
   WaterLoads water_loads_;    ///< water on free rigid blocks' faces (none without water)
   unsigned long step_ = 0;

@@ -15,9 +15,10 @@ namespace talus
 /// moment, and the consistent shares of its corners.
 struct TriangleWater
 {
-  double force = 0.0;                       ///< integral of p dA, N
-  Vec3 first_moment = Vec3::Zero();         ///< integral of p x dA, N m
-  std::array<double, 3> corner{{0, 0, 0}};  ///< integral of N_k p dA (N_k: corner k's shape function), N
+  double force = 0.0;               ///< integral of p dA, N
+  Vec3 first_moment = Vec3::Zero(); ///< integral of p x dA, N m
+  std::array<double, 3> corner{
+      {0, 0, 0}}; ///< integral of N_k p dA (N_k: corner k's shape function), N
 };
 
 /// Adds to `out` the hydrostatic pressure p = gamma (z_w(x, y) - z), where
