@@ -15,11 +15,11 @@ void write_contacts_vtu(const std::string& path, const ContactSet& cs, const Blo
                         double gravity)
 {
   // The joint of each contact slot, as the numbers of its subsections.
-  std::vector<int> joint_set(cs.n_slots(), 0), joint(cs.n_slots(), 0);
+  std::vector<int> joint_set(cs.n_slots(), 0), joint(cs.n_slots(), 0), origin_of(cs.n_slots(), 0);
   for (unsigned int c = 0; c < cs.n_slots(); ++c)
     if (cs.alive[c])
     {
-      const int origin = contact_joint_origin(model, cs, c);
+      const int origin = origin_of[c] = contact_joint_origin(model, cs, c);
       if (origin > 0)
         joint_set[c] = joints.joint_set_number.at(static_cast<std::size_t>(origin - 1));
       else if (origin < 0)
@@ -99,11 +99,16 @@ void write_contacts_vtu(const std::string& path, const ContactSet& cs, const Blo
         integers(out, "contact_id", [&](std::size_t i) { return cs.sc_contact[i]; });
         if (water != nullptr && water->active())
         {
-          // The pressure the joint's water puts on both faces there.
+          // The pressure the joint's water puts on both faces there: its
+          // own, or that of the phreatic surface.
           const double gamma = water->density * gravity;
           reals(out, "pore_pressure", 1,
                 [&](std::size_t i, unsigned int)
-                { return water_pressure(water->table, gamma, cs.sc_position[i]); });
+                {
+                  const double fixed = water->fixed_pressure(origin_of[cs.sc_contact[i]]);
+                  return fixed == fixed ? fixed
+                                        : water_pressure(water->table, gamma, cs.sc_position[i]);
+                });
         }
         out << "      </PointData>\n    </Piece>\n  </UnstructuredGrid>\n</VTKFile>\n";
       });

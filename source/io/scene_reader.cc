@@ -907,7 +907,6 @@ Scene read_scene(const std::string& filename, bool prepare_output)
       scene.groups.push_back(parse_group(prm, name, scene));
   }
   parse_solver(prm, scene);
-  parse_water(prm, scene);
   for (const auto& [kind, name] : numbered_sections)
     if (kind == "Load")
       parse_load(prm, name, scene);
@@ -916,6 +915,7 @@ Scene read_scene(const std::string& filename, bool prepare_output)
     else if (kind == "Group contact")
       parse_group_contact(prm, name, scene);
   parse_deformable(prm, scene);
+  parse_water(prm, scene);
   for (const auto& [kind, name] : numbered_sections)
     if (kind == "Rock material")
       parse_rock_material(prm, name, scene);

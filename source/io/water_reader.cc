@@ -1,6 +1,11 @@
 #include "water_reader.h"
 
+#include <deal.II/base/utilities.h>
+
+#include <algorithm>
 #include <cmath>
+#include <cstdlib>
+#include <limits>
 
 namespace talus
 {
@@ -24,6 +29,35 @@ std::vector<double> grid_axis(const ParameterFile& prm, const char* name)
           list_allowed);
   return v;
 }
+/// 'Joint set pressures' or 'Joint pressures': "N, p; N, p" for the
+/// subsections "<kind> N" of the scene (`sections`), into `pressure`
+/// (indexed like `sections`, NaN where none is given).
+std::vector<double> joint_pressures(const ParameterFile& prm, const char* name,
+                                    const std::string& kind,
+                                    const std::vector<std::string>& sections)
+{
+  std::vector<double> pressure(sections.size(), std::numeric_limits<double>::quiet_NaN());
+  const std::string text = prm.get(name);
+  const std::string allowed = "pairs 'N, p' separated by ';': the number N of a '" + kind +
+                              " N' of the file and a water pressure p >= 0 (Pa)";
+  for (const std::string& pair : dealii::Utilities::split_string_list(text, ';'))
+  {
+    const std::vector<std::string> parts = dealii::Utilities::split_string_list(pair, ',');
+    char* end = nullptr;
+    const double p = parts.size() == 2 ? std::strtod(parts[1].c_str(), &end) : 0.0;
+    if (parts.size() != 2 || end == nullptr || *end != '\0' || !std::isfinite(p) ||
+        parts[0].empty() || parts[0].find_first_not_of("0123456789") != std::string::npos)
+      throw prm.error(name, "'" + pair + "' is not a joint number and a pressure", allowed);
+    if (!(p >= 0.0))
+      throw prm.error(name, "gives a negative pressure, " + number(p) + " Pa", allowed);
+    const std::string section = kind + " " + parts[0];
+    const auto it = std::find(sections.begin(), sections.end(), section);
+    if (it == sections.end())
+      throw prm.error(name, "names '" + section + "', which the file does not have", allowed);
+    pressure[static_cast<std::size_t>(it - sections.begin())] = p;
+  }
+  return pressure;
+}
 } // namespace
 
 void declare_water(ParameterFile& prm)
@@ -46,6 +80,15 @@ void declare_water(ParameterFile& prm)
   prm.declare("Heights", "", P::List(P::Double(), 0, P::List::max_int_value, ","),
               "one height z_w (m) per grid point, row by row: ny rows of nx numbers",
               "z_w at the grid points, rows of constant y in ascending y, each in ascending x.");
+  prm.declare("Joint set pressures", "", P::Anything(),
+              "pairs 'N, p' separated by ';': the number N of a 'Joint set N' of the file and a "
+              "water pressure p >= 0 (Pa)",
+              "A water pressure of its own (Pa) on the faces that joint set N made, in place of "
+              "the phreatic surface's: 'N, p; N, p'. Rigid blocks only.");
+  prm.declare("Joint pressures", "", P::Anything(),
+              "pairs 'N, p' separated by ';': the number N of a 'Joint N' of the file and a "
+              "water pressure p >= 0 (Pa)",
+              "The same for single joints ('Joint N').");
   prm.leave();
 }
 
@@ -97,6 +140,14 @@ void parse_water(ParameterFile& prm, Scene& scene)
                           std::to_string(x.size() * y.size()) + " heights (m)");
     w.table = WaterTable::grid(std::move(x), std::move(y), std::move(h));
   }
+  w.joint_set_pressure =
+      joint_pressures(prm, "Joint set pressures", "Joint set", scene.joint_set_sections);
+  w.joint_pressure = joint_pressures(prm, "Joint pressures", "Joint", scene.joint_plane_sections);
+  if (w.has_fixed_pressures() && !scene.deformable.groups.empty())
+    throw prm.error(set("Joint set pressures") ? "Joint set pressures" : "Joint pressures",
+                    "acts on the faces of rigid blocks only, and this scene has deformable blocks "
+                    "('Groups' of 'Deformable')",
+                    "no joint pressures with deformable blocks (the phreatic surface loads them)");
   prm.leave();
 }
 

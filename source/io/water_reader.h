@@ -12,7 +12,7 @@ namespace talus
 
 void declare_water(ParameterFile& prm);
 /// Reads 'Water' into scene.solver.water, checked; after 'Solver' (it takes
-/// the gravity's magnitude from there).
+/// the gravity's magnitude from there), the joints and 'Deformable'.
 void parse_water(ParameterFile& prm, Scene& scene);
 
 } // namespace talus

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <limits>
 
 namespace talus
 {
@@ -114,7 +115,8 @@ void integrate_water(const WaterTable& table, double gamma, const Vec3& a, const
 }
 
 WaterLoads::WaterLoads(const WaterSpec& water, double gravity, const std::vector<char>& loaded)
-    : table_(water.table), gamma_(water.density * gravity)
+    : water_(water), table_(water.table), gamma_(water.density * gravity),
+      fixed_pressures_(water.has_fixed_pressures())
 {
   if (!water.active())
     return;
@@ -142,6 +144,33 @@ void WaterLoads::add(const BlockModel& m, std::vector<Vec3>& force, std::vector<
     for (unsigned int face = m.face_start[b]; face < m.face_start[b + 1]; ++face)
     {
       const unsigned int first = m.face_loop_start[face], last = m.face_loop_start[face + 1];
+      const Vec3& n = m.face_normal[face];
+      const double fixed = fixed_pressures_ && !m.face_origin.empty()
+                               ? water_.fixed_pressure(m.face_origin[face])
+                               : std::numeric_limits<double>::quiet_NaN();
+      if (fixed == fixed) // a joint's own water pressure, uniform
+      {
+        if (fixed == 0.0)
+          continue;
+        double area = 0.0;
+        Vec3 at = Vec3::Zero();
+        const Vec3& x0 = m.vertex[m.face_vertex[first]];
+        for (unsigned int i = first + 1; i + 1 < last; ++i)
+        {
+          const Vec3& x1 = m.vertex[m.face_vertex[i]];
+          const Vec3& x2 = m.vertex[m.face_vertex[i + 1]];
+          const double t = 0.5 * (x1 - x0).cross(x2 - x0).dot(n);
+          area += t;
+          at += t * (x0 + x1 + x2) / 3.0;
+        }
+        if (!(area > 0.0))
+          continue;
+        ++faces_below_;
+        const Vec3 load = -fixed * area * n;
+        f += load;
+        mo += (at / area - centre).cross(load);
+        continue;
+      }
       double lowest = 1e300;
       for (unsigned int i = first; i < last; ++i)
         lowest = std::min(lowest, m.vertex[m.face_vertex[i]].z());
@@ -158,7 +187,6 @@ void WaterLoads::add(const BlockModel& m, std::vector<Vec3>& force, std::vector<
       ++faces_below_;
       // -p n over the face: the force and, about the centroid, the moment
       // of it at the centre of pressure, (integral of p x - c P) x (-n).
-      const Vec3& n = m.face_normal[face];
       f -= w.force * n;
       mo -= (w.first_moment - w.force * centre).cross(n);
     }

@@ -2,6 +2,7 @@
 
 #include <talus/geometry/plane.h>
 
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -70,7 +71,26 @@ struct WaterSpec
 {
   WaterTable table;
   double density = 1000.0; ///< kg/m^3
-  bool active() const { return !table.empty(); }
+  /// Pa, a fixed water pressure on the faces made by the scene's i-th
+  /// joint set (and j-th single joint) in place of the surface's; NaN (or
+  /// missing) for none.
+  std::vector<double> joint_set_pressure, joint_pressure;
+  /// The fixed pressure of faces of BlockModel::face_origin `origin`, or NaN.
+  double fixed_pressure(int origin) const
+  {
+    const std::vector<double>& p = origin > 0 ? joint_set_pressure : joint_pressure;
+    const std::size_t i = static_cast<std::size_t>(origin > 0 ? origin - 1 : -origin - 1);
+    return origin != 0 && i < p.size() ? p[i] : std::numeric_limits<double>::quiet_NaN();
+  }
+  bool has_fixed_pressures() const
+  {
+    for (const std::vector<double>* v : {&joint_set_pressure, &joint_pressure})
+      for (double p : *v)
+        if (p == p)
+          return true;
+    return false;
+  }
+  bool active() const { return !table.empty() || has_fixed_pressures(); }
 };
 
 } // namespace talus

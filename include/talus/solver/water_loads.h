@@ -48,6 +48,8 @@ std::string water_summary(const WaterSpec& water, unsigned int faces_below, cons
 /// whether in contact or not: across a joint both faces carry the joint's
 /// water pressure, which pushes the blocks apart, so that the joint's
 /// springs carry only the effective normal force (see coulomb_slip.cc).
+/// A face made by a joint set or joint with a pressure of its own
+/// (WaterSpec::fixed_pressure) carries that pressure, uniform, instead.
 /// The force's work counts as work of boundaries, as RigidFaceLoads'.
 class WaterLoads
 {
@@ -72,8 +74,10 @@ public:
   Vec3 total_force() const;
 
 private:
+  WaterSpec water_;
   WaterTable table_;
-  double gamma_ = 0.0; ///< rho_w g, N/m^3
+  double gamma_ = 0.0;           ///< rho_w g, N/m^3
+  bool fixed_pressures_ = false; ///< some joint has a water pressure of its own
   std::vector<unsigned int> block_;
   std::vector<Vec3> force_, moment_, velocity_before_, spin_before_;
   unsigned int faces_below_ = 0;
