@@ -774,14 +774,6 @@ void warn_ignored(const ParameterFile& prm, const std::string& section,
 void warn_about_ignored_entries(const ParameterFile& prm, Scene& scene,
                                 const std::vector<std::pair<std::string, std::string>>& sections)
 {
-  // The entries of the other kinds of phreatic surface.
-  const WaterTable::Kind surface = scene.solver.water.table.kind();
-  if (surface != WaterTable::Kind::plane)
-    warn_ignored(prm, "Water", {"Level", "Point", "Normal"}, "'Phreatic surface' is not plane",
-                 scene.warnings);
-  if (surface != WaterTable::Kind::table)
-    warn_ignored(prm, "Water", {"X values", "Y values", "Heights"},
-                 "'Phreatic surface' is not table", scene.warnings);
   if (scene.solver.dynamic)
     warn_ignored(
         prm, "Solver",
@@ -813,6 +805,14 @@ void warn_about_ignored_entries(const ParameterFile& prm, Scene& scene,
     if (kind == "Load" && !scene.solver.loads[load++].prescribe_velocity)
       warn_ignored(prm, name, {"Velocity", "Held components", "Hold rotation"},
                    "'Prescribe velocity' is false", scene.warnings);
+  // The entries of the other kinds of phreatic surface.
+  const WaterTable::Kind surface = scene.solver.water.table.kind();
+  if (surface != WaterTable::Kind::plane)
+    warn_ignored(prm, "Water", {"Level", "Point", "Normal"}, "'Phreatic surface' is not plane",
+                 scene.warnings);
+  if (surface != WaterTable::Kind::table)
+    warn_ignored(prm, "Water", {"X values", "Y values", "Heights"},
+                 "'Phreatic surface' is not table", scene.warnings);
 }
 
 } // namespace
