@@ -26,8 +26,10 @@ struct TriangleWater
 /// clipped off exactly where z_w - z is linear over the triangle (a plane
 /// surface); there p is linear and its integrals are closed-form. Under a
 /// table the triangle is first divided into 4^L similar ones of edge at
-/// most a quarter of the grid spacing (L at most 6), on each of which
-/// z_w - z is taken linear through its corners' values.
+/// most a quarter of the grid spacing (L at most 6); one wholly under
+/// water takes a rule of degree 3 (exact where it lies in one grid cell),
+/// one that the surface crosses is clipped with z_w - z taken linear
+/// through its corners.
 void integrate_water(const WaterTable& table, double gamma, const Vec3& a, const Vec3& b,
                      const Vec3& c, TriangleWater& out);
 
