@@ -156,8 +156,7 @@ void integrate_water(const WaterTable& table, double gamma, const Vec3& a, const
 }
 
 WaterLoads::WaterLoads(const WaterSpec& water, double gravity, const std::vector<char>& loaded)
-    : water_(water), table_(water.table), gamma_(water.density * gravity),
-      fixed_pressures_(water.has_fixed_pressures())
+    : water_(water), gamma_(water.density * gravity), fixed_pressures_(water.has_fixed_pressures())
 {
   if (!water.active())
     return;
@@ -174,7 +173,7 @@ void WaterLoads::add(const BlockModel& m, std::vector<Vec3>& force, std::vector<
                      const std::vector<Vec3>& velocity, const std::vector<Vec3>& spin)
 {
   faces_below_ = 0;
-  const double highest = table_.highest();
+  const double highest = water_.table.highest();
   for (std::size_t k = 0; k < block_.size(); ++k)
   {
     const unsigned int b = block_[k];
@@ -221,7 +220,7 @@ void WaterLoads::add(const BlockModel& m, std::vector<Vec3>& force, std::vector<
       TriangleWater w;
       const Vec3& x0 = m.vertex[m.face_vertex[first]];
       for (unsigned int i = first + 1; i + 1 < last; ++i)
-        integrate_water(table_, gamma_, x0, m.vertex[m.face_vertex[i]],
+        integrate_water(water_.table, gamma_, x0, m.vertex[m.face_vertex[i]],
                         m.vertex[m.face_vertex[i + 1]], w);
       if (!(w.force > 0.0))
         continue;

@@ -77,7 +77,6 @@ public:
 
 private:
   WaterSpec water_;
-  WaterTable table_;
   double gamma_ = 0.0;           ///< rho_w g, N/m^3
   bool fixed_pressures_ = false; ///< some joint has a water pressure of its own
   std::vector<unsigned int> block_;
