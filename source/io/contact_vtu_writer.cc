@@ -1,6 +1,7 @@
 #include <talus/contact/contact_origin.h>
 #include <talus/io/contact_vtu_writer.h>
 #include <talus/io/file_output.h>
+#include <talus/solver/water_loads.h>
 
 #include <algorithm>
 #include <cstdint>
@@ -10,14 +11,15 @@ namespace talus
 {
 
 void write_contacts_vtu(const std::string& path, const ContactSet& cs, const BlockModel& model,
-                        const JointNumbers& joints, VtuEncoding encoding)
+                        const JointNumbers& joints, VtuEncoding encoding, const WaterSpec* water,
+                        double gravity)
 {
   // The joint of each contact slot, as the numbers of its subsections.
-  std::vector<int> joint_set(cs.n_slots(), 0), joint(cs.n_slots(), 0);
+  std::vector<int> joint_set(cs.n_slots(), 0), joint(cs.n_slots(), 0), origin_of(cs.n_slots(), 0);
   for (unsigned int c = 0; c < cs.n_slots(); ++c)
     if (cs.alive[c])
     {
-      const int origin = contact_joint_origin(model, cs, c);
+      const int origin = origin_of[c] = contact_joint_origin(model, cs, c);
       if (origin > 0)
         joint_set[c] = joints.joint_set_number.at(static_cast<std::size_t>(origin - 1));
       else if (origin < 0)
@@ -95,6 +97,19 @@ void write_contacts_vtu(const std::string& path, const ContactSet& cs, const Blo
         // 0: 'Joint properties'; k: the k-th 'Joint material N' of the file.
         integers(out, "material", [&](std::size_t i) { return cs.sc_material[i]; });
         integers(out, "contact_id", [&](std::size_t i) { return cs.sc_contact[i]; });
+        if (water != nullptr && water->active())
+        {
+          // The pressure the joint's water puts on both faces there: its
+          // own, or that of the phreatic surface.
+          const double gamma = water->density * gravity;
+          reals(out, "pore_pressure", 1,
+                [&](std::size_t i, unsigned int)
+                {
+                  const double fixed = water->fixed_pressure(origin_of[cs.sc_contact[i]]);
+                  return fixed == fixed ? fixed
+                                        : water_pressure(water->table, gamma, cs.sc_position[i]);
+                });
+        }
         out << "      </PointData>\n    </Piece>\n  </UnstructuredGrid>\n</VTKFile>\n";
       });
 }

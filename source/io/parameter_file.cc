@@ -290,8 +290,9 @@ void ParameterFile::rethrow(const dealii::ExceptionBase& e) const
       if (!d.first.empty() && d.first.find(" / ") == std::string::npos)
         names += (names.empty() ? "" : ", ") + d.first;
     throw InputError(at + ": unknown subsection '" + trim(m[1]) + "'; allowed: " + names +
-                     " (numbered ones: 'Joint set N', 'Joint N', 'Excavation N', 'Group N', 'Load "
-                     "N', 'Boundary N')");
+                     " (numbered ones: 'Joint set N', 'Joint N', 'Joint material N', 'Excavation "
+                     "N', 'Group N', 'Group contact N', 'Rock material N', 'Load N', 'Boundary N', "
+                     "'Stage N' with 'Excavation M' inside)");
   }
   if (std::regex_search(text, m, std::regex("unequal numbers of 'subsection' and 'end'")))
     throw InputError(filename_ +

@@ -9,6 +9,7 @@
 #include "parameter_file.h"
 #include "region_reader.h"
 #include "stage_reader.h"
+#include "water_reader.h"
 
 #include <cerrno>
 #include <cmath>
@@ -860,6 +861,14 @@ void warn_about_ignored_entries(const ParameterFile& prm, Scene& scene,
     if (kind == "Load" && !scene.solver.loads[load++].prescribe_velocity)
       warn_ignored(prm, name, {"Velocity", "Held components", "Hold rotation"},
                    "'Prescribe velocity' is false", scene.warnings);
+  // The entries of the other kinds of phreatic surface.
+  const WaterTable::Kind surface = scene.solver.water.table.kind();
+  if (surface != WaterTable::Kind::plane)
+    warn_ignored(prm, "Water", {"Level", "Point", "Normal"}, "'Phreatic surface' is not plane",
+                 scene.warnings);
+  if (surface != WaterTable::Kind::table)
+    warn_ignored(prm, "Water", {"X values", "Y values", "Heights"},
+                 "'Phreatic surface' is not table", scene.warnings);
 }
 
 } // namespace
@@ -910,6 +919,7 @@ Scene read_scene(const std::string& filename, bool prepare_output)
   declare_output(prm);
   declare_solver(prm);
   declare_deformable(prm);
+  declare_water(prm);
   for (const auto& [kind, name] : numbered_sections)
   {
     if (kind == "Joint set")
@@ -974,6 +984,7 @@ Scene read_scene(const std::string& filename, bool prepare_output)
     if (kind == "Stage")
       parse_stage(prm, name, stage_excavations(prm, name), scene);
   parse_deformable(prm, scene);
+  parse_water(prm, scene);
   for (const auto& [kind, name] : numbered_sections)
     if (kind == "Rock material")
       parse_rock_material(prm, name, scene);

@@ -49,6 +49,15 @@ double coulomb_slip(const std::vector<JointProperties>& joints, SubContactBatch&
     const double* dus = s.du_shear + 3 * i;
     const bool has_failed = s.state[i] & failed;
 
+    // Water in the joint ('Water') needs nothing here. The theory manual
+    // writes the Coulomb limit (eqs. 35-39) on the force the normal spring
+    // carries and says nothing of joint water; talus puts the water
+    // pressure p on every face below the phreatic surface (water_loads.h),
+    // in contact or not, so that across a joint the two faces are pushed
+    // apart by p A each. The blocks' equilibrium then leaves the spring only
+    // the total normal force less the water's: fn here is the effective
+    // normal force N' = N - U, and the limit fn tan(phi) is Terzaghi's; a
+    // joint opens (fn < 0) where p exceeds the total normal stress.
     // Normal force from the total normal displacement less the dilation the
     // joint has taken (closure gives compression): equivalent to eqs. 24 and
     // 26 but free of drift.

@@ -175,7 +175,8 @@ void BlockCycle::write_frame(bool diverged)
   std::snprintf(name, sizeof name, "_contacts_%05u.vtu", frame_ - 1);
   const std::string contacts_vtu = scene_.output.base_name + name;
   write_contacts_vtu(scene_.output.directory + "/" + contacts_vtu, solver.contacts(), model_,
-                     joint_numbers_, scene_.output.vtu_encoding);
+                     joint_numbers_, scene_.output.vtu_encoding, &scene_.solver.water,
+                     scene_.solver.gravity.norm());
   contact_series_.add(solver.time(), contacts_vtu);
   if (system_.zones)
     write_zone_frame(scene_, system_.mesh, *system_.zones, *zone_writer_, zone_series_,
@@ -278,6 +279,8 @@ void BlockCycle::print_end()
   const SolverReport r = solver.report();
   std::printf("Steps:        %lu (time %.6g s)\n", r.steps, r.time);
   std::printf("Contacts:     %u with %u sub-contacts\n", r.contacts, r.subcontacts);
+  if (scene_.solver.water.active())
+    std::printf("%s\n", solver.water_summary().c_str());
   if (scene_.joint_material_names.size() > 1)
   {
     // Which material the contacts took: the check that the rules say what

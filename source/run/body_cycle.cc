@@ -240,6 +240,10 @@ void BodyCycle::print_end()
 {
   const DeformableSolver& solver = *solver_;
   std::printf("Steps:        %lu (time %.6g s)\n", solver.steps_done(), solver.time());
+  if (scene_.solver.water.active())
+    std::printf("%s\n",
+                water_summary(scene_.solver.water, solver.water_faces_below(), solver.water_force())
+                    .c_str());
   std::printf("Unbalanced force ratio: %.3g\n", solver.unbalanced_ratio());
   std::printf("Largest displacement: %.6g m\n", largest_gridpoint_displacement(solver));
   {

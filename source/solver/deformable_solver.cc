@@ -1,6 +1,7 @@
 #include <talus/base/exceptions.h>
 #include <talus/io/checkpoint.h>
 #include <talus/solver/deformable_solver.h>
+#include <talus/solver/water_loads.h>
 #include <talus/zone/hex_mixed.h>
 #include <talus/zone/nodal_mixed.h>
 #include <talus/zone/tet10_mesh.h>
@@ -342,8 +343,22 @@ DeformableSolver::DeformableSolver(const TetMesh& mesh, std::vector<ZoneMaterial
     press(mesh_.face_gridpoint[f], in_hex[mesh_.face_zone[f]] ? 0.5 : 1.0);
   for (const auto& face : mesh_.second_overlay_face_gridpoint)
     press(face, 0.5);
+  if (s_.water.active())
+  {
+    // Water on every boundary face, in contact or not (water_loads.h).
+    for (unsigned int f = 0; f < mesh_.n_faces(); ++f)
+    {
+      water_faces_.push_back(mesh_.face_gridpoint[f]);
+      water_weight_.push_back(in_hex[mesh_.face_zone[f]] ? 0.5 : 1.0);
+    }
+    for (const auto& face : mesh_.second_overlay_face_gridpoint)
+    {
+      water_faces_.push_back(face);
+      water_weight_.push_back(0.5);
+    }
+  }
   force_size_.assign(3 * ng, 0.0);
-  if (!pressed_faces_.empty())
+  if (!pressed_faces_.empty() || !water_faces_.empty())
     pressure_force_.assign(3 * ng, 0.0);
   std::tie(initial_elastic_, initial_plastic_elastic_) = elastic_energy(mesh_.position.data());
   {
@@ -494,6 +509,55 @@ void DeformableSolver::external_forces(const double* x, double* f)
       }
     }
   }
+  if (!water_faces_.empty())
+    add_water(x, f);
+}
+
+template <typename Add>
+unsigned int DeformableSolver::water_shares(const double* x, Add&& add) const
+{
+  // The hydrostatic pressure of the water in the current geometry: on each
+  // corner, -n times its consistent share of the pressure (exact for the
+  // linear pressure under a plane surface; the resultant and its moment are
+  // those of the pressure on the face). A 10-node zone's face takes it on
+  // its four sub-triangles as a 4-node one would: the same resultant.
+  const double gamma = s_.water.density * s_.gravity.norm();
+  const double highest = s_.water.table.highest();
+  unsigned int below = 0;
+  for (std::size_t k = 0; k < water_faces_.size(); ++k)
+  {
+    const auto& t = water_faces_[k];
+    const Vec3 a(x[3 * t[0]], x[3 * t[0] + 1], x[3 * t[0] + 2]);
+    const Vec3 b(x[3 * t[1]], x[3 * t[1] + 1], x[3 * t[1] + 2]);
+    const Vec3 c(x[3 * t[2]], x[3 * t[2] + 1], x[3 * t[2] + 2]);
+    if (std::min({a.z(), b.z(), c.z()}) >= highest)
+      continue;
+    TriangleWater w;
+    integrate_water(s_.water.table, gamma, a, b, c, w);
+    if (!(w.force > 0.0))
+      continue;
+    ++below;
+    const Vec3 n = (b - a).cross(c - a).normalized(); // outward
+    for (int j = 0; j < 3; ++j)
+      add(t[j], Vec3(-water_weight_[k] * w.corner[j] * n));
+  }
+  return below;
+}
+
+void DeformableSolver::add_water(const double* x, double* f)
+{
+  water_force_.setZero();
+  water_faces_below_ = water_shares(x,
+                                    [&](unsigned int g, const Vec3& share)
+                                    {
+                                      water_force_ += share;
+                                      for (int d = 0; d < 3; ++d)
+                                      {
+                                        f[3 * g + d] += share[d];
+                                        force_size_[3 * g + d] += std::abs(share[d]);
+                                        pressure_force_[3 * g + d] += share[d];
+                                      }
+                                    });
 }
 
 void DeformableSolver::zone_forces()
@@ -1401,6 +1465,12 @@ ImplicitElasticProblem DeformableSolver::implicit_problem() const
       for (int d = 0; d < 3; ++d)
         p.nodal_force[3 * pressed_faces_[k][a] + d] += face_share_[k][a] * load[d];
   }
+  water_shares(mesh_.position.data(),
+               [&](unsigned int g, const Vec3& share)
+               {
+                 for (int d = 0; d < 3; ++d)
+                   p.nodal_force[3 * g + d] += share[d];
+               });
   p.fixed = held_;
   return p;
 }

@@ -176,6 +176,13 @@ RigidSolver::RigidSolver(BlockModel& blocks, double density, const SolverSetting
     }
   initial_stored_ += joint_energy();
   kinetic_whole_step_ = initial_stored_ - joint_energy();
+  if (s_.water.active())
+  {
+    std::vector<char> wet(nb, 0); // fixed blocks need no water; zones take theirs
+    for (unsigned int b = 0; b < nb; ++b)
+      wet[b] = !fixed[b] && !is_deformable_[b];
+    water_loads_ = WaterLoads(s_.water, s_.gravity.norm(), wet);
+  }
   energy_floor_ = 1e-9 * weight_size + 1e-6; // J
 }
 
@@ -684,6 +691,8 @@ void RigidSolver::step()
     contact_forces();
   if (!face_loads_.empty())
     face_loads_.add(m_, force, moment, velocity, spin);
+  if (!water_loads_.empty())
+    water_loads_.add(m_, force, moment, velocity, spin);
   timing_.seconds_forces += seconds_since(t0);
   t0 = std::chrono::steady_clock::now();
   check_finite_forces();
@@ -691,6 +700,9 @@ void RigidSolver::step()
   if (!face_loads_.empty()) // their work is the boundaries', as that of 'Load N'
     face_loads_.account(fixed, velocity, spin, step_ == 0 ? 0.5 * dt_ : dt_, dt_, boundary_work_,
                         kinetic_whole_step_);
+  if (!water_loads_.empty())
+    water_loads_.account(velocity, spin, step_ == 0 ? 0.5 * dt_ : dt_, dt_, boundary_work_,
+                         kinetic_whole_step_);
   if (zones_ != nullptr)
   {
     zones_->move();
@@ -951,6 +963,18 @@ SolverReport RigidSolver::report() const
   r.contacts = contacts_.n_contacts();
   r.subcontacts = contacts_.n_subcontacts();
   return r;
+}
+
+std::string RigidSolver::water_summary() const
+{
+  unsigned int faces = water_loads_.faces_below();
+  Vec3 force = water_loads_.total_force();
+  if (zones_ != nullptr)
+  {
+    faces += zones_->water_faces_below();
+    force += zones_->water_force();
+  }
+  return talus::water_summary(s_.water, faces, force);
 }
 
 } // namespace talus

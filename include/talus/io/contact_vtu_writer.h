@@ -3,6 +3,7 @@
 #include <talus/contact/contact_set.h>
 #include <talus/io/vtu_encoding.h>
 #include <talus/model/block_model.h>
+#include <talus/model/water_table.h>
 
 #include <string>
 #include <vector>
@@ -27,9 +28,11 @@ struct JointNumbers
 /// face-face, 5 vertex-edge, 6 vertex-vertex); `joint_set` and `joint` (N
 /// of the 'Joint set N' or 'Joint N' whose plane the contact lies on, 0 for
 /// none: contacts made by motion, or between faces of different joints);
-/// and `contact_id` (the contact's slot).
+/// and `contact_id` (the contact's slot). With `water` active, also
+/// `pore_pressure` (Pa): the water pressure at the sub-contact's position.
 void write_contacts_vtu(const std::string& path, const ContactSet& contacts,
                         const BlockModel& model, const JointNumbers& joints,
-                        VtuEncoding encoding = VtuEncoding::binary);
+                        VtuEncoding encoding = VtuEncoding::binary,
+                        const WaterSpec* water = nullptr, double gravity = 0.0);
 
 } // namespace talus

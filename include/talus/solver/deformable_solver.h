@@ -113,6 +113,11 @@ public:
   double unbalanced_ratio() const { return ratio_; }
   /// The gridpoint whose unbalanced force sets that ratio (of the last step).
   unsigned int unbalanced_gridpoint() const { return ratio_gridpoint_; }
+  /// Boundary faces of the zones with a part below the phreatic surface at
+  /// the last step (0 without water).
+  unsigned int water_faces_below() const { return water_faces_below_; }
+  /// The sum of the water forces on the gridpoints at the last step (N).
+  const Vec3& water_force() const { return water_force_; }
 
   const TetMesh& mesh() const { return mesh_; }
   /// Copies of the gridpoint state (3 per gridpoint).
@@ -126,7 +131,7 @@ public:
   unsigned int stress_points_per_zone() const { return points_per_zone_; }
   const std::vector<unsigned char>& plastic_state() const { return state_; }
   /// The same problem for the implicit elastic reference solve: gravity and
-  /// face pressures as nodal forces on the initial geometry, held
+  /// face pressures (and the water) as nodal forces on the initial geometry, held
   /// components prescribed at zero (only meaningful for elastic zones
   /// without initial stress, held at rest), and the 4-node stiffness that
   /// preconditions it (hexahedral zones' tetrahedra at half weight, 10-node
@@ -342,8 +347,25 @@ private:
   std::vector<double> gauss_volume_; ///< m^3, a batch of 10-node zones' Gauss points (plastic)
   double plastic_stress_work_ = 0.0; ///< sum of V sigma : d(eps) over zones of plastic materials
   double initial_elastic_ = 0.0, initial_plastic_elastic_ = 0.0; ///< and held kinetic
-  std::vector<double> pressure_force_; ///< 3 per gridpoint, N (only with face pressures)
+  std::vector<double> pressure_force_; ///< 3 per gridpoint, N (face pressures, water)
   EnergyGrowthWatch growth_watch_;     ///< standalone runs (step())
+  /// With water only: every boundary face of the zones (outward), with its
+  /// weight (1; a half on each overlay's split of a hexahedral zone's face),
+  /// loaded each step with the hydrostatic pressure below the surface
+  /// (consistent nodal shares, integrate_water); and how many were wet
+  /// at the last step.
+  std::vector<std::array<unsigned int, 3>> water_faces_;
+  std::vector<double> water_weight_;
+  unsigned int water_faces_below_ = 0;
+  Vec3 water_force_ = Vec3::Zero();
+  /// Calls add(gridpoint, force) with each corner's share of the water on
+  /// the boundary faces at positions x (N); returns the faces below the
+  /// surface.
+  template <typename Add>
+  unsigned int water_shares(const double* x, Add&& add) const;
+  /// Adds the water on the boundary faces at positions x to f, force_size_
+  /// and pressure_force_.
+  void add_water(const double* x, double* f);
 };
 
 } // namespace talus

@@ -9,6 +9,7 @@
 #include <talus/solver/damper.h>
 #include <talus/solver/energy_account.h>
 #include <talus/solver/rigid_face_loads.h>
+#include <talus/solver/water_loads.h>
 
 #include <Eigen/Core>
 
@@ -70,6 +71,10 @@ struct SolverSettings
   /// In-situ stress that the joints existing at the start carry (none when
   /// null); zones take theirs from the deformable solver.
   const InitialStress* initial_stress = nullptr;
+  /// Water in the joints and on the faces below a phreatic surface
+  /// ('Water'; none by default): hydrostatic pressure on every face of the
+  /// free rigid blocks (WaterLoads) and on the zones' boundary faces.
+  WaterSpec water;
   unsigned int history_interval = 10; ///< steps between history rows
   unsigned long output_interval = 0;  ///< steps between VTU files (0: first and last)
 };
@@ -127,6 +132,12 @@ public:
   /// joint_set_origin, joint_origin), now and later, take joint material
   /// `material`.
   void change_joint_material(int origin, unsigned char material);
+  /// The water pressure on the free rigid blocks' faces (empty without
+  /// 'Water'), with its figures of the last step.
+  const WaterLoads& water_loads() const { return water_loads_; }
+  /// The summary's 'Water:' line (water_summary) for the faces of the
+  /// rigid blocks and of the zones at the last step.
+  std::string water_summary() const;
 
   /// Stable time step of eq. 87 for this model (s).
   double stable_time_step() const;
@@ -254,8 +265,9 @@ private:
   /// Blocks that moved more than the contact tolerance in the last step,
   /// with that move (m, eq. 1's measure).
   std::vector<std::pair<unsigned int, double>> too_fast_;
-  bool warned_fast_ = false; ///< the warning of check_reach() was given
+  bool warned_fast_ = false;  ///< the warning of check_reach() was given
   RigidFaceLoads face_loads_; ///< pressures and tractions on rigid blocks' faces
+  WaterLoads water_loads_;    ///< water on free rigid blocks' faces (none without water)
   unsigned long step_ = 0;
   unsigned long last_output_ = 0; ///< step of the last output in run()
   bool resumed_ = false;          ///< state loaded from a checkpoint

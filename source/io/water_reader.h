@@ -1,0 +1,18 @@
+#pragma once
+
+// Private to source/io: the 'Water' subsection (the phreatic surface and the
+// water's density), read into scene.solver.water.
+
+#include <talus/io/scene.h>
+
+#include "parameter_file.h"
+
+namespace talus
+{
+
+void declare_water(ParameterFile& prm);
+/// Reads 'Water' into scene.solver.water, checked; after 'Solver' (it takes
+/// the gravity's magnitude from there), the joints and 'Deformable'.
+void parse_water(ParameterFile& prm, Scene& scene);
+
+} // namespace talus
