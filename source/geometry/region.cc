@@ -108,6 +108,22 @@ ConvexRegion ConvexRegion::polyhedron(const std::vector<std::pair<Vec3, Vec3>>& 
   return r;
 }
 
+ConvexRegion ConvexRegion::sphere(const Vec3& centre, double radius, unsigned int facets,
+                                  const Box& brick)
+{
+  // Normals on a Fibonacci lattice: equal steps in z, the golden angle in
+  // longitude, so that the facets are about equal in size.
+  const double golden = M_PI * (3.0 - std::sqrt(5.0));
+  std::vector<std::pair<Vec3, Vec3>> planes;
+  for (unsigned int k = 0; k < facets; ++k)
+  {
+    const double z = 1.0 - (2.0 * k + 1.0) / facets, rho = std::sqrt(1.0 - z * z);
+    const Vec3 n(rho * std::cos(golden * k), rho * std::sin(golden * k), z);
+    planes.emplace_back(centre + radius * n, n);
+  }
+  return polyhedron(planes, brick);
+}
+
 ConvexRegion ConvexRegion::prism(const Vec3& start, const Vec3& end,
                                  const std::vector<std::pair<double, double>>& profile)
 {

@@ -45,8 +45,9 @@ std::vector<std::vector<double>> groups_of_numbers(const std::string& text, unsi
 
 void declare_region(ParameterFile& prm, const std::string& what)
 {
-  prm.declare("Shape", "box", P::Selection("box|cylinder|half-space|polyhedron|prism"),
-              "box, cylinder, half-space, polyhedron or prism", "The shape of " + what + ".");
+  prm.declare("Shape", "box", P::Selection("box|cylinder|half-space|polyhedron|prism|sphere"),
+              "box, cylinder, half-space, polyhedron, prism or sphere",
+              "The shape of " + what + ".");
   prm.declare("Corner min", "0, 0, 0", P::List(P::Double(), 3, 3, ","), vec3_allowed,
               "box: lower corner (m).");
   prm.declare("Corner max", "1, 1, 1", P::List(P::Double(), 3, 3, ","), vec3_allowed,
@@ -56,7 +57,12 @@ void declare_region(ParameterFile& prm, const std::string& what)
   prm.declare("Axis end", "0, 1, 0", P::List(P::Double(), 3, 3, ","), vec3_allowed,
               "cylinder and prism: centre of the other end (m).");
   prm.declare("Radius", "1", P::Double(), "a number > 0 (m)",
-              "cylinder: radius of the circle the prism is inscribed in (m).");
+              "cylinder: radius of the circle the prism is inscribed in; sphere: radius of the "
+              "sphere its facets touch (m).");
+  prm.declare("Centre", "0, 0, 0", P::List(P::Double(), 3, 3, ","), vec3_allowed,
+              "sphere: its centre (m).");
+  prm.declare("Facets", "48", P::Integer(8, 1024), "an integer from 8 to 1024",
+              "sphere: number of flat faces, each touching the sphere.");
   prm.declare("Sides", "16", P::Integer(3, 1024), "an integer from 3 to 1024",
               "cylinder: number of flat faces around it.");
   prm.declare("Point", "0, 0, 0", P::List(P::Double(), 3, 3, ","), vec3_allowed,
@@ -118,6 +124,16 @@ ConvexRegion parse_region(const ParameterFile& prm, const Box& brick, std::strin
     }
   }
   std::vector<std::pair<Vec3, Vec3>> planes;
+  if (shape == "sphere")
+  {
+    const double radius = prm.get_double("Radius");
+    if (!(radius > 0.0))
+      throw prm.error("Radius", "must be positive", "a number > 0 (m)");
+    const unsigned int facets = static_cast<unsigned int>(prm.get_integer("Facets"));
+    description = "sphere of radius " + prm.get("Radius") + " m, " + std::to_string(facets) +
+                  " facets";
+    return ConvexRegion::sphere(prm.get_vec3("Centre"), radius, facets, brick);
+  }
   if (shape == "half-space")
   {
     const Vec3 normal = prm.get_vec3("Normal");

@@ -204,6 +204,13 @@ void check_built_model(const Scene& scene, const BlockModel& model, const BuildR
                       "", "no block is left: the excavations remove the whole model",
                       "excavations that leave part of the brick");
 
+  for (const GroupSpec& g : scene.groups)
+    for (unsigned int b : g.blocks)
+      if (b >= model.n_blocks())
+        throw scene_error(scene, g.section, "Blocks",
+                          "block " + std::to_string(b) + " does not exist (the model has " +
+                              std::to_string(model.n_blocks()) + " blocks)",
+                          "0 to " + std::to_string(model.n_blocks() - 1));
   for (unsigned int b : scene.solver.history_blocks)
     if (b >= model.n_blocks())
       throw scene_error(scene, "Solver", "History blocks",

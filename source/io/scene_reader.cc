@@ -234,6 +234,9 @@ void declare_group(ParameterFile& prm, const std::string& section)
   prm.enter(section);
   prm.declare("Name", "group", P::Anything(), "any name", "Name given to the selected blocks.");
   declare_region(prm, "the region whose blocks join the group");
+  prm.declare("Blocks", "", P::List(P::Integer(0, 2000000000)), "block numbers separated by commas",
+              "These blocks (numbers as built, as the blocks' VTU shows them) join the group "
+              "instead of those of the region.");
   prm.leave();
 }
 
@@ -241,7 +244,9 @@ GroupSpec parse_group(ParameterFile& prm, const std::string& section, const Scen
 {
   prm.enter(section);
   std::string description;
-  GroupSpec g{prm.get("Name"), parse_region(prm, scene.brick, description)};
+  GroupSpec g{prm.get("Name"), parse_region(prm, scene.brick, description), {}, section};
+  for (const std::string& b : dealii::Utilities::split_string_list(prm.get("Blocks")))
+    g.blocks.push_back(static_cast<unsigned int>(std::stoul(b)));
   prm.leave();
   return g;
 }

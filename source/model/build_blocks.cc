@@ -2,6 +2,7 @@
 
 #include <talus/base/exceptions.h>
 
+#include <algorithm>
 #include <functional>
 #include <string>
 #include <vector>
@@ -150,7 +151,10 @@ BlockModel build_blocks(const Scene& scene, BuildReport& report)
     // multiply-adds).
     const double on_face = 1e-9 * scene.brick.diagonal();
     for (std::size_t r = 0; r < scene.groups.size(); ++r)
-      if (scene.groups[r].region.contains(model.centroid[b], on_face))
+      if (scene.groups[r].blocks.empty()
+              ? scene.groups[r].region.contains(model.centroid[b], on_face)
+              : std::find(scene.groups[r].blocks.begin(), scene.groups[r].blocks.end(), b) !=
+                    scene.groups[r].blocks.end())
       {
         model.group[b] = group_of_region[r];
         break;

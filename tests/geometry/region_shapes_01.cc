@@ -72,4 +72,36 @@ int main()
     }
   std::printf("4. a notched, a two-cornered and a flat profile refused: %s\n",
               talus_test::verdict(refused == 3));
+
+  // 5. A sphere of radius 2 about (5, 5, 5) by tangent planes: never inside
+  // the sphere (every point within it is held), its volume above the
+  // sphere's and falling towards it as the facets grow (the excess of a
+  // circumscribed polyhedron of n about equal facets goes as 1/n).
+  const Box brick{Vec3(0, 0, 0), Vec3(10, 10, 10)};
+  const Vec3 c(5, 5, 5);
+  const double ball = 4.0 / 3.0 * M_PI * 8.0;
+  double last_excess = 1.0;
+  bool falling = true, holds_ball = true;
+  for (const unsigned int facets : {48u, 192u, 768u})
+  {
+    const ConvexRegion s = ConvexRegion::sphere(c, 2.0, facets, brick);
+    const double excess = s.volume / ball - 1.0;
+    std::fprintf(stderr, "sphere of %u facets: volume %.6g m^3, %.3g above the sphere's\n", facets,
+                 s.volume, excess);
+    falling &= excess > 0.0 && excess < last_excess;
+    last_excess = excess;
+    for (int k = 0; k < 2000 && holds_ball; ++k)
+    {
+      // Points just inside the sphere in every direction.
+      const double z = 1.0 - (2.0 * k + 1.0) / 2000, rho = std::sqrt(1.0 - z * z);
+      const Vec3 d(rho * std::cos(2.4 * k), rho * std::sin(2.4 * k), z);
+      holds_ball &= s.contains(c + 1.999 * d);
+    }
+    holds_ball &= !s.contains(c + Vec3(2.2, 0, 0)) && !s.contains(c - Vec3(0, 0, 2.0 * 1.1));
+  }
+  std::printf("5. sphere by tangent planes: holds the ball, not beyond 1.1 r: %s; volume above the "
+              "ball's and falling with the facets (48, 192, 768): %s; at 768 facets within 1 %%: "
+              "%s\n",
+              talus_test::verdict(holds_ball), talus_test::verdict(falling),
+              talus_test::verdict(last_excess < 0.01));
 }

@@ -11,8 +11,9 @@ namespace talus
 /// A convex region of space as an intersection of half-spaces
 /// {x : plane.signed_distance(x) <= 0}, with its bounding box. Excavations,
 /// groups and fine-mesh regions: a box, a cylinder approximated by a
-/// polygonal prism, a half-space, a polyhedron given by its planes, or a
-/// prism of a convex profile along an axis (a tunnel's section).
+/// polygonal prism, a half-space, a polyhedron given by its planes, a
+/// prism of a convex profile along an axis (a tunnel's section), or a
+/// sphere approximated by tangent planes.
 struct ConvexRegion
 {
   std::vector<Plane> planes; ///< outward normals
@@ -46,6 +47,13 @@ struct ConvexRegion
   /// centred on the direction closest to -z (the invert is flat).
   static ConvexRegion cylinder(const Vec3& start, const Vec3& end, double radius,
                                unsigned int sides);
+
+  /// The convex polyhedron of `facets` planes tangent to the sphere of
+  /// `radius` (m) about `centre`, their normals spread evenly over it,
+  /// within `brick`: a sphere as closely as `facets` allows, never inside
+  /// it.
+  static ConvexRegion sphere(const Vec3& centre, double radius, unsigned int facets,
+                             const Box& brick);
 
   bool contains(const Vec3& x, double tol = 0.0) const
   {

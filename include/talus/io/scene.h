@@ -27,11 +27,14 @@ struct JointPlaneSpec
   Box extent;
 };
 
-/// A named selection: blocks whose centroid lies in `region` join `name`.
+/// A named selection: blocks whose centroid lies in `region` join `name`,
+/// or, when `blocks` lists block numbers (as built), those blocks.
 struct GroupSpec
 {
   std::string name;
   ConvexRegion region;
+  std::vector<unsigned int> blocks;
+  std::string section; ///< "Group N"
 };
 
 /// A 'Group contact N': contacts between blocks of groups `a` and `b` that
