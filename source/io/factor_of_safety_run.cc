@@ -6,8 +6,8 @@
 #include <talus/io/history_file.h>
 #include <talus/io/scene_checks.h>
 #include <talus/io/zone_vtu_writer.h>
-#include <talus/model/build_blocks.h>
-#include <talus/solver/factor_of_safety.h>
+#include <talus/scene/build_blocks.h>
+#include <talus/scene/factor_of_safety.h>
 #include <talus/zone/tet10_mesh.h>
 
 #include <cmath>

@@ -5,7 +5,7 @@
 // their material ('Material' of 'Joint set N' and 'Joint N', and 'Group
 // contact N').
 
-#include <talus/io/scene.h>
+#include <talus/scene/scene.h>
 
 #include "parameter_file.h"
 

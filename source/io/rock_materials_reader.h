@@ -5,7 +5,7 @@
 // deformable blocks, and the zone model and constants for deformable ones,
 // per group.
 
-#include <talus/io/scene.h>
+#include <talus/scene/scene.h>
 
 #include "parameter_file.h"
 

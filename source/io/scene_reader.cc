@@ -1,4 +1,4 @@
-#include <talus/io/scene.h>
+#include <talus/scene/scene.h>
 
 #include <talus/io/file_output.h>
 #include <talus/io/scene_checks.h>

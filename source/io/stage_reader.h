@@ -3,7 +3,7 @@
 // Private to source/io: the entries of 'Stage N' (what changes at a stage's
 // start and how its calculation runs) and its nested 'Excavation M'.
 
-#include <talus/io/scene.h>
+#include <talus/scene/scene.h>
 
 #include "parameter_file.h"
 

@@ -3,7 +3,7 @@
 // Private to source/io: the 'Water' subsection (the phreatic surface and the
 // water's density), read into scene.solver.water.
 
-#include <talus/io/scene.h>
+#include <talus/scene/scene.h>
 
 #include "parameter_file.h"
 

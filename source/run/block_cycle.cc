@@ -1,7 +1,7 @@
 #include <talus/base/memory.h>
 #include <talus/io/checkpoint.h>
 #include <talus/io/scene_checks.h>
-#include <talus/model/build_blocks.h>
+#include <talus/scene/build_blocks.h>
 #include <talus/run/block_cycle.h>
 
 #include <algorithm>

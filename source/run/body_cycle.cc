@@ -1,7 +1,7 @@
 #include <talus/io/checkpoint.h>
 #include <talus/io/scene_checks.h>
 #include <talus/run/body_cycle.h>
-#include <talus/solver/block_system.h>
+#include <talus/scene/block_system.h>
 #include <talus/solver/implicit_check.h>
 #include <talus/zone/tet10_mesh.h>
 

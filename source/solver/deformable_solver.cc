@@ -1,5 +1,5 @@
 #include <talus/base/exceptions.h>
-#include <talus/io/checkpoint.h>
+#include <talus/base/archive.h>
 #include <talus/solver/deformable_solver.h>
 #include <talus/solver/water_loads.h>
 #include <talus/zone/hex_mixed.h>

@@ -4,9 +4,9 @@
 // writing output, for the verification tests of deformable blocks.
 
 #include <talus/base/parallel_environment.h>
-#include <talus/io/scene.h>
-#include <talus/model/build_blocks.h>
-#include <talus/solver/block_system.h>
+#include <talus/scene/scene.h>
+#include <talus/scene/build_blocks.h>
+#include <talus/scene/block_system.h>
 #include <talus/solver/deformable_solver.h>
 
 #include <memory>

@@ -7,8 +7,8 @@
 // unstable trial's gridpoints, slides down the slope (+x).
 
 #include <talus/base/parallel_environment.h>
-#include <talus/model/build_blocks.h>
-#include <talus/solver/factor_of_safety.h>
+#include <talus/scene/build_blocks.h>
+#include <talus/scene/factor_of_safety.h>
 
 #include <cmath>
 #include <cstdio>

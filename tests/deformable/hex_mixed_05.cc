@@ -8,8 +8,8 @@
 // Tolerance 5e-3 as for tetrahedral zones (tests/deformable/incline_01).
 
 #include <talus/base/parallel_environment.h>
-#include <talus/model/build_blocks.h>
-#include <talus/solver/block_system.h>
+#include <talus/scene/build_blocks.h>
+#include <talus/scene/block_system.h>
 
 #include <cmath>
 #include <cstdio>

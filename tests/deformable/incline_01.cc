@@ -9,8 +9,8 @@
 // it over 0.5 s, and the vibration's size is printed.
 
 #include <talus/base/parallel_environment.h>
-#include <talus/model/build_blocks.h>
-#include <talus/solver/block_system.h>
+#include <talus/scene/build_blocks.h>
+#include <talus/scene/block_system.h>
 
 #include <cmath>
 #include <cstdio>

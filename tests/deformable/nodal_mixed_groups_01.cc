@@ -9,8 +9,8 @@
 // closer (as in nodal_mixed_01 at nu = 0.49: errors 0.42 plain, 0.38 mixed).
 
 #include <talus/base/parallel_environment.h>
-#include <talus/model/build_blocks.h>
-#include <talus/solver/block_system.h>
+#include <talus/scene/build_blocks.h>
+#include <talus/scene/block_system.h>
 
 #include <cmath>
 #include <cstdio>

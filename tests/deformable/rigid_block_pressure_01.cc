@@ -19,8 +19,8 @@
 // work of boundaries in the energy account, which must balance.
 
 #include <talus/base/parallel_environment.h>
-#include <talus/model/build_blocks.h>
-#include <talus/solver/block_system.h>
+#include <talus/scene/build_blocks.h>
+#include <talus/scene/block_system.h>
 
 #include <cmath>
 #include <cstdio>

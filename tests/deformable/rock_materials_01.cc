@@ -15,8 +15,8 @@
 //    joints' shear springs would hold them in.
 
 #include <talus/base/parallel_environment.h>
-#include <talus/model/build_blocks.h>
-#include <talus/solver/block_system.h>
+#include <talus/scene/build_blocks.h>
+#include <talus/scene/block_system.h>
 #include <talus/solver/deformable_solver.h>
 
 #include <cmath>

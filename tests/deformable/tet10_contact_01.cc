@@ -9,8 +9,8 @@
 //    floor) carries the weight above it, rho g (6 - z) per m^2.
 
 #include <talus/base/parallel_environment.h>
-#include <talus/model/build_blocks.h>
-#include <talus/solver/block_system.h>
+#include <talus/scene/build_blocks.h>
+#include <talus/scene/block_system.h>
 
 #include <cmath>
 #include <cstdio>

@@ -8,8 +8,8 @@
 // vertical joint normal to y (Joint 1); the bottom row is fixed.
 
 #include <talus/io/contact_vtu_writer.h>
-#include <talus/io/scene.h>
-#include <talus/model/build_blocks.h>
+#include <talus/scene/scene.h>
+#include <talus/scene/build_blocks.h>
 #include <talus/solver/rigid_solver.h>
 
 #include "../tests.h"

@@ -2,7 +2,7 @@
 // as used, and a missing file refused with its name.
 
 #include <talus/base/exceptions.h>
-#include <talus/io/scene.h>
+#include <talus/scene/scene.h>
 
 #include <fstream>
 #include <iostream>

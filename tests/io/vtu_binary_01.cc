@@ -12,10 +12,10 @@
 
 #include <talus/io/block_vtu_writer.h>
 #include <talus/io/contact_vtu_writer.h>
-#include <talus/io/scene.h>
+#include <talus/scene/scene.h>
 #include <talus/io/vtu_encoding.h>
 #include <talus/io/zone_vtu_writer.h>
-#include <talus/model/build_blocks.h>
+#include <talus/scene/build_blocks.h>
 #include <talus/solver/rigid_solver.h>
 #include <talus/zone/block_mesher.h>
 #include <talus/zone/hex_mixed.h>

@@ -25,9 +25,9 @@
 // Each within 0.5 % (the search stops at a bracket of 0.5 % of F; its
 // middle is within 0.25 % of the limit).
 
-#include <talus/io/scene.h>
-#include <talus/model/build_blocks.h>
-#include <talus/solver/factor_of_safety.h>
+#include <talus/scene/scene.h>
+#include <talus/scene/build_blocks.h>
+#include <talus/scene/factor_of_safety.h>
 
 #include <cmath>
 #include <cstdio>

@@ -32,9 +32,9 @@
 // Within 1 %; the mechanism (the last unstable trial's wedge displacement)
 // along i within 1 deg.
 
-#include <talus/io/scene.h>
-#include <talus/model/build_blocks.h>
-#include <talus/solver/factor_of_safety.h>
+#include <talus/scene/scene.h>
+#include <talus/scene/build_blocks.h>
+#include <talus/scene/factor_of_safety.h>
 
 #include <cmath>
 #include <cstdio>

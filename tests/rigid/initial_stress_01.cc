@@ -5,8 +5,8 @@
 // where it was built. Without the initial stress it settles by the joint
 // closures, sum of rho g h / kn.
 
-#include <talus/model/build_blocks.h>
-#include <talus/solver/block_system.h>
+#include <talus/scene/build_blocks.h>
+#include <talus/scene/block_system.h>
 
 #include <cmath>
 #include <cstdio>

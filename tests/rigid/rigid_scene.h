@@ -3,8 +3,8 @@
 // Runs a shipped scene of parameters/ without writing output, for the
 // verification tests of the rigid-block engine.
 
-#include <talus/io/scene.h>
-#include <talus/model/build_blocks.h>
+#include <talus/scene/scene.h>
+#include <talus/scene/build_blocks.h>
 #include <talus/solver/rigid_solver.h>
 
 #include <memory>

@@ -12,8 +12,8 @@
 
 #include <talus/base/parallel_environment.h>
 #include <talus/io/scene_checks.h>
-#include <talus/model/build_blocks.h>
-#include <talus/solver/block_system.h>
+#include <talus/scene/build_blocks.h>
+#include <talus/scene/block_system.h>
 #include <talus/solver/deformable_solver.h>
 
 #include <cmath>

@@ -18,7 +18,7 @@
 // material of density 2600) the rebound is 0 and every check fails.
 
 #include <talus/base/parallel_environment.h>
-#include <talus/io/scene.h>
+#include <talus/scene/scene.h>
 #include <talus/run/simulation.h>
 
 #include <cmath>

@@ -9,8 +9,8 @@
 // than half its thickness in one step (a warning at step 7, when it first
 // moves more than the contact tolerance, goes to standard error).
 
-#include <talus/io/scene.h>
-#include <talus/model/build_blocks.h>
+#include <talus/scene/scene.h>
+#include <talus/scene/build_blocks.h>
 #include <talus/solver/rigid_solver.h>
 
 #include "../tests.h"

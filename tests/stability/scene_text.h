@@ -3,8 +3,8 @@
 // Builds a solver from the text of a parameter file (written to a file in
 // the test's folder first), for small scenes made up by a test.
 
-#include <talus/io/scene.h>
-#include <talus/model/build_blocks.h>
+#include <talus/scene/scene.h>
+#include <talus/scene/build_blocks.h>
 #include <talus/solver/rigid_solver.h>
 
 #include <cstdio>

@@ -9,8 +9,8 @@
 // measured to standard error (see tests.h).
 
 #include <talus/base/parallel_environment.h>
-#include <talus/model/build_blocks.h>
-#include <talus/solver/block_system.h>
+#include <talus/scene/build_blocks.h>
+#include <talus/scene/block_system.h>
 
 #include <algorithm>
 #include <cmath>

@@ -1,6 +1,6 @@
 #pragma once
 
-#include <talus/io/scene.h>
+#include <talus/scene/scene.h>
 #include <talus/model/block_model.h>
 
 #include <string>

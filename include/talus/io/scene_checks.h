@@ -1,8 +1,8 @@
 #pragma once
 
 #include <talus/base/exceptions.h>
-#include <talus/io/scene.h>
-#include <talus/model/build_blocks.h>
+#include <talus/scene/scene.h>
+#include <talus/scene/build_blocks.h>
 #include <talus/zone/tet_mesh.h>
 
 #include <string>

@@ -1,5 +1,7 @@
 #pragma once
 
+#include <talus/base/output_format.h>
+
 #include <algorithm>
 #include <cstddef>
 #include <cstdint>
@@ -11,17 +13,6 @@
 
 namespace talus
 {
-
-/// How the data arrays of a VTU file are written: compressed binary (zlib
-/// blocks, base64 inline, as VTK's vtkZLibDataCompressor reads them; the
-/// default: small files, fast to write and read) or ASCII text (to read by
-/// eye; floating-point values in their shortest form that reads back
-/// exactly).
-enum class VtuEncoding
-{
-  binary,
-  ascii
-};
 
 /// The VTK type name of a value type.
 template <typename T>

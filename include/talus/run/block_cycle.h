@@ -6,7 +6,7 @@
 #include <talus/io/zone_vtu_writer.h>
 #include <talus/run/cycle.h>
 #include <talus/run/run_summary.h>
-#include <talus/solver/block_system.h>
+#include <talus/scene/block_system.h>
 
 #include <chrono>
 #include <memory>

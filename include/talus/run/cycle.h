@@ -1,6 +1,6 @@
 #pragma once
 
-#include <talus/io/scene.h>
+#include <talus/scene/scene.h>
 
 #include <string>
 #include <vector>

@@ -4,7 +4,7 @@
 // the records they share: zone frames for ParaView and history points.
 
 #include <talus/io/block_vtu_writer.h>
-#include <talus/io/scene.h>
+#include <talus/scene/scene.h>
 #include <talus/io/zone_vtu_writer.h>
 #include <talus/model/block_model.h>
 #include <talus/solver/deformable_solver.h>

@@ -1,8 +1,8 @@
 #pragma once
 
-#include <talus/io/scene.h>
+#include <talus/scene/scene.h>
 #include <talus/model/block_model.h>
-#include <talus/model/build_blocks.h>
+#include <talus/scene/build_blocks.h>
 #include <talus/run/cycle.h>
 
 #include <memory>

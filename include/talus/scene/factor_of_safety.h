@@ -1,8 +1,8 @@
 #pragma once
 
-#include <talus/io/scene.h>
+#include <talus/scene/scene.h>
 #include <talus/model/block_model.h>
-#include <talus/solver/block_system.h>
+#include <talus/scene/block_system.h>
 #include <talus/solver/strength_reduction.h>
 
 #include <functional>

@@ -1,4 +1,4 @@
-#include <talus/model/build_blocks.h>
+#include <talus/scene/build_blocks.h>
 
 #include <talus/base/exceptions.h>
 

@@ -2,7 +2,7 @@
 
 #include <talus/geometry/block_generator.h>
 #include <talus/geometry/region.h>
-#include <talus/io/vtu_encoding.h>
+#include <talus/base/output_format.h>
 #include <talus/solver/deformable_solver.h>
 #include <talus/solver/rigid_solver.h>
 #include <talus/solver/strength_reduction.h>

@@ -1,6 +1,6 @@
 #pragma once
 
-#include <talus/io/scene.h>
+#include <talus/scene/scene.h>
 #include <talus/solver/deformable_solver.h>
 #include <talus/solver/rigid_solver.h>
 #include <talus/zone/block_mesher.h>

@@ -1,6 +1,6 @@
-#include <talus/io/checkpoint.h>
+#include <talus/base/archive.h>
 #include <talus/solver/energy_account.h>
-#include <talus/solver/factor_of_safety.h>
+#include <talus/scene/factor_of_safety.h>
 
 #include <algorithm>
 #include <cmath>

@@ -1,5 +1,5 @@
 #include <talus/base/exceptions.h>
-#include <talus/solver/block_system.h>
+#include <talus/scene/block_system.h>
 #include <talus/zone/tet10_mesh.h>
 #include <talus/zone/zone_surface.h>
 
