@@ -92,19 +92,10 @@ int run_factor_of_safety(Scene& scene, BlockModel& model, const std::string& pre
               f.reduce_zone_strength ? " and of the Mohr-Coulomb zones" : "", s.steps,
               s.target_ratio, 100.0 * creep_fraction, f.tolerance);
 
-  std::vector<std::string> columns{"step",
-                                   "time (s)",
-                                   "unbalanced ratio",
-                                   "largest displacement (m)",
-                                   "kinetic energy (J)",
-                                   "work of gravity (J)",
-                                   "joint elastic energy (J)",
-                                   "friction dissipation (J)",
-                                   "damping dissipation (J)",
-                                   "work of boundaries (J)",
-                                   "zone elastic energy (J)",
-                                   "plastic dissipation (J)",
-                                   "energy balance error (J)"};
+  std::vector<std::string> columns{"step", "time (s)", "unbalanced ratio",
+                                   "largest displacement (m)"};
+  for (const std::string& c : EnergyAccount::column_names())
+    columns.push_back(c);
   for (unsigned int b : s.history_blocks)
     for (const char* q : {"ux", "uy", "uz", "vx", "vy", "vz"})
       columns.push_back("block " + std::to_string(b) + " " + q + (q[0] == 'u' ? " (m)" : " (m/s)"));
@@ -125,18 +116,9 @@ int run_factor_of_safety(Scene& scene, BlockModel& model, const std::string& pre
     // account runs on from the start of the initial equilibrium.
     const EnergyAccount e = solver.energy_account();
     std::vector<double> row{double(solver.steps_done() - view.start_step),
-                            solver.time() - view.start_time,
-                            solver.unbalanced_ratio(),
-                            view.largest_displacement(),
-                            e.kinetic,
-                            e.gravity_work,
-                            e.joint_elastic,
-                            e.friction,
-                            e.damping,
-                            e.boundary_work,
-                            e.zone_elastic,
-                            e.plastic,
-                            e.error()};
+                            solver.time() - view.start_time, solver.unbalanced_ratio(),
+                            view.largest_displacement()};
+    e.append_to(row);
     for (unsigned int b : s.history_blocks)
     {
       const Vec3 u = solver.displacement[b] - view.start_displacement[b];

@@ -1,8 +1,8 @@
 #include <talus/base/memory.h>
 #include <talus/io/checkpoint.h>
 #include <talus/io/scene_checks.h>
-#include <talus/scene/build_blocks.h>
 #include <talus/run/block_cycle.h>
+#include <talus/scene/build_blocks.h>
 
 #include <algorithm>
 #include <chrono>
@@ -102,18 +102,9 @@ double BlockCycle::ratio() const
 
 std::vector<std::string> BlockCycle::history_columns() const
 {
-  std::vector<std::string> columns{"step",
-                                   "time (s)",
-                                   "unbalanced ratio",
-                                   "kinetic energy (J)",
-                                   "work of gravity (J)",
-                                   "joint elastic energy (J)",
-                                   "friction dissipation (J)",
-                                   "damping dissipation (J)",
-                                   "work of boundaries (J)",
-                                   "zone elastic energy (J)",
-                                   "plastic dissipation (J)",
-                                   "energy balance error (J)"};
+  std::vector<std::string> columns{"step", "time (s)", "unbalanced ratio"};
+  for (const std::string& c : EnergyAccount::column_names())
+    columns.push_back(c);
   for (unsigned int b : scene_.solver.history_blocks)
     for (const char* q : {"ux", "uy", "uz", "vx", "vy", "vz"})
       columns.push_back("block " + std::to_string(b) + " " + q + (q[0] == 'u' ? " (m)" : " (m/s)"));
@@ -125,18 +116,8 @@ std::vector<double> BlockCycle::history_row()
 {
   const RigidSolver& solver = *system_.solver;
   const EnergyAccount e = solver.energy_account();
-  std::vector<double> row{double(solver.steps_done()),
-                          solver.time(),
-                          solver.unbalanced_ratio(),
-                          e.kinetic,
-                          e.gravity_work,
-                          e.joint_elastic,
-                          e.friction,
-                          e.damping,
-                          e.boundary_work,
-                          e.zone_elastic,
-                          e.plastic,
-                          e.error()};
+  std::vector<double> row{double(solver.steps_done()), solver.time(), solver.unbalanced_ratio()};
+  e.append_to(row);
   for (unsigned int b : scene_.solver.history_blocks)
     for (const Vec3* q : {&solver.displacement[b], &solver.velocity[b]})
       for (int d = 0; d < 3; ++d)

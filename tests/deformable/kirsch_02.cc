@@ -276,17 +276,9 @@ Errors run(TetMesh mesh, double t, unsigned int n_theta, Zones kind, const Error
   rock.nodal_mixed = kind == Zones::nodal_mixed;
   if (kind == Zones::tet10)
     rock.element = ZoneElement::tet10;
-  SolverSettings settings;
-  settings.gravity = Vec3::Zero();
-  settings.damping = Damping::adaptive_global;
-  const FacePressure right{Box{Vec3(L - eps, -big, -big), Vec3(L + eps, big, big)}, K * p};
-  const FacePressure top{Box{Vec3(-big, L - eps, -big), Vec3(big, L + eps, big)}, p};
-  InitialStress initial;
-  initial.base[0] = Sx;
-  initial.base[1] = Sy;
-  initial.base[2] = Sz;
-  DeformableSolver solver(mesh, {rock}, std::vector<unsigned int>(mesh.n_zones(), 0), settings,
-                          plane_strain_rollers(t, eps, big), {right, top}, &initial);
+  const std::unique_ptr<DeformableSolver> owned =
+      kirsch_solver(mesh, rock, plane_strain_rollers(t, eps, big));
+  DeformableSolver& solver = *owned;
   const auto solve_start = std::chrono::steady_clock::now();
   const unsigned long steps = solver.run_to_ratio(target, 200000);
   std::printf("  static run: %s\n",

@@ -45,17 +45,9 @@ Answer solve(const TetMesh& mesh, double t, bool staged)
 {
   ZoneMaterial rock;
   rock.set_young_poisson(E, nu);
-  SolverSettings settings;
-  settings.gravity = Vec3::Zero();
-  settings.damping = Damping::adaptive_global;
-  const FacePressure right{Box{Vec3(L - eps, -big, -big), Vec3(L + eps, big, big)}, K * p};
-  const FacePressure top{Box{Vec3(-big, L - eps, -big), Vec3(big, L + eps, big)}, p};
-  InitialStress initial;
-  initial.base[0] = Sx;
-  initial.base[1] = Sy;
-  initial.base[2] = Sz;
-  DeformableSolver solver(mesh, {rock}, std::vector<unsigned int>(mesh.n_zones(), 0), settings,
-                          plane_strain_rollers(t, eps, big), {right, top}, &initial);
+  const std::unique_ptr<DeformableSolver> owned =
+      kirsch_solver(mesh, rock, plane_strain_rollers(t, eps, big));
+  DeformableSolver& solver = *owned;
   const std::vector<Vec3> centroids = zone_centroids(mesh);
   if (staged)
   {

@@ -6,6 +6,7 @@
 // stress of the zones near the axes, a least-squares fit to the wall).
 // Shared by kirsch_01 (structured mesh) and kirsch_02 (the mesher's).
 
+#include <talus/solver/deformable_solver.h>
 #include <talus/zone/implicit_elastic.h>
 #include <talus/zone/tet_mesh.h>
 #include <talus/zone/zone_material.h>
@@ -13,6 +14,7 @@
 #include <Eigen/Dense>
 
 #include <cmath>
+#include <memory>
 #include <vector>
 
 using namespace talus;
@@ -191,6 +193,28 @@ double wall_fit(const std::vector<ZoneHoop>& zones, bool use_kirsch)
   }
   return A.colPivHouseholderQr().solve(b)[0];
 }
+/// The explicit static solver of the Kirsch problem on `mesh`, zones of
+/// `rock`: no gravity, adaptive global damping, every zone at the far-field
+/// stress, the far-field tractions on the outer square (K p on x = L, p on
+/// y = L), and the boundary conditions `rollers`.
+inline std::unique_ptr<DeformableSolver> kirsch_solver(const TetMesh& mesh, const ZoneMaterial& rock,
+                                                       std::vector<GridpointCondition> rollers)
+{
+  SolverSettings settings;
+  settings.gravity = Vec3::Zero();
+  settings.damping = Damping::adaptive_global;
+  const FacePressure right{Box{Vec3(L - eps, -big, -big), Vec3(L + eps, big, big)}, K * p};
+  const FacePressure top{Box{Vec3(-big, L - eps, -big), Vec3(big, L + eps, big)}, p};
+  InitialStress initial;
+  initial.base[0] = Sx;
+  initial.base[1] = Sy;
+  initial.base[2] = Sz;
+  return std::make_unique<DeformableSolver>(mesh, std::vector<ZoneMaterial>{rock},
+                                            std::vector<unsigned int>(mesh.n_zones(), 0),
+                                            settings, std::move(rollers),
+                                            std::vector<FacePressure>{right, top}, &initial);
+}
+
 } // namespace
 
 /// The implicit reference on a mesh of the slab (thickness t): loads are

@@ -1,5 +1,8 @@
 #pragma once
 
+#include <string>
+#include <vector>
+
 #include <algorithm>
 #include <stdexcept>
 #include <string>
@@ -34,6 +37,21 @@ struct EnergyAccount
   double damping = 0.0;
   /// The same stored terms at the start (initial velocities, initial stress).
   double initial_stored = 0.0;
+
+  /// The history columns of a block cycle's account, in the order
+  /// append_to() writes them (the error last).
+  static std::vector<std::string> column_names()
+  {
+    return {"kinetic energy (J)",       "work of gravity (J)",     "joint elastic energy (J)",
+            "friction dissipation (J)", "damping dissipation (J)", "work of boundaries (J)",
+            "zone elastic energy (J)",  "plastic dissipation (J)", "energy balance error (J)"};
+  }
+  /// Appends the terms of column_names() to a history row.
+  void append_to(std::vector<double>& row) const
+  {
+    row.insert(row.end(), {kinetic, gravity_work, joint_elastic, friction, damping, boundary_work,
+                           zone_elastic, plastic, error()});
+  }
 
   double stored() const { return kinetic + joint_elastic + zone_elastic; }
   /// Sources minus what they went into (J); zero for a perfect account.
