@@ -32,6 +32,24 @@ struct HoleMesh
   unsigned int n_theta = 8, n_r = 16;
   bool filled = false; ///< zones inside the hole too (n_theta even)
 
+  /// The Kirsch tests' slab: the square [0, R]^2, n_theta sectors, rings
+  /// as deep as the sectors are wide at the wall, two wall-zone widths
+  /// thick.
+  static HoleMesh square_slab(double a, double R, unsigned int n_theta)
+  {
+    HoleMesh hole;
+    hole.a = a;
+    hole.R = R;
+    hole.square = true;
+    hole.n_theta = n_theta;
+    const double dtheta = 0.5 * M_PI / n_theta;
+    hole.n_r = static_cast<unsigned int>(std::lround(std::log(R / a) / std::log(1.0 + dtheta)));
+    hole.thickness = 2.0 * a * dtheta;
+    return hole;
+  }
+  /// Ratio of the radii of neighbouring rings along a ray at theta = 0.
+  double ring_ratio() const { return std::pow(R / a, 1.0 / n_r); }
+
   /// Distance from the centre to the outer boundary along angle theta.
   double outer(double theta) const
   {

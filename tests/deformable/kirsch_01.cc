@@ -73,16 +73,10 @@ Errors run(unsigned int n_theta, double tolerance_u, double tolerance_wall,
            double tolerance_centroid, double tolerance_rms)
 {
   Errors errors;
-  HoleMesh hole;
-  hole.a = a;
-  hole.R = L;
-  hole.square = true;
-  hole.n_theta = n_theta;
-  const double dtheta = 0.5 * M_PI / n_theta;
   // Rings as deep as the sectors are wide at the wall, out to L.
-  hole.n_r = static_cast<unsigned int>(std::lround(std::log(L / a) / std::log(1.0 + dtheta)));
-  const double ring_ratio = std::pow(L / a, 1.0 / hole.n_r);
-  hole.thickness = 2.0 * a * dtheta;
+  const HoleMesh hole = HoleMesh::square_slab(a, L, n_theta);
+  const double dtheta = 0.5 * M_PI / n_theta;
+  const double ring_ratio = hole.ring_ratio();
   const double t = hole.thickness;
   const TetMesh mesh = hole.build();
   const MeshReport report = measure_mesh(mesh);

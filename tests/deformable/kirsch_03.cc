@@ -90,15 +90,9 @@ int main(int argc, char** argv)
 {
   ParallelEnvironment env(argc, argv);
   const unsigned int n_theta = 8;
-  HoleMesh hole;
-  hole.a = a;
-  hole.R = L;
-  hole.square = true;
-  hole.n_theta = n_theta;
+  HoleMesh hole = HoleMesh::square_slab(a, L, n_theta);
   const double dtheta = 0.5 * M_PI / n_theta;
-  hole.n_r = static_cast<unsigned int>(std::lround(std::log(L / a) / std::log(1.0 + dtheta)));
-  const double ring_ratio = std::pow(L / a, 1.0 / hole.n_r);
-  hole.thickness = 2.0 * a * dtheta;
+  const double ring_ratio = hole.ring_ratio();
   const TetMesh direct_mesh = hole.build();
   hole.filled = true;
   const TetMesh filled_mesh = hole.build();
