@@ -192,11 +192,17 @@ void check_checkpoint_scene(const std::string& checkpoint, const Scene& scene)
                      "checkpoint was written with");
   in.get(geometry_hash);
   in.get(step);
-  if (scene.solver.steps < step)
+  // A staged run may take the step limits of all its stages.
+  unsigned long limit = scene.stages.empty() ? scene.solver.steps : 0;
+  for (const StageSpec& stage : scene.stages)
+    limit += stage.steps;
+  if (limit < step)
     throw InputError(checkpoint + ": the checkpoint is at step " + std::to_string(step) +
-                     ", beyond 'Steps' = " + std::to_string(scene.solver.steps) + " of " +
-                     scene.parameter_file + "; allowed: 'Steps' of at least " +
-                     std::to_string(step) + " to continue the run");
+                     ", beyond 'Steps' = " + std::to_string(limit) + " of " +
+                     scene.parameter_file +
+                     (scene.stages.empty() ? "" : " (the sum over its stages)") +
+                     "; allowed: 'Steps' of at least " + std::to_string(step) +
+                     " to continue the run");
 }
 
 void continue_in_checkpoint_folder(const std::string& checkpoint, Scene& scene)
