@@ -575,8 +575,7 @@ void RigidSolver::load_state(CheckpointReader& in)
   in.get(dynamic);
   in.get(dt_);
   s_.dynamic = dynamic != 0;
-  damper_ = Damper(s_.dynamic ? Damping::none : s_.damping, s_.local_damping,
-                   s_.global_damping_ratio, dt_);
+  damper_ = damper_for(s_, dt_);
   in.get(s_.joint_rule.of_joint_set);
   in.get(s_.joint_rule.of_joint);
   in.get(s_.joint_rule.n_groups);

@@ -142,7 +142,19 @@ void check_stages(const Scene& scene, const BlockModel& model, const BuildReport
                           "an 'Excavation M' in the stage to remove zones, 'Boundary N' to hold "
                           "gridpoints");
       for (const std::string& g : *groups)
+      {
         check_has_blocks(stage.section, entry, g);
+        // Deformable blocks are held by their gridpoints, not as blocks.
+        const bool deformable =
+            std::find(scene.deformable.groups.begin(), scene.deformable.groups.end(), g) !=
+            scene.deformable.groups.end();
+        if (deformable && std::string(entry) != "Excavate groups")
+          throw scene_error(scene, stage.section, entry,
+                            "names group '" + g + "', whose blocks are deformable: a stage holds "
+                            "or lets go rigid blocks only",
+                            "groups of rigid blocks; 'Boundary N' holds gridpoints of deformable "
+                            "ones");
+      }
     }
     if (body && !stage.joint_materials.empty())
       throw scene_error(scene, stage.section, "Joint materials",

@@ -367,8 +367,7 @@ DeformableSolver::DeformableSolver(const TetMesh& mesh, std::vector<ZoneMaterial
     for (unsigned int i = 0; i < 3 * ng; ++i)
       initial_elastic_ += 0.5 * m[i] * held_velocity_[i] * held_velocity_[i];
   }
-  damper_ = Damper(s_.dynamic ? Damping::none : s_.damping, s_.local_damping,
-                   s_.global_damping_ratio, dt_);
+  damper_ = damper_for(s_, dt_);
   if (!s_.dynamic && s_.damping == Damping::combined)
     last_force_.assign(3 * ng, 0.0);
   if (nodal_mixed_)
@@ -1231,8 +1230,7 @@ void DeformableSolver::set_inertial_masses()
     for (int d = 0; d < 3; ++d)
       m[3 * g + d] = scaled ? std::max(true_mass_[g], k * dt_ * dt_ / 4.0) : true_mass_[g];
   }
-  damper_ = Damper(s_.dynamic ? Damping::none : s_.damping, s_.local_damping,
-                   s_.global_damping_ratio, dt_);
+  damper_ = damper_for(s_, dt_);
   if (!s_.dynamic && s_.damping == Damping::combined)
     last_force_.assign(3 * ng, 0.0);
 }
@@ -1568,8 +1566,7 @@ void DeformableSolver::load_state(CheckpointReader& in)
   in.get(dynamic);
   in.get(dt_);
   s_.dynamic = dynamic != 0;
-  damper_ = Damper(s_.dynamic ? Damping::none : s_.damping, s_.local_damping,
-                   s_.global_damping_ratio, dt_);
+  damper_ = damper_for(s_, dt_);
   if (!removed.empty())
     null_zones(removed);
   in.tag("zones");

@@ -246,8 +246,7 @@ void RigidSolver::set_masses_and_step()
       dt_ = 1.0; // statics, deformable blocks only: unit step, scaled masses
     zones_->use_time_step(dt_, joint_stiffness);
   }
-  damper_ = Damper(s_.dynamic ? Damping::none : s_.damping, s_.local_damping,
-                   s_.global_damping_ratio, dt_);
+  damper_ = damper_for(s_, dt_);
 }
 
 void RigidSolver::remove_blocks(const std::vector<unsigned int>& blocks)

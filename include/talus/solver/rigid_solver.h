@@ -79,6 +79,14 @@ struct SolverSettings
   unsigned long output_interval = 0;  ///< steps between VTU files (0: first and last)
 };
 
+/// The damper the settings ask for at time step `dt` (s): none for
+/// dynamics, the static damping chosen otherwise.
+inline Damper damper_for(const SolverSettings& s, double dt)
+{
+  return Damper(s.dynamic ? Damping::none : s.damping, s.local_damping, s.global_damping_ratio,
+                dt);
+}
+
 /// What a run did, for the summary.
 struct SolverReport
 {
