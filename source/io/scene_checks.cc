@@ -248,6 +248,10 @@ void check_built_model(const Scene& scene, const BlockModel& model, const BuildR
   check_stages(scene, model, report, check_has_blocks);
   for (std::size_t l = 0; l < scene.load_groups.size(); ++l)
     check_has_blocks(scene.load_sections.at(l), "Group", scene.load_groups[l]);
+  for (const StageSpec& stage : scene.stages)
+    for (std::size_t l = 0; l < stage.boundaries.load_groups.size(); ++l)
+      check_has_blocks(stage.boundaries.load_sections.at(l), "Group",
+                       stage.boundaries.load_groups[l]);
 
   if (!scene.deformable.groups.empty())
     check_deformable_blocks(scene, model);
@@ -419,19 +423,33 @@ void resolve_history_blocks(Scene& scene, const BlockModel& model)
 
 void check_boundary_selections(const Scene& scene, const BlockModel& model, const TetMesh& mesh)
 {
+  BoundarySet file;
+  file.gridpoint_conditions = scene.gridpoint_conditions;
+  file.gridpoint_condition_sections = scene.gridpoint_condition_sections;
+  file.face_pressures = scene.face_pressures;
+  file.face_pressure_sections = scene.face_pressure_sections;
+  check_boundary_selections(scene, model, mesh, file);
+  for (const StageSpec& stage : scene.stages)
+    if (stage.changes_boundaries)
+      check_boundary_selections(scene, model, mesh, stage.boundaries);
+}
+
+void check_boundary_selections(const Scene& scene, const BlockModel& model, const TetMesh& mesh,
+                               const BoundarySet& set)
+{
   // As the solvers select: gridpoints and zone face centroids by their
   // initial positions, the parts of rigid blocks' faces in the box.
   const auto holds = [](const Box& box, const double* p)
   { return box.contains(Vec3(p[0], p[1], p[2])); };
-  for (std::size_t i = 0; i < scene.gridpoint_conditions.size(); ++i)
+  for (std::size_t i = 0; i < set.gridpoint_conditions.size(); ++i)
   {
-    const Box& box = scene.gridpoint_conditions[i].region;
+    const Box& box = set.gridpoint_conditions[i].region;
     bool any = false;
     for (unsigned int g = 0; g < mesh.n_gridpoints() && !any; ++g)
       any = holds(box, &mesh.position[3 * g]);
     if (!any)
       throw scene_error(
-          scene, scene.gridpoint_condition_sections[i], "",
+          scene, set.gridpoint_condition_sections[i], "",
           mesh.n_gridpoints() == 0
               ? "selects nothing: fixed, velocity and load boundaries act on the gridpoints of "
                 "deformable blocks, and this scene has none"
@@ -453,16 +471,16 @@ void check_boundary_selections(const Scene& scene, const BlockModel& model, cons
         c[d] += mesh.position[3 * g + d] / 3.0;
     return holds(box, c);
   };
-  for (std::size_t i = 0; i < scene.face_pressures.size(); ++i)
+  for (std::size_t i = 0; i < set.face_pressures.size(); ++i)
   {
-    const Box& box = scene.face_pressures[i].region;
+    const Box& box = set.face_pressures[i].region;
     bool any = !face_patches_in(model, rigid, box).empty();
     for (const auto& face : mesh.face_gridpoint)
       any = any || face_in(box, face);
     for (const auto& face : mesh.second_overlay_face_gridpoint)
       any = any || face_in(box, face);
     if (!any)
-      throw scene_error(scene, scene.face_pressure_sections[i], "",
+      throw scene_error(scene, set.face_pressure_sections[i], "",
                         "selects nothing: no part of a rigid block's face lies in its box "
                         "('Corner min' to 'Corner max'), and no boundary face of a deformable "
                         "block's zones has its centroid in it",

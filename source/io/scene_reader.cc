@@ -294,7 +294,11 @@ void declare_load(ParameterFile& prm, const std::string& section)
   prm.leave();
 }
 
-void parse_load(ParameterFile& prm, const std::string& section, Scene& scene)
+/// A 'Load N' into `into`; `path` is its subsection as messages name it
+/// ("Stage 2 / Load 1" in a stage, whose load starts with the stage and so
+/// takes no rate and no initial motion).
+void parse_load(ParameterFile& prm, const std::string& section, const std::string& path,
+                const Scene& scene, BoundarySet& into)
 {
   prm.enter(section);
   BlockLoad load;
@@ -310,9 +314,17 @@ void parse_load(ParameterFile& prm, const std::string& section, Scene& scene)
   load.hold_rotation = prm.get_bool("Hold rotation");
   load.initial_velocity = prm.get_vec3("Initial velocity");
   load.initial_spin = prm.get_vec3("Initial spin");
-  scene.solver.loads.push_back(load);
-  scene.load_groups.push_back(group);
-  scene.load_sections.push_back(section);
+  if (path != section)
+    for (const char* entry : {"Force rate", "Initial velocity", "Initial spin"})
+      if (prm.get_vec3(entry) != Vec3::Zero())
+        throw prm.error(entry,
+                        "is not taken by a stage's load (a stage's force is constant "
+                        "and its blocks start from where the stages before left them)",
+                        "0, 0, 0 in a stage; a force that changes: a stage with 'Time limit' for "
+                        "each value");
+  into.loads.push_back(load);
+  into.load_groups.push_back(group);
+  into.load_sections.push_back(path);
   prm.leave();
 }
 
@@ -512,25 +524,43 @@ void declare_boundary(ParameterFile& prm, const std::string& section)
   prm.leave();
 }
 
-void parse_boundary(ParameterFile& prm, const std::string& section, Scene& scene)
+/// A 'Boundary N' into `into` (reactions to report into the scene); `path`
+/// as for parse_load.
+void parse_boundary(ParameterFile& prm, const std::string& section, const std::string& path,
+                    Scene& scene, BoundarySet& into)
 {
   prm.enter(section);
   const Box region = read_box(prm, "Corner min", "Corner max");
   const std::string condition = prm.get("Condition");
-  (condition == "pressure" || condition == "traction" ? scene.face_pressure_sections
-                                                      : scene.gridpoint_condition_sections)
-      .push_back(section);
+  if (path != section)
+  {
+    if (prm.get_double("Velocity until") > 0.0)
+      throw prm.error("Velocity until",
+                      "is not taken in a stage (it counts model time from the "
+                      "run's start)",
+                      "0 in a stage; a velocity for a while: a stage with 'Time limit', then a "
+                      "stage whose 'Boundary N' of the same number holds the gridpoints fixed");
+    if (prm.get_bool("Report reaction"))
+      throw prm.error("Report reaction",
+                      "is not taken in a stage (the history's columns are "
+                      "set when the run starts)",
+                      "false in a stage; report it on a 'Boundary N' of the file's top level "
+                      "with the same box");
+  }
+  (condition == "pressure" || condition == "traction" ? into.face_pressure_sections
+                                                      : into.gridpoint_condition_sections)
+      .push_back(path);
   if (condition == "pressure")
-    scene.face_pressures.push_back(FacePressure{region, prm.get_double("Pressure"), Vec3::Zero()});
+    into.face_pressures.push_back(FacePressure{region, prm.get_double("Pressure"), Vec3::Zero()});
   else if (condition == "traction")
-    scene.face_pressures.push_back(FacePressure{region, 0.0, prm.get_vec3("Traction")});
+    into.face_pressures.push_back(FacePressure{region, 0.0, prm.get_vec3("Traction")});
   else if (condition == "load")
   {
     GridpointCondition c;
     c.region = region;
     c.held[0] = c.held[1] = c.held[2] = false;
     c.force = prm.get_vec3("Force");
-    scene.gridpoint_conditions.push_back(c);
+    into.gridpoint_conditions.push_back(c);
   }
   else
   {
@@ -545,7 +575,7 @@ void parse_boundary(ParameterFile& prm, const std::string& section, Scene& scene
       if (prm.get_double("Velocity until") > 0.0)
         c.velocity_until = prm.get_double("Velocity until");
     }
-    scene.gridpoint_conditions.push_back(c);
+    into.gridpoint_conditions.push_back(c);
     if (prm.get_bool("Report reaction"))
       scene.reactions.push_back(ReactionReport{section, region, {c.held[0], c.held[1], c.held[2]}});
   }
@@ -805,14 +835,16 @@ void warn_ignored(const ParameterFile& prm, const std::string& section,
 }
 
 /// The 'Excavation M' nested in stage `stage`, in the order of M.
-std::vector<std::string> stage_excavations(const ParameterFile& prm, const std::string& stage)
+/// The subsections 'kind M' inside `stage`, in the order of M.
+std::vector<std::string> stage_subsections(const ParameterFile& prm, const std::string& stage,
+                                           const std::string& kind)
 {
   std::vector<std::pair<long, std::string>> found;
-  const std::regex excavation("Excavation ([0-9]{1,9})");
+  const std::regex numbered(kind + " ([0-9]{1,9})");
   for (const std::string& s : prm.sections_in(stage))
   {
     std::smatch m;
-    if (std::regex_match(s, m, excavation))
+    if (std::regex_match(s, m, numbered))
       found.emplace_back(std::stol(m[1]), s);
   }
   std::sort(found.begin(), found.end());
@@ -820,6 +852,76 @@ std::vector<std::string> stage_excavations(const ParameterFile& prm, const std::
   for (const auto& f : found)
     names.push_back(f.second);
   return names;
+}
+
+std::vector<std::string> stage_excavations(const ParameterFile& prm, const std::string& stage)
+{
+  return stage_subsections(prm, stage, "Excavation");
+}
+
+/// The subsection name of a path ("Boundary 2" of "Stage 3 / Boundary 2").
+std::string last_part(const std::string& path)
+{
+  const std::size_t k = path.rfind(" / ");
+  return k == std::string::npos ? path : path.substr(k + 3);
+}
+
+/// Drops the boundaries and loads named `name` from `set`; whether any was.
+bool drop_boundary(BoundarySet& set, const std::string& name)
+{
+  bool found = false;
+  const auto drop =
+      [&](auto& values, std::vector<std::string>& sections, std::vector<std::string>* groups)
+  {
+    for (std::size_t i = sections.size(); i-- > 0;)
+      if (last_part(sections[i]) == name)
+      {
+        values.erase(values.begin() + i);
+        sections.erase(sections.begin() + i);
+        if (groups)
+          groups->erase(groups->begin() + i);
+        found = true;
+      }
+  };
+  drop(set.gridpoint_conditions, set.gridpoint_condition_sections, nullptr);
+  drop(set.face_pressures, set.face_pressure_sections, nullptr);
+  drop(set.loads, set.load_sections, &set.load_groups);
+  return found;
+}
+
+/// A stage's changes of the boundaries and loads: 'Release', then its
+/// 'Boundary M' and 'Load M', each replacing the one of the same name in
+/// force (the stage before's, or the file's), onto stage.boundaries.
+void parse_stage_boundaries(ParameterFile& prm, const std::string& section, Scene& scene,
+                            const BoundarySet& before)
+{
+  StageSpec& stage = scene.stages.back();
+  stage.boundaries = before;
+  prm.enter(section);
+  for (const std::string& name : dealii::Utilities::split_string_list(prm.get("Release")))
+  {
+    if (!std::regex_match(name, std::regex("(Boundary|Load) [0-9]{1,9}")))
+      throw prm.error("Release", "'" + name + "' is not the name of a 'Boundary N' or 'Load N'",
+                      "names of the 'Boundary N' and 'Load N' in force, separated by commas");
+    if (!drop_boundary(stage.boundaries, name))
+      throw prm.error("Release", "names '" + name + "', which is not in force at this stage",
+                      "the 'Boundary N' and 'Load N' of the file and of the stages before that "
+                      "are not released yet");
+    stage.boundary_changes.push_back(name + " released");
+  }
+  for (const std::string kind : {"Boundary", "Load"})
+    for (const std::string& sub : stage_subsections(prm, section, kind))
+    {
+      const bool replaced = drop_boundary(stage.boundaries, sub);
+      const std::string path = section + " / " + sub;
+      if (kind == std::string("Boundary"))
+        parse_boundary(prm, sub, path, scene, stage.boundaries);
+      else
+        parse_load(prm, sub, path, scene, stage.boundaries);
+      stage.boundary_changes.push_back(sub + (replaced ? " replaced" : " added"));
+    }
+  prm.leave();
+  stage.changes_boundaries = !stage.boundary_changes.empty();
 }
 
 void warn_about_ignored_entries(const ParameterFile& prm, Scene& scene,
@@ -944,7 +1046,15 @@ Scene read_scene(const std::string& filename, bool prepare_output)
     else if (kind == "Rock material")
       declare_rock_material(prm, name);
     else if (kind == "Stage")
+    {
       declare_stage(prm, name, stage_excavations(prm, name));
+      prm.enter(name);
+      for (const std::string& b : stage_subsections(prm, name, "Boundary"))
+        declare_boundary(prm, b);
+      for (const std::string& l : stage_subsections(prm, name, "Load"))
+        declare_load(prm, l);
+      prm.leave();
+    }
     else
       declare_group(prm, name);
   }
@@ -978,16 +1088,29 @@ Scene read_scene(const std::string& filename, bool prepare_output)
       scene.groups.push_back(parse_group(prm, name, scene));
   }
   parse_solver(prm, scene);
+  BoundarySet boundaries; // the file's
   for (const auto& [kind, name] : numbered_sections)
     if (kind == "Load")
-      parse_load(prm, name, scene);
+      parse_load(prm, name, name, scene, boundaries);
     else if (kind == "Boundary")
-      parse_boundary(prm, name, scene);
+      parse_boundary(prm, name, name, scene, boundaries);
     else if (kind == "Group contact")
       parse_group_contact(prm, name, scene);
+  scene.gridpoint_conditions = boundaries.gridpoint_conditions;
+  scene.face_pressures = boundaries.face_pressures;
+  scene.solver.loads = boundaries.loads;
+  scene.gridpoint_condition_sections = boundaries.gridpoint_condition_sections;
+  scene.face_pressure_sections = boundaries.face_pressure_sections;
+  scene.load_groups = boundaries.load_groups;
+  scene.load_sections = boundaries.load_sections;
   for (const auto& [kind, name] : numbered_sections)
     if (kind == "Stage")
+    {
       parse_stage(prm, name, stage_excavations(prm, name), scene);
+      parse_stage_boundaries(
+          prm, name, scene,
+          scene.stages.size() > 1 ? scene.stages[scene.stages.size() - 2].boundaries : boundaries);
+    }
   parse_deformable(prm, scene);
   parse_water(prm, scene);
   for (const auto& [kind, name] : numbered_sections)

@@ -73,6 +73,10 @@ void declare_stage(ParameterFile& prm, const std::string& section,
               "'Joint set N = material' or 'Joint N = material' separated by ';'",
               "Joint sets and joints whose contacts take another joint material from the "
               "stage's start.");
+  prm.declare("Release", "", P::List(P::Anything()),
+              "names of 'Boundary N' and 'Load N' separated by commas",
+              "Boundaries and loads that stop acting at the stage's start (a 'Boundary M' or "
+              "'Load M' subsection of the stage adds one, or replaces the one of that name).");
   for (const std::string& e : excavations)
   {
     prm.enter(e);

@@ -81,6 +81,28 @@ BlockCycle::BlockCycle(Scene& scene, BlockModel& model, const std::string& prefi
     joint_numbers_.joint_set_number.push_back(std::stoi(section.substr(section.rfind(' ') + 1)));
   for (const std::string& section : scene.joint_plane_sections)
     joint_numbers_.joint_number.push_back(std::stoi(section.substr(section.rfind(' ') + 1)));
+  for (const StageSpec& stage : scene.stages)
+    if (stage.changes_boundaries && !built_model_)
+      built_model_ = std::make_unique<BlockModel>(model);
+}
+
+void BlockCycle::apply_boundaries(const BoundarySet& set)
+{
+  RigidSolver& solver = *system_.solver;
+  std::vector<char> rigid(model_.n_blocks(), 1);
+  if (system_.zones)
+    for (unsigned int b = 0; b < model_.n_blocks(); ++b)
+      rigid[b] = !solver.is_deformable(b);
+  solver.set_face_loads(RigidFaceLoads(*built_model_, rigid, set.face_pressures));
+  if (system_.zones)
+    system_.zones->set_boundaries(set.gridpoint_conditions, set.face_pressures);
+}
+
+void BlockCycle::restore_stage(const StageSpec& stage)
+{
+  // The loads' state (forces, held velocities) is in the checkpoint.
+  if (built_model_)
+    apply_boundaries(stage.boundaries);
 }
 
 void BlockCycle::step()
@@ -229,6 +251,15 @@ void BlockCycle::begin_stage(const StageSpec& stage)
     solver.set_dynamic(stage.dynamic);
     std::printf("  Mode:       %s, time step %.6g s\n", stage.dynamic ? "dynamic" : "static",
                 solver.dt());
+  }
+  if (stage.changes_boundaries)
+  {
+    solver.set_loads(stage.boundaries.loads);
+    apply_boundaries(stage.boundaries);
+    std::printf("  Boundaries: ");
+    for (std::size_t k = 0; k < stage.boundary_changes.size(); ++k)
+      std::printf("%s%s", k == 0 ? "" : ", ", stage.boundary_changes[k].c_str());
+    std::printf("\n");
   }
   if (stage.reset_displacements)
     solver.reset_displacements();

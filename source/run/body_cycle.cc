@@ -225,8 +225,21 @@ void BodyCycle::begin_stage(const StageSpec& stage)
     std::printf("  Mode:       %s, time step %.6g s\n", stage.dynamic ? "dynamic" : "static",
                 solver_->dt());
   }
+  if (stage.changes_boundaries)
+  {
+    solver_->set_boundaries(stage.boundaries.gridpoint_conditions, stage.boundaries.face_pressures);
+    std::printf("  Boundaries: ");
+    for (std::size_t k = 0; k < stage.boundary_changes.size(); ++k)
+      std::printf("%s%s", k == 0 ? "" : ", ", stage.boundary_changes[k].c_str());
+    std::printf("\n");
+  }
   if (stage.reset_displacements)
     solver_->reset_displacements();
+}
+
+void BodyCycle::restore_stage(const StageSpec& stage)
+{
+  solver_->set_boundaries(stage.boundaries.gridpoint_conditions, stage.boundaries.face_pressures);
 }
 
 std::string BodyCycle::displacement_text() const

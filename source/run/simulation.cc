@@ -194,7 +194,8 @@ int Simulation::run()
     std::printf("   Time = %.3f s (blocks and the search)\n", seconds_since(start));
     return code;
   }
-  const std::vector<StageSpec> stages = this->stages();
+  // Copied again once the cycle has resolved the group names of their loads.
+  std::vector<StageSpec> stages = this->stages();
   unsigned long total_steps = 0;
   for (const StageSpec& s : stages)
     total_steps += s.steps;
@@ -219,6 +220,7 @@ int Simulation::run()
     cycle = std::make_unique<BodyCycle>(scene_, model_, prefix_);
   else
     cycle = std::make_unique<BlockCycle>(scene_, model_, prefix_);
+  stages = this->stages();
   const bool staged = !scene_.stages.empty();
   std::vector<std::string> columns = cycle->history_columns();
   if (staged)
@@ -242,6 +244,13 @@ int Simulation::run()
   if (!restart_from_.empty())
   {
     const unsigned long step = checkpoint.restore(restart_from_);
+    // The boundaries and loads of the stages begun, which a checkpoint
+    // does not hold.
+    bool changed = false;
+    for (unsigned int k = 0; k < stage_begun; ++k)
+      changed |= stages[k].changes_boundaries;
+    if (changed)
+      cycle->restore_stage(stages[stage_begun - 1]);
     std::printf("Restarted:    from %s at step %lu\n",
                 std::filesystem::path(restart_from_).filename().c_str(), step);
   }

@@ -170,6 +170,9 @@ void resolve_group_names(Scene& scene, BlockModel& model)
     scene.solver.fixed_groups.push_back(model.group_index(name));
   for (std::size_t l = 0; l < scene.solver.loads.size(); ++l)
     scene.solver.loads[l].group = model.group_index(scene.load_groups[l]);
+  for (StageSpec& stage : scene.stages)
+    for (std::size_t l = 0; l < stage.boundaries.loads.size(); ++l)
+      stage.boundaries.loads[l].group = model.group_index(stage.boundaries.load_groups[l]);
   // Group contact rules on group indices (the first rule for a pair wins).
   JointMaterialRule& rule = scene.solver.joint_rule;
   std::vector<std::pair<unsigned int, unsigned int>> pairs;

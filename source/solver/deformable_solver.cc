@@ -273,7 +273,61 @@ DeformableSolver::DeformableSolver(const TetMesh& mesh, std::vector<ZoneMaterial
   nodal_stiffness_ = stiffness;
   reference_ = mesh_.position;
 
-  // Boundary conditions, by the gridpoints' initial positions.
+  apply_conditions();
+  {
+    LocalArray v(petsc_->velocity);
+    for (unsigned int i = 0; i < 3 * ng; ++i)
+      v[i] = held_velocity_[i];
+  }
+  select_pressed_faces();
+  if (s_.water.active())
+  {
+    // Water on every boundary face, in contact or not (water_loads.h).
+    for (unsigned int f = 0; f < mesh_.n_faces(); ++f)
+    {
+      water_faces_.push_back(mesh_.face_gridpoint[f]);
+      water_weight_.push_back(in_hex[mesh_.face_zone[f]] ? 0.5 : 1.0);
+    }
+    for (const auto& face : mesh_.second_overlay_face_gridpoint)
+    {
+      water_faces_.push_back(face);
+      water_weight_.push_back(0.5);
+    }
+  }
+  force_size_.assign(3 * ng, 0.0);
+  if (!pressed_faces_.empty() || !water_faces_.empty())
+    pressure_force_.assign(3 * ng, 0.0);
+  std::tie(initial_elastic_, initial_plastic_elastic_) = elastic_energy(mesh_.position.data());
+  {
+    // Held velocities are there from the start: energy at the start.
+    LocalArray m(petsc_->inertial_mass);
+    for (unsigned int i = 0; i < 3 * ng; ++i)
+      initial_elastic_ += 0.5 * m[i] * held_velocity_[i] * held_velocity_[i];
+  }
+  damper_ = damper_for(s_, dt_);
+  if (!s_.dynamic && s_.damping == Damping::combined)
+    last_force_.assign(3 * ng, 0.0);
+  if (nodal_mixed_)
+    plan_nodal_mixed();
+}
+
+void DeformableSolver::set_gravity_and_loads()
+{
+  const unsigned int ng = mesh_.n_gridpoints();
+  for (unsigned int g = 0; g < ng; ++g)
+    for (int d = 0; d < 3; ++d)
+      gravity_force_[3 * g + d] = true_mass_[g] * s_.gravity[d]; // eq. 56
+  for (unsigned int g = 0; g < ng; ++g)
+    for (const GridpointCondition& c : conditions_)
+      if (inside(c.region, &mesh_.position[3 * g]))
+        for (int d = 0; d < 3; ++d)
+          gravity_force_[3 * g + d] += c.force[d];
+}
+
+void DeformableSolver::apply_conditions()
+{
+  // By the gridpoints' initial positions, whatever they have moved since.
+  const unsigned int ng = mesh_.n_gridpoints();
   held_.assign(ng, 0);
   held_velocity_.assign(3 * ng, 0.0);
   held_until_.assign(3 * ng, std::numeric_limits<double>::infinity());
@@ -281,8 +335,6 @@ DeformableSolver::DeformableSolver(const TetMesh& mesh, std::vector<ZoneMaterial
     for (const GridpointCondition& c : conditions_)
       if (inside(c.region, &mesh_.position[3 * g]))
         for (int d = 0; d < 3; ++d)
-        {
-          gravity_force_[3 * g + d] += c.force[d];
           if (c.held[d])
           {
             held_[g] |= 1u << d;
@@ -292,12 +344,25 @@ DeformableSolver::DeformableSolver(const TetMesh& mesh, std::vector<ZoneMaterial
                                                                     mesh_.position[3 * g + 2]));
             held_until_[3 * g + d] = c.velocity_until;
           }
-        }
-  {
-    LocalArray v(petsc_->velocity);
-    for (unsigned int i = 0; i < 3 * ng; ++i)
-      v[i] = held_velocity_[i];
-  }
+  // A gridpoint of removed zones only stays where it is.
+  if (!removed_zone_.empty())
+    for (unsigned int g = 0; g < ng; ++g)
+      if (true_mass_[g] == 0.0)
+      {
+        held_[g] = 7u;
+        std::fill_n(&held_velocity_[3 * g], 3, 0.0);
+      }
+  set_gravity_and_loads();
+}
+
+void DeformableSolver::select_pressed_faces()
+{
+  pressed_faces_.clear();
+  face_pressure_.clear();
+  face_traction_.clear();
+  face_share_.clear();
+  const unsigned int ng = mesh_.n_gridpoints();
+  const std::vector<char> in_hex = zones_in_hexes(mesh_);
   // Loaded faces: the boundary triangles; those of hexahedral zones once
   // for each overlay's split of the boundary quadrilaterals, each half.
   // 10-node zones: a zone vertex (not a midpoint) is where a boundary
@@ -343,35 +408,22 @@ DeformableSolver::DeformableSolver(const TetMesh& mesh, std::vector<ZoneMaterial
     press(mesh_.face_gridpoint[f], in_hex[mesh_.face_zone[f]] ? 0.5 : 1.0);
   for (const auto& face : mesh_.second_overlay_face_gridpoint)
     press(face, 0.5);
-  if (s_.water.active())
-  {
-    // Water on every boundary face, in contact or not (water_loads.h).
-    for (unsigned int f = 0; f < mesh_.n_faces(); ++f)
-    {
-      water_faces_.push_back(mesh_.face_gridpoint[f]);
-      water_weight_.push_back(in_hex[mesh_.face_zone[f]] ? 0.5 : 1.0);
-    }
-    for (const auto& face : mesh_.second_overlay_face_gridpoint)
-    {
-      water_faces_.push_back(face);
-      water_weight_.push_back(0.5);
-    }
-  }
-  force_size_.assign(3 * ng, 0.0);
-  if (!pressed_faces_.empty() || !water_faces_.empty())
-    pressure_force_.assign(3 * ng, 0.0);
-  std::tie(initial_elastic_, initial_plastic_elastic_) = elastic_energy(mesh_.position.data());
-  {
-    // Held velocities are there from the start: energy at the start.
-    LocalArray m(petsc_->inertial_mass);
-    for (unsigned int i = 0; i < 3 * ng; ++i)
-      initial_elastic_ += 0.5 * m[i] * held_velocity_[i] * held_velocity_[i];
-  }
-  damper_ = damper_for(s_, dt_);
-  if (!s_.dynamic && s_.damping == Damping::combined)
-    last_force_.assign(3 * ng, 0.0);
-  if (nodal_mixed_)
-    plan_nodal_mixed();
+}
+
+void DeformableSolver::set_boundaries(std::vector<GridpointCondition> conditions,
+                                      std::vector<FacePressure> pressures)
+{
+  conditions_ = std::move(conditions);
+  pressures_ = std::move(pressures);
+  // A component held from now on takes its velocity at the next motion,
+  // which accounts for the kinetic energy that takes (move_gridpoints); a
+  // component let go keeps the velocity it has.
+  apply_conditions();
+  select_pressed_faces();
+  if (pressed_faces_.empty() && water_faces_.empty())
+    pressure_force_.clear();
+  else
+    pressure_force_.assign(3 * mesh_.n_gridpoints(), 0.0);
 }
 
 void DeformableSolver::zone_masses(std::vector<double>& mass, std::vector<double>& stiffness) const
@@ -1292,7 +1344,7 @@ void DeformableSolver::remove_zones(std::vector<char> gone)
 
 void DeformableSolver::null_zones(const std::vector<char>& gone)
 {
-  const unsigned int nz = mesh_.n_zones(), ng = mesh_.n_gridpoints();
+  const unsigned int nz = mesh_.n_zones();
   if (removed_zone_.empty())
     removed_zone_.assign(nz, 0);
   // One null material per element type: no stiffness, no density, elastic
@@ -1329,11 +1381,9 @@ void DeformableSolver::null_zones(const std::vector<char>& gone)
   // Masses and gravity of what remains.
   std::vector<double> mass, stiffness;
   zone_masses(mass, stiffness);
-  for (unsigned int g = 0; g < ng; ++g)
-    for (int d = 0; d < 3; ++d)
-      gravity_force_[3 * g + d] += (mass[g] - true_mass_[g]) * s_.gravity[d];
   true_mass_ = mass;
   nodal_stiffness_ = stiffness;
+  set_gravity_and_loads();
   if (nodal_mixed_)
     plan_nodal_mixed();
 }

@@ -292,6 +292,47 @@ void RigidSolver::set_fixed(unsigned int b, bool fix)
   velocity[b] = spin[b] = Vec3::Zero();
 }
 
+void RigidSolver::set_loads(const std::vector<BlockLoad>& loads)
+{
+  s_.loads = loads;
+  for (unsigned int b = 0; b < m_.n_blocks(); ++b)
+  {
+    if (removed_[b])
+      continue;
+    Vec3 force = Vec3::Zero(), rate = Vec3::Zero(), v = velocity[b];
+    unsigned char bits = 0;
+    for (const BlockLoad& load : loads)
+      if (m_.group[b] == load.group)
+      {
+        force += load.force;
+        rate += load.force_rate;
+        if (load.prescribe_velocity)
+          for (int d = 0; d < 3; ++d)
+            if (load.held[d])
+            {
+              bits |= 1u << d;
+              v[d] = load.velocity[d];
+            }
+        if (load.hold_rotation)
+          bits |= 8u;
+      }
+    applied_force[b] = force;
+    applied_force_rate[b] = rate;
+    prescribed[b] = bits;
+    if (fixed[b] || is_deformable_[b])
+      continue;
+    // The support gives or takes the kinetic energy of the change: the
+    // boundaries' work, so that the account stays closed.
+    boundary_work_ += 0.5 * inertial_mass[b] * (v.squaredNorm() - velocity[b].squaredNorm());
+    velocity[b] = v;
+    if ((bits & 8u) && !s_.principal_inertia)
+    {
+      boundary_work_ -= 0.5 * inertia[b] * spin[b].squaredNorm();
+      spin[b].setZero();
+    }
+  }
+}
+
 void RigidSolver::reset_displacements()
 {
   for (unsigned int b = 0; b < m_.n_blocks(); ++b)

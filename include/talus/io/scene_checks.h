@@ -69,7 +69,10 @@ void resolve_history_blocks(Scene& scene, const BlockModel& model);
 /// selects nothing - a fixed, velocity or load boundary whose box holds no
 /// gridpoint, a pressure or traction boundary whose box holds the centroid
 /// of no boundary face of the zones and no part of a rigid block's face -
-/// naming it.
+/// naming it; those of every stage too.
 void check_boundary_selections(const Scene& scene, const BlockModel& model, const TetMesh& mesh);
+/// The same for one set of boundaries (the file's, or a stage's).
+void check_boundary_selections(const Scene& scene, const BlockModel& model, const TetMesh& mesh,
+                               const BoundarySet& set);
 
 } // namespace talus

@@ -39,6 +39,7 @@ public:
   RigidSolver* rigid() override { return system_.solver.get(); }
   DeformableSolver* zones() override { return system_.zones.get(); }
   void begin_stage(const StageSpec& stage) override;
+  void restore_stage(const StageSpec& stage) override;
   std::string displacement_text() const override;
   void print_end() override;
   std::string unbalanced_where() const override;
@@ -58,6 +59,11 @@ private:
   unsigned int frame_ = 0, zone_frame_ = 0;
   /// The blocks' centroids as built (m): where stage regions select them.
   std::vector<Vec3> built_centroid_;
+  /// The blocks as built, where a stage's face loads are selected (as those
+  /// of the file were); kept only when a stage changes the face loads.
+  std::unique_ptr<BlockModel> built_model_;
+  /// Boundaries and loads of a stage into the solvers.
+  void apply_boundaries(const BoundarySet& set);
 };
 
 } // namespace talus

@@ -40,6 +40,7 @@ public:
   void register_checkpoint(Checkpoint& checkpoint) override;
   DeformableSolver* zones() override { return solver_.get(); }
   void begin_stage(const StageSpec& stage) override;
+  void restore_stage(const StageSpec& stage) override;
   std::string displacement_text() const override;
   void print_end() override;
   std::string unbalanced_where() const override;

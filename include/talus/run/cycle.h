@@ -54,6 +54,9 @@ public:
   /// A stage's changes at its start (excavations, fixed groups, joint
   /// materials, mode, displacements); prints what it did.
   virtual void begin_stage(const StageSpec& stage) = 0;
+  /// After a restart inside `stage` or after it: what a checkpoint does not
+  /// hold of the stages' changes (the boundaries and loads in force).
+  virtual void restore_stage(const StageSpec& stage) = 0;
   /// The largest displacement now (m) and where, for the stage's line.
   virtual std::string displacement_text() const = 0;
   /// The summary's lines at the end of the run.

@@ -62,6 +62,19 @@ struct JointMaterialChange
   unsigned char material = 0;
 };
 
+/// The 'Boundary N' and 'Load N' in force: those of the file, then as the
+/// stages add, replace and release them.
+struct BoundarySet
+{
+  std::vector<GridpointCondition> gridpoint_conditions;
+  std::vector<FacePressure> face_pressures;
+  std::vector<BlockLoad> loads;
+  /// The subsection of each ("Boundary 2", or "Stage 3 / Boundary 2" for
+  /// one a stage gave); a stage's 'Boundary 2' replaces any 'Boundary 2'.
+  std::vector<std::string> gridpoint_condition_sections, face_pressure_sections, load_sections;
+  std::vector<std::string> load_groups; ///< group name of each load
+};
+
 /// A 'Stage N': what changes at its start, and how its calculation runs.
 /// The stages run in order after the model is built; a scene without any
 /// is one stage with the settings of 'Solver'.
@@ -82,6 +95,13 @@ struct StageSpec
   std::vector<std::string> fix_groups, free_groups;
   bool reset_displacements = false;
   std::vector<JointMaterialChange> joint_materials;
+  /// Its 'Boundary M' and 'Load M' (each added, or replacing the one of
+  /// that name) and its 'Release' list changed the boundaries and loads.
+  bool changes_boundaries = false;
+  /// The boundaries and loads in force during the stage (all of them).
+  BoundarySet boundaries;
+  /// What changed, for the summary ("Boundary 3 added", ...).
+  std::vector<std::string> boundary_changes;
 };
 
 /// Which blocks are deformable and what they are made of.

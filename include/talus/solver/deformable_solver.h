@@ -197,6 +197,14 @@ public:
   void set_dynamic(bool dynamic);
   bool dynamic() const { return s_.dynamic; }
 
+  /// Stages: these boundary conditions and face loads from now on, in
+  /// place of those before (held gridpoints and loaded faces selected by
+  /// their initial positions, as at the start). A component held anew takes
+  /// its velocity at the next motion; one let go keeps its velocity. Holds
+  /// of hold_gridpoint end; gridpoints of removed zones stay held.
+  void set_boundaries(std::vector<GridpointCondition> conditions,
+                      std::vector<FacePressure> pressures);
+
   /// Holds every component of gridpoint g at velocity `v` (m/s) from now on.
   void hold_gridpoint(unsigned int g, const Vec3& v);
 
@@ -263,6 +271,13 @@ private:
   /// Inertial masses from the true masses and stiffness (density scaling
   /// for statics, eq. 84 solved for m), with the joints' stiffness.
   void set_inertial_masses();
+  /// gravity_force_: gravity of the true masses and the gridpoint loads of
+  /// the conditions.
+  void set_gravity_and_loads();
+  /// held_, held_velocity_, held_until_ and gravity_force_ from conditions_.
+  void apply_conditions();
+  /// The loaded boundary faces from pressures_.
+  void select_pressed_faces();
   /// remove_zones' change of the model (null materials, batches, masses,
   /// gravity), also made again when a checkpoint is loaded.
   void null_zones(const std::vector<char>& gone);

@@ -119,6 +119,15 @@ public:
       rigid[b] = !is_deformable_[b];
     face_loads_ = RigidFaceLoads(m_, rigid, loads);
   }
+  /// Whether block b is deformable (its zones move it).
+  bool is_deformable(unsigned int b) const { return is_deformable_[b] != 0; }
+  /// The same, selected elsewhere (a stage's, on the blocks as built).
+  void set_face_loads(RigidFaceLoads loads) { face_loads_ = std::move(loads); }
+
+  /// Stages: these loads ('Load N') from now on, in place of those before.
+  /// A velocity prescribed anew is set at once (the kinetic energy of the
+  /// change is the boundaries' work); one let go keeps its velocity.
+  void set_loads(const std::vector<BlockLoad>& loads);
 
   /// Stages. Removes blocks (an excavation): they lose their contacts and
   /// stop, and the zones of deformable ones go (DeformableSolver::
