@@ -74,7 +74,8 @@ void declare_rock_material(ParameterFile& prm, const std::string& section)
   prm.enter(section);
   prm.declare("Name", "", P::Anything(), "a name", "The material's name, for the summary.");
   prm.declare("Groups", "", P::List(P::Anything()), "group names separated by commas",
-              "Blocks of these groups are made of this material.");
+              "Blocks of these groups are made of this material (none: a material that stages "
+              "give with 'Rock materials').");
   prm.declare("Density", "0", P::Double(), "a number > 0 and at most 1e5 (kg/m^3)",
               "kg/m^3 (not set: that of 'Material').");
   declare_zone_constants(prm);
@@ -101,8 +102,6 @@ void parse_rock_material(ParameterFile& prm, const std::string& section, Scene& 
                       "groups of no other rock material");
     r.groups.push_back(g);
   }
-  if (r.groups.empty())
-    throw prm.error("Groups", "is missing", "group names separated by commas");
   r.density = prm.lines().count(section + " / Density") ? prm.get_double("Density") : scene.density;
   if (!(r.density > 0.0 && r.density <= max_density))
     throw prm.error("Density", "must be positive and at most 1e5",

@@ -156,6 +156,8 @@ void check_stages(const Scene& scene, const BlockModel& model, const BuildReport
                             "ones");
       }
     }
+    for (const RockMaterialChange& c : stage.rock_materials)
+      check_has_blocks(stage.section, "Rock materials", c.group);
     if (body && !stage.joint_materials.empty())
       throw scene_error(scene, stage.section, "Joint materials",
                         "the scene is one deformable body, without joints",

@@ -834,7 +834,6 @@ void warn_ignored(const ParameterFile& prm, const std::string& section,
   }
 }
 
-/// The 'Excavation M' nested in stage `stage`, in the order of M.
 /// The subsections 'kind M' inside `stage`, in the order of M.
 std::vector<std::string> stage_subsections(const ParameterFile& prm, const std::string& stage,
                                            const std::string& kind)
@@ -854,6 +853,7 @@ std::vector<std::string> stage_subsections(const ParameterFile& prm, const std::
   return names;
 }
 
+/// The 'Excavation M' nested in stage `stage`, in the order of M.
 std::vector<std::string> stage_excavations(const ParameterFile& prm, const std::string& stage)
 {
   return stage_subsections(prm, stage, "Excavation");
@@ -1116,6 +1116,24 @@ Scene read_scene(const std::string& filename, bool prepare_output)
   for (const auto& [kind, name] : numbered_sections)
     if (kind == "Rock material")
       parse_rock_material(prm, name, scene);
+  {
+    std::size_t k = 0;
+    for (const auto& [kind, name] : numbered_sections)
+      if (kind == "Stage")
+        parse_stage_rock_materials(prm, name, scene, scene.stages[k++]);
+  }
+  for (std::size_t r = 0; r < scene.rock_materials.size(); ++r)
+  {
+    bool used = !scene.rock_materials[r].groups.empty();
+    for (const StageSpec& stage : scene.stages)
+      for (const RockMaterialChange& c : stage.rock_materials)
+        used |= c.material == int(r);
+    if (!used)
+      warn_ignored(prm, scene.rock_materials[r].section, {"Name"},
+                   "no block is made of this material (its 'Groups' is empty and no stage's "
+                   "'Rock materials' gives it)",
+                   scene.warnings);
+  }
   if (scene.strength_reduction.enabled && !scene.deformable.mesh_file.empty())
   {
     prm.enter("Deformable");

@@ -73,6 +73,12 @@ void declare_stage(ParameterFile& prm, const std::string& section,
               "'Joint set N = material' or 'Joint N = material' separated by ';'",
               "Joint sets and joints whose contacts take another joint material from the "
               "stage's start.");
+  prm.declare("Rock materials", "", P::Anything(),
+              "'group = material' separated by ';' (material: a 'Rock material N' name, or "
+              "default)",
+              "Groups whose blocks take another rock material from the stage's start: density "
+              "(rigid and deformable blocks) and zone constants (deformable ones); stresses "
+              "stay.");
   prm.declare("Release", "", P::List(P::Anything()),
               "names of 'Boundary N' and 'Load N' separated by commas",
               "Boundaries and loads that stop acting at the stage's start (a 'Boundary M' or "
@@ -157,6 +163,37 @@ void parse_stage(ParameterFile& prm, const std::string& section,
   }
   prm.leave();
   scene.stages.push_back(std::move(stage));
+}
+
+void parse_stage_rock_materials(ParameterFile& prm, const std::string& section, Scene& scene,
+                                StageSpec& stage)
+{
+  prm.enter(section);
+  const std::string allowed = "'group = material' separated by ';', with a group of the scene and "
+                              "the 'Name' of a 'Rock material N', or default (the constants of "
+                              "'Material' and 'Deformable')";
+  for (const std::string& item :
+       dealii::Utilities::split_string_list(prm.get("Rock materials"), ';'))
+  {
+    const auto parts = dealii::Utilities::split_string_list(item, '=');
+    if (parts.size() != 2)
+      throw prm.error("Rock materials", "'" + item + "' is not 'group = material'", allowed);
+    check_group_name(prm, "Rock materials", scene, parts[0]);
+    RockMaterialChange change;
+    change.group = parts[0];
+    if (parts[1] != "default")
+    {
+      const auto& rocks = scene.rock_materials;
+      const auto m = std::find_if(rocks.begin(), rocks.end(),
+                                  [&](const RockMaterialSpec& r) { return r.name == parts[1]; });
+      if (m == rocks.end())
+        throw prm.error("Rock materials", "names the unknown rock material '" + parts[1] + "'",
+                        allowed);
+      change.material = static_cast<int>(m - rocks.begin());
+    }
+    stage.rock_materials.push_back(change);
+  }
+  prm.leave();
 }
 
 } // namespace talus

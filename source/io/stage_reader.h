@@ -23,4 +23,9 @@ void declare_stage(ParameterFile& prm, const std::string& section,
 void parse_stage(ParameterFile& prm, const std::string& section,
                  const std::vector<std::string>& excavations, Scene& scene);
 
+/// Reads the 'Rock materials' of stage `section` into `stage` (after the
+/// 'Rock material N', whose names it takes).
+void parse_stage_rock_materials(ParameterFile& prm, const std::string& section, Scene& scene,
+                                StageSpec& stage);
+
 } // namespace talus

@@ -98,10 +98,38 @@ void BlockCycle::apply_boundaries(const BoundarySet& set)
     system_.zones->set_boundaries(set.gridpoint_conditions, set.face_pressures);
 }
 
+void BlockCycle::change_rock_materials(const StageSpec& stage, bool account)
+{
+  RigidSolver& solver = *system_.solver;
+  for (const RockMaterialChange& c : stage.rock_materials)
+  {
+    const RockMaterialSpec* rock =
+        c.material < 0 ? nullptr : &scene_.rock_materials[std::size_t(c.material)];
+    std::vector<char> blocks(model_.n_blocks(), 0);
+    unsigned int count = 0;
+    for (unsigned int b = 0; b < model_.n_blocks(); ++b)
+      if (model_.group_names[model_.group[b]] == c.group && !solver.removed(b))
+      {
+        blocks[b] = 1;
+        ++count;
+      }
+    ZoneMaterial zone = rock ? rock->zone : scene_.deformable.material;
+    zone.element = scene_.deformable.material.element;
+    zone.nodal_mixed = scene_.deformable.nodal_mixed(c.group);
+    zone.density = rock ? rock->density : scene_.density;
+    solver.change_rock(blocks, zone.density, zone, account);
+    if (account)
+      std::printf("  Rock:       %u blocks of group %s take %s\n", count, c.group.c_str(),
+                  rock ? ("rock material " + rock->name).c_str() : "the default rock");
+  }
+}
+
 void BlockCycle::restore_stage(const StageSpec& stage)
 {
-  // The loads' state (forces, held velocities) is in the checkpoint.
-  if (built_model_)
+  // The loads' state (forces, held velocities) is in the checkpoint; what
+  // the materials are is not.
+  change_rock_materials(stage, false);
+  if (stage.changes_boundaries)
     apply_boundaries(stage.boundaries);
 }
 
@@ -246,6 +274,7 @@ void BlockCycle::begin_stage(const StageSpec& stage)
   if (!stage.joint_materials.empty())
     std::printf("  Joints:     %zu joint sets or joints change material\n",
                 stage.joint_materials.size());
+  change_rock_materials(stage, true);
   if (stage.dynamic != solver.dynamic())
   {
     solver.set_dynamic(stage.dynamic);

@@ -219,6 +219,7 @@ void BodyCycle::begin_stage(const StageSpec& stage)
     std::printf("  Excavated:  %u zones, %.9g m^3\n", count,
                 report_.hexes > 0 ? 0.5 * volume : volume);
   }
+  change_rock_materials(stage, true);
   if (stage.dynamic != solver_->dynamic())
   {
     solver_->set_dynamic(stage.dynamic);
@@ -237,9 +238,32 @@ void BodyCycle::begin_stage(const StageSpec& stage)
     solver_->reset_displacements();
 }
 
+void BodyCycle::change_rock_materials(const StageSpec& stage, bool account)
+{
+  // The body is one block: a change of its group takes every zone.
+  for (const RockMaterialChange& c : stage.rock_materials)
+  {
+    if (c.group != model_.group_names[model_.group[0]])
+      continue;
+    const RockMaterialSpec* rock =
+        c.material < 0 ? nullptr : &scene_.rock_materials[std::size_t(c.material)];
+    ZoneMaterial zone = rock ? rock->zone : scene_.deformable.material;
+    zone.element = scene_.deformable.material.element;
+    zone.nodal_mixed = scene_.deformable.nodal_mixed(c.group);
+    zone.density = rock ? rock->density : scene_.density;
+    solver_->change_material(std::vector<char>(mesh_.n_zones(), 1), zone, account);
+    if (account)
+      std::printf("  Rock:       the body takes %s\n",
+                  rock ? ("rock material " + rock->name).c_str() : "the default rock");
+  }
+}
+
 void BodyCycle::restore_stage(const StageSpec& stage)
 {
-  solver_->set_boundaries(stage.boundaries.gridpoint_conditions, stage.boundaries.face_pressures);
+  change_rock_materials(stage, false);
+  if (stage.changes_boundaries)
+    solver_->set_boundaries(stage.boundaries.gridpoint_conditions,
+                            stage.boundaries.face_pressures);
 }
 
 std::string BodyCycle::displacement_text() const

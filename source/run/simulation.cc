@@ -244,13 +244,10 @@ int Simulation::run()
   if (!restart_from_.empty())
   {
     const unsigned long step = checkpoint.restore(restart_from_);
-    // The boundaries and loads of the stages begun, which a checkpoint
-    // does not hold.
-    bool changed = false;
+    // What the stages begun changed that a checkpoint does not hold (the
+    // boundaries, the rock materials), set again in their order.
     for (unsigned int k = 0; k < stage_begun; ++k)
-      changed |= stages[k].changes_boundaries;
-    if (changed)
-      cycle->restore_stage(stages[stage_begun - 1]);
+      cycle->restore_stage(stages[k]);
     std::printf("Restarted:    from %s at step %lu\n",
                 std::filesystem::path(restart_from_).filename().c_str(), step);
   }

@@ -1373,19 +1373,58 @@ void DeformableSolver::null_zones(const std::vector<char>& gone)
       state_[points_per_zone_ * z + q] = 0;
     }
   }
+  materials_changed();
+}
+
+void DeformableSolver::materials_changed()
+{
+  const unsigned int nz = mesh_.n_zones();
   batch_start_.clear();
   for (unsigned int z = 0; z < nz; ++z)
     if (z == 0 || material_of_zone_[z] != material_of_zone_[z - 1])
       batch_start_.push_back(z);
   batch_start_.push_back(nz);
-  // Masses and gravity of what remains.
+  // Masses and gravity of what the zones are now.
   std::vector<double> mass, stiffness;
   zone_masses(mass, stiffness);
   true_mass_ = mass;
   nodal_stiffness_ = stiffness;
   set_gravity_and_loads();
+  nodal_mixed_ = false;
+  for (unsigned int z = 0; z < nz; ++z)
+    nodal_mixed_ |= materials_[material_of_zone_[z]].nodal_mixed;
   if (nodal_mixed_)
     plan_nodal_mixed();
+}
+
+void DeformableSolver::change_material(const std::vector<char>& zones, const ZoneMaterial& material,
+                                       bool account)
+{
+  // The energy the zones store changes with their stiffness and mass at
+  // the same stresses and velocities: the account's error stays what it
+  // was (as for an excavation).
+  EnergyAccount before;
+  if (account)
+    add_energy(before);
+  const unsigned int index = static_cast<unsigned int>(materials_.size());
+  materials_.push_back(material);
+  for (unsigned int z = 0; z < mesh_.n_zones(); ++z)
+    if (zones[z] && !zone_removed(z))
+      material_of_zone_[z] = index;
+  materials_changed();
+  if (joint_stiffness_.empty() && s_.time_step <= 0.0)
+  {
+    // Alone (no block solver sets the step): eq. 84, or the unit step of
+    // density scaling.
+    std::vector<double> k = nodal_stiffness_;
+    dt_ = !s_.dynamic && s_.density_scaling ? 1.0 : stable_time_step_of(true_mass_, k);
+  }
+  set_inertial_masses();
+  if (!account)
+    return;
+  EnergyAccount after;
+  add_energy(after);
+  initial_elastic_ -= after.error() - before.error();
 }
 
 unsigned long DeformableSolver::run_to_ratio(double ratio, unsigned long max_steps)

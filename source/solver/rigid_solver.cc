@@ -333,6 +333,36 @@ void RigidSolver::set_loads(const std::vector<BlockLoad>& loads)
   }
 }
 
+void RigidSolver::change_rock(const std::vector<char>& blocks, double density,
+                              const ZoneMaterial& material, bool account)
+{
+  const double error_before = account ? energy_account().error() : 0.0;
+  for (unsigned int b = 0; b < m_.n_blocks(); ++b)
+  {
+    if (!blocks[b] || removed_[b] || is_deformable_[b])
+      continue;
+    // Every moment of inertia scales with the mass.
+    const double scale = density * m_.volume[b] / mass[b];
+    mass[b] = density * m_.volume[b];
+    true_inertia_[b] *= scale;
+    if (s_.principal_inertia)
+      true_principal_[b] *= scale;
+  }
+  if (zones_ != nullptr)
+  {
+    const TetMesh& mesh = zones_->mesh();
+    std::vector<char> zones(mesh.n_zones(), 0);
+    bool any = false;
+    for (unsigned int z = 0; z < mesh.n_zones(); ++z)
+      any |= (zones[z] = blocks[mesh.zone_block[z]]) != 0;
+    if (any)
+      zones_->change_material(zones, material, false);
+  }
+  set_masses_and_step();
+  if (account)
+    initial_stored_ -= energy_account().error() - error_before;
+}
+
 void RigidSolver::reset_displacements()
 {
   for (unsigned int b = 0; b < m_.n_blocks(); ++b)

@@ -62,6 +62,9 @@ private:
   /// The blocks as built, where a stage's face loads are selected (as those
   /// of the file were); kept only when a stage changes the face loads.
   std::unique_ptr<BlockModel> built_model_;
+  /// A stage's 'Rock materials' into the solvers; prints what changed
+  /// unless restoring (`account` false).
+  void change_rock_materials(const StageSpec& stage, bool account);
   /// Boundaries and loads of a stage into the solvers.
   void apply_boundaries(const BoundarySet& set);
 };

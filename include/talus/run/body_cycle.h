@@ -50,6 +50,9 @@ public:
   static TetMesh zones_of(const Scene& scene, const BlockModel& model, MeshReport& report);
 
 private:
+  /// A stage's 'Rock materials' into the solver; prints what changed
+  /// unless restoring (`account` false).
+  void change_rock_materials(const StageSpec& stage, bool account);
   /// The centroid of zone z's corners as built (m).
   Vec3 zone_centroid(unsigned int z) const;
 

@@ -62,6 +62,14 @@ struct JointMaterialChange
   unsigned char material = 0;
 };
 
+/// A group whose blocks take another rock material at a stage's start
+/// ("joints = grout").
+struct RockMaterialChange
+{
+  std::string group;
+  int material = -1; ///< index into Scene::rock_materials; -1: 'Material' and 'Deformable'
+};
+
 /// The 'Boundary N' and 'Load N' in force: those of the file, then as the
 /// stages add, replace and release them.
 struct BoundarySet
@@ -95,6 +103,7 @@ struct StageSpec
   std::vector<std::string> fix_groups, free_groups;
   bool reset_displacements = false;
   std::vector<JointMaterialChange> joint_materials;
+  std::vector<RockMaterialChange> rock_materials;
   /// Its 'Boundary M' and 'Load M' (each added, or replacing the one of
   /// that name) and its 'Release' list changed the boundaries and loads.
   bool changes_boundaries = false;

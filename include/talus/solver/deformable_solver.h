@@ -190,6 +190,13 @@ public:
   void remove_zones(std::vector<char> gone);
   /// Whether zone z was removed.
   bool zone_removed(unsigned int z) const { return !removed_zone_.empty() && removed_zone_[z]; }
+  /// Zones `zones[z]` (not removed) take `material` from now on, their
+  /// stresses and plastic states kept; masses, gravity and (alone) the
+  /// time step follow. With `account`, the energy account's error is kept
+  /// as it was (off when a restart sets again what a checkpoint holds).
+  /// Hexahedral zones must change whole, with a hex-mixed material.
+  void change_material(const std::vector<char>& zones, const ZoneMaterial& material,
+                       bool account = true);
   /// Displacements start again from zero at the present positions.
   void reset_displacements();
   /// Static or dynamic from now on (masses and damping; the time step too
@@ -271,6 +278,9 @@ private:
   /// Inertial masses from the true masses and stiffness (density scaling
   /// for statics, eq. 84 solved for m), with the joints' stiffness.
   void set_inertial_masses();
+  /// Batches, masses, gravity and the nodal mixed plan of the zones'
+  /// materials as they are now.
+  void materials_changed();
   /// gravity_force_: gravity of the true masses and the gridpoint loads of
   /// the conditions.
   void set_gravity_and_loads();

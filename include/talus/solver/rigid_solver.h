@@ -10,6 +10,7 @@
 #include <talus/solver/energy_account.h>
 #include <talus/solver/rigid_face_loads.h>
 #include <talus/solver/water_loads.h>
+#include <talus/zone/zone_material.h>
 
 #include <Eigen/Core>
 
@@ -123,6 +124,14 @@ public:
   bool is_deformable(unsigned int b) const { return is_deformable_[b] != 0; }
   /// The same, selected elsewhere (a stage's, on the blocks as built).
   void set_face_loads(RigidFaceLoads loads) { face_loads_ = std::move(loads); }
+
+  /// Stages: the blocks `blocks[b]` (not removed) are made of another
+  /// rock from now on: rigid ones of `density` (kg/m^3), the zones of
+  /// deformable ones of `material` (stresses kept); masses and the time
+  /// step follow. With `account`, the energy account's error is kept as it
+  /// was (off when a restart sets again what a checkpoint holds).
+  void change_rock(const std::vector<char>& blocks, double density, const ZoneMaterial& material,
+                   bool account = true);
 
   /// Stages: these loads ('Load N') from now on, in place of those before.
   /// A velocity prescribed anew is set at once (the kinetic energy of the
