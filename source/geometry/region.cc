@@ -19,6 +19,7 @@ ConvexRegion ConvexRegion::box(const Box& b)
     r.planes.emplace_back(-n, -b.lo[d]);
   }
   r.bounds = b;
+  r.is_box = true;
   r.volume = b.volume();
   return r;
 }

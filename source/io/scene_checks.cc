@@ -441,11 +441,11 @@ void check_boundary_selections(const Scene& scene, const BlockModel& model, cons
 {
   // As the solvers select: gridpoints and zone face centroids by their
   // initial positions, the parts of rigid blocks' faces in the box.
-  const auto holds = [](const Box& box, const double* p)
-  { return box.contains(Vec3(p[0], p[1], p[2])); };
+  const auto holds = [](const ConvexRegion& region, const double* p)
+  { return region.holds(Vec3(p[0], p[1], p[2])); };
   for (std::size_t i = 0; i < set.gridpoint_conditions.size(); ++i)
   {
-    const Box& box = set.gridpoint_conditions[i].region;
+    const ConvexRegion& box = set.gridpoint_conditions[i].region;
     bool any = false;
     for (unsigned int g = 0; g < mesh.n_gridpoints() && !any; ++g)
       any = holds(box, &mesh.position[3 * g]);
@@ -455,8 +455,10 @@ void check_boundary_selections(const Scene& scene, const BlockModel& model, cons
           mesh.n_gridpoints() == 0
               ? "selects nothing: fixed, velocity and load boundaries act on the gridpoints of "
                 "deformable blocks, and this scene has none"
-              : "selects nothing: no gridpoint of a deformable block lies in its box ('Corner "
-                "min' to 'Corner max')",
+          : box.is_box ? "selects nothing: no gridpoint of a deformable block lies in its box "
+                         "('Corner min' to 'Corner max')"
+                       : "selects nothing: no gridpoint of a deformable block lies in its region "
+                         "('Shape' and its entries)",
           "a box around gridpoints of deformable blocks (rigid blocks are held with 'Fixed "
           "groups' of subsection 'Solver', or moved and loaded with 'Load N')");
   }
@@ -465,7 +467,7 @@ void check_boundary_selections(const Scene& scene, const BlockModel& model, cons
     for (const std::string& g : scene.deformable.groups)
       if (model.group_names[model.group[b]] == g)
         rigid[b] = 0;
-  const auto face_in = [&](const Box& box, const std::array<unsigned int, 3>& face)
+  const auto face_in = [&](const ConvexRegion& box, const std::array<unsigned int, 3>& face)
   {
     double c[3] = {0, 0, 0};
     for (unsigned int g : face)
@@ -475,7 +477,7 @@ void check_boundary_selections(const Scene& scene, const BlockModel& model, cons
   };
   for (std::size_t i = 0; i < set.face_pressures.size(); ++i)
   {
-    const Box& box = set.face_pressures[i].region;
+    const ConvexRegion& box = set.face_pressures[i].region;
     bool any = !face_patches_in(model, rigid, box).empty();
     for (const auto& face : mesh.face_gridpoint)
       any = any || face_in(box, face);
@@ -483,10 +485,14 @@ void check_boundary_selections(const Scene& scene, const BlockModel& model, cons
       any = any || face_in(box, face);
     if (!any)
       throw scene_error(scene, set.face_pressure_sections[i], "",
-                        "selects nothing: no part of a rigid block's face lies in its box "
-                        "('Corner min' to 'Corner max'), and no boundary face of a deformable "
-                        "block's zones has its centroid in it",
-                        "a box around the faces to load (it may be thin, around a plane face)");
+                        box.is_box ? "selects nothing: no part of a rigid block's face lies in "
+                                     "its box ('Corner min' to 'Corner max'), and no boundary "
+                                     "face of a deformable block's zones has its centroid in it"
+                                   : "selects nothing: no rigid block's face lies wholly in its "
+                                     "region ('Shape' and its entries), and no boundary face of "
+                                     "a deformable block's zones has its centroid in it",
+                        "a box around the faces to load (it may be thin, around a plane face), "
+                        "or a region of another shape that holds whole faces");
   }
 }
 

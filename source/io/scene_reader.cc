@@ -342,10 +342,14 @@ void declare_deformable(ParameterFile& prm)
               "linearly to 'Edge length' at 'Grading distance' from it; 0: no grading.");
   prm.declare("Grading distance", "10", P::Double(), "a number > 0 (m)",
               "Distance from the fine region over which the edge length grows (m).");
-  prm.declare("Fine region", "excavations", P::Selection("excavations|box"), "excavations or box",
-              "Where the zones are fine: at every excavation, or in the box between 'Fine box "
-              "min' and 'Fine box max'.");
+  prm.declare("Fine region", "excavations", P::Selection("excavations|box|shape"),
+              "excavations, box or shape",
+              "Where the zones are fine: at every excavation, in the box between 'Fine box min' "
+              "and 'Fine box max', or in the region of subsection 'Fine shape'.");
   declare_box(prm, "Fine box min", "Fine box max", "the fine region when 'Fine region' is box");
+  prm.enter("Fine shape");
+  declare_region(prm, "the fine region when 'Fine region' is shape");
+  prm.leave();
   prm.declare("Mesh file", "", P::Anything(), "a gmsh .msh file of linear tetrahedra (or empty)",
               "The deformable body's zones from a gmsh file instead of meshing the block (relative "
               "paths start at this parameter file's folder).");
@@ -462,6 +466,13 @@ void parse_deformable(ParameterFile& prm, Scene& scene)
     if (prm.get("Fine region") == "box")
       d.edge_length.near.push_back(
           ConvexRegion::box(read_box(prm, "Fine box min", "Fine box max")));
+    else if (prm.get("Fine region") == "shape")
+    {
+      prm.enter("Fine shape");
+      std::string description;
+      d.edge_length.near.push_back(parse_region(prm, scene.brick, description));
+      prm.leave();
+    }
     else
     {
       for (const ExcavationSpec& e : scene.excavations)
@@ -472,7 +483,8 @@ void parse_deformable(ParameterFile& prm, Scene& scene)
       if (d.edge_length.near.empty())
         throw prm.error("Fine edge length",
                         "asks for fine zones at the excavations, and the scene has none",
-                        "0, or 'Fine region = box' with 'Fine box min' and 'Fine box max'");
+                        "0, or 'Fine region = box' with 'Fine box min' and 'Fine box max', or "
+                        "'Fine region = shape' with subsection 'Fine shape'");
     }
   }
   parse_zone_constants(prm, "Deformable", d.material, false);
@@ -498,9 +510,10 @@ void parse_deformable(ParameterFile& prm, Scene& scene)
 void declare_boundary(ParameterFile& prm, const std::string& section)
 {
   prm.enter(section);
-  declare_box(prm, "Corner min", "Corner max",
-              "the region (gridpoints or face centroids of deformable blocks, parts of rigid "
-              "blocks' faces)");
+  declare_region(prm, "the boundary: the gridpoints of deformable blocks in it (fixed, "
+                      "velocity, load), or the faces in it (pressure, traction: zone faces by "
+                      "their centroid; of rigid blocks, the parts in a box, or the faces wholly "
+                      "in another shape)");
   prm.declare(
       "Condition", "fixed", P::Selection("fixed|velocity|pressure|traction|load"),
       "fixed, velocity, pressure, traction or load",
@@ -530,7 +543,8 @@ void parse_boundary(ParameterFile& prm, const std::string& section, const std::s
                     Scene& scene, BoundarySet& into)
 {
   prm.enter(section);
-  const Box region = read_box(prm, "Corner min", "Corner max");
+  std::string description;
+  const ConvexRegion region = parse_region(prm, scene.brick, description);
   const std::string condition = prm.get("Condition");
   if (path != section)
   {

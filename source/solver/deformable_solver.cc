@@ -25,10 +25,9 @@ namespace talus
 
 namespace
 {
-bool inside(const Box& b, const double* p)
+bool inside(const ConvexRegion& r, const double* p)
 {
-  return p[0] >= b.lo.x() && p[0] <= b.hi.x() && p[1] >= b.lo.y() && p[1] <= b.hi.y() &&
-         p[2] >= b.lo.z() && p[2] <= b.hi.z();
+  return r.holds(Vec3(p[0], p[1], p[2]));
 }
 
 /// The raw local array of a PETSc vector for the length of one stage.
@@ -1470,7 +1469,7 @@ void DeformableSolver::hold_gridpoint(unsigned int g, const Vec3& v)
   }
 }
 
-Vec3 DeformableSolver::support_force(const Box& region, const bool held[3]) const
+Vec3 DeformableSolver::support_force(const ConvexRegion& region, const bool held[3]) const
 {
   // The unbalanced force of the last step at held gridpoints is what the
   // support must supply, reversed.

@@ -28,8 +28,9 @@ std::vector<Vec3> clip(const std::vector<Vec3>& p, int axis, double bound, doubl
 } // namespace
 
 std::vector<FacePatch> face_patches_in(const BlockModel& m, const std::vector<char>& rigid,
-                                       const Box& region)
+                                       const ConvexRegion& shape)
 {
+  const Box& region = shape.bounds;
   std::vector<FacePatch> patches;
   // A thin box around a face would also cut strips off the faces beside
   // it: across the box's thinnest extent, only faces that lie within it.
@@ -52,9 +53,12 @@ std::vector<FacePatch> face_patches_in(const BlockModel& m, const std::vector<ch
         within &=
             polygon.back()[thin] >= region.lo[thin] && polygon.back()[thin] <= region.hi[thin];
       }
+      if (!shape.is_box)
+        within = std::all_of(polygon.begin(), polygon.end(),
+                             [&](const Vec3& x) { return shape.holds(x); });
       if (!within)
         continue;
-      for (int d = 0; d < 3 && !polygon.empty(); ++d)
+      for (int d = 0; d < 3 && !polygon.empty() && shape.is_box; ++d)
       {
         polygon = clip(polygon, d, region.hi[d], 1.0);
         if (!polygon.empty())

@@ -58,7 +58,7 @@ int main(int argc, char** argv)
     for (unsigned int g = 0; g < mesh.n_gridpoints(); ++g)
     {
       const talus::Vec3 x = P(g);
-      if ((x.array() >= c.region.lo.array()).all() && (x.array() <= c.region.hi.array()).all())
+      if (c.region.holds(x))
         for (int d = 0; d < 3; ++d)
           if (c.held[d])
             problem.fixed[g] |= 1u << d;

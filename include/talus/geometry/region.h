@@ -18,6 +18,7 @@ struct ConvexRegion
 {
   std::vector<Plane> planes; ///< outward normals
   Box bounds;
+  bool is_box = false; ///< made by box(): `bounds` is the region
 
   ConvexRegion() = default;
   /// The box (so that a Box stands wherever a region is asked for).
@@ -61,6 +62,15 @@ struct ConvexRegion
       if (p.signed_distance(x) > tol)
         return false;
     return true;
+  }
+
+  /// Whether x is in the region, its boundary included: a box's exactly by
+  /// its corners, another shape's to 1e-9 of its bounds' diagonal (a
+  /// point on a face given as a plane through a point is not lost to
+  /// round-off).
+  bool holds(const Vec3& x) const
+  {
+    return is_box ? bounds.contains(x) : contains(x, 1e-9 * bounds.diagonal());
   }
 
   /// Exact volume of the region (m^3): box volume or prism area times length.

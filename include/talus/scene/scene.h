@@ -152,7 +152,7 @@ struct RockMaterialSpec
 struct ReactionReport
 {
   std::string name; ///< "Boundary N"
-  Box region;
+  ConvexRegion region;
   bool held[3] = {true, true, true}; ///< its 'Held components'
 };
 

@@ -30,7 +30,7 @@ class CheckpointWriter;
 /// boundaries moving with a uniform strain rate).
 struct GridpointCondition
 {
-  Box region;
+  ConvexRegion region; ///< the gridpoints (at their initial positions) inside
   bool held[3] = {true, true, true};
   Vec3 force = Vec3::Zero();                                   ///< N on each gridpoint (a load)
   Vec3 velocity = Vec3::Zero();                                ///< m/s
@@ -220,7 +220,7 @@ public:
   /// Only the components `held` counts (a boundary's own 'Held components';
   /// another boundary's roller in the region holds the others); a component
   /// not held is zero.
-  Vec3 support_force(const Box& region, const bool held[3]) const;
+  Vec3 support_force(const ConvexRegion& region, const bool held[3]) const;
 
   /// Checkpoints: gridpoint positions, velocities, forces and inertial
   /// masses (density-scaled), zone stresses and plastic states, damping,

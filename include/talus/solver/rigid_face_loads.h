@@ -1,6 +1,7 @@
 #pragma once
 
 #include <talus/geometry/plane.h>
+#include <talus/geometry/region.h>
 #include <talus/model/block_model.h>
 
 #include <array>
@@ -13,11 +14,11 @@ namespace talus
 /// or traction condition): a normal pressure (Pa, positive pushing into the
 /// block) and a traction (Pa, a force per unit area in global axes). Zones
 /// of deformable blocks take it on their boundary faces whose centroid lies
-/// in the region; rigid blocks on the part of each face inside it
-/// (RigidFaceLoads).
+/// in the region; rigid blocks on the part of each face inside a box, or
+/// on each face wholly inside a region of another shape (RigidFaceLoads).
 struct FacePressure
 {
-  Box region;
+  ConvexRegion region;
   double pressure = 0.0;
   Vec3 traction = Vec3::Zero();
 };
@@ -34,13 +35,16 @@ struct FacePatch
   double area = 0.0; ///< m^2
 };
 
-/// The parts of the faces of blocks `rigid[b] != 0` that lie in `region`
-/// (each face polygon clipped by the box), those of positive area only.
-/// Across the box's thinnest extent only faces that lie wholly within it
-/// count, so that a thin box around a face (or a band of it) takes no
-/// strips of the faces that meet it at its edges.
+/// The parts of the faces of blocks `rigid[b] != 0` that lie in `region`,
+/// those of positive area only. A box clips each face polygon; across its
+/// thinnest extent only faces that lie wholly within it count, so that a
+/// thin box around a face (or a band of it) takes no strips of the faces
+/// that meet it at its edges. A region of another shape takes the faces
+/// that lie wholly inside it (to 1e-9 of its size), whole: the faces on
+/// an excavation's boundary, say, with a region a little larger than it,
+/// and none of the faces that leave it.
 std::vector<FacePatch> face_patches_in(const BlockModel& blocks, const std::vector<char>& rigid,
-                                       const Box& region);
+                                       const ConvexRegion& region);
 
 /// Pressures and tractions on the faces of rigid blocks: each region loads
 /// the part of every face inside it at the start, with -p A n + t A (n the
