@@ -23,43 +23,18 @@
 
 #include <cmath>
 #include <cstdio>
-#include <sstream>
 #include <string>
 
-#include "../stability/scene_text.h"
 #include "../tests.h"
+#include "block_on_joint.h"
 #include "decay.h"
 
 namespace
 {
-constexpr double rho = 2650.0, kn = 1e10, ks = 4e9, v0 = 1e-3;
-
-std::string scene(const char* mode, const char* velocity, double alpha, double beta)
-{
-  std::ostringstream s;
-  s.precision(17);
-  s << "subsection Model\n  set Brick min = 0, 0, 0\n  set Brick max = 1, 1, 2\nend\n"
-    << "subsection Material\n  set Density = " << rho << "\nend\n"
-    << "subsection Joint 1\n  set Dip = 0\n  set Origin = 0, 0, 1\nend\n"
-    << "subsection Group 1\n  set Name = floor\n  set Corner min = 0, 0, 0\n"
-    << "  set Corner max = 1, 1, 1\nend\n"
-    << "subsection Group 2\n  set Name = cube\n  set Corner min = 0, 0, 1\n"
-    << "  set Corner max = 1, 1, 2\nend\n"
-    << "subsection Load 1\n  set Group = cube\n  set Hold rotation = true\n"
-    << "  set Initial velocity = " << velocity << "\nend\n"
-    << "subsection Joint properties\n  set Normal stiffness = " << kn
-    << "\n  set Shear stiffness = " << ks
-    << "\n  set Cohesion = 1e9\n  set Tensile strength = 1e9\n  set Friction angle = 30\nend\n"
-    << "subsection Solver\n  set Mode = " << mode << "\n  set Gravity = 0, 0, 0\n"
-    << "  set Fixed groups = floor\n  set Rayleigh alpha = " << alpha
-    << "\n  set Rayleigh beta = " << beta << "\nend\n";
-  return s.str();
-}
-
 void run(const std::string& name, const char* mode, int component, double alpha, double beta)
 {
   const char* velocity = component == 2 ? "0, 0, 1e-3" : "1e-3, 0, 0";
-  TextScene s("rayleigh_block.prm", scene(mode, velocity, alpha, beta));
+  TextScene s("rayleigh_block.prm", block_on_joint(mode, velocity, alpha, beta));
   talus::RigidSolver& solver = *s.solver;
   if (std::string(mode) == "static")
     solver.set_dynamic(true);
