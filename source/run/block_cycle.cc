@@ -232,7 +232,7 @@ void BlockCycle::begin_stage(const StageSpec& stage)
                 solver.dt());
     SolverSettings now = scene_.solver;
     now.dynamic = stage.dynamic;
-    print_dynamic_damping(now, solver.dt(), solver.time_step_without_stiffness_damping());
+    print_dynamic_damping(now, solver.dt(), solver.time_step_without_stiffness_damping(), "  ");
   }
   if (stage.reset_displacements)
     solver.reset_displacements();

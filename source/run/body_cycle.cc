@@ -230,7 +230,8 @@ void BodyCycle::begin_stage(const StageSpec& stage)
     SolverSettings now = scene_.solver;
     now.dynamic = stage.dynamic;
     print_dynamic_damping(now, solver_->dt(),
-                          now.time_step > 0.0 ? solver_->dt() : solver_->stable_time_step({}, 0.0));
+                          now.time_step > 0.0 ? solver_->dt() : solver_->stable_time_step({}, 0.0),
+                          "  ");
   }
   if (stage.reset_displacements)
     solver_->reset_displacements();
