@@ -615,8 +615,9 @@ void declare_solver(ParameterFile& prm)
   prm.enter("Solver");
   prm.declare("Mode", "static", P::Selection("static|dynamic|factor of safety"),
               "static, dynamic or factor of safety",
-              "static: damped to equilibrium; dynamic: undamped motion in time; factor of "
-              "safety: static trials with the strengths divided by F, bisected on F.");
+              "static: damped to equilibrium; dynamic: motion in time (damped only by 'Rayleigh "
+              "...' and 'Dynamic local damping'); factor of safety: static trials with the "
+              "strengths divided by F, bisected on F.");
   prm.declare("Steps", "0", P::Integer(0), "an integer >= 0",
               "Step limit; 0 builds and writes the model only.");
   prm.declare("Target ratio", "1e-5", P::Double(0.0), "a number >= 0",
