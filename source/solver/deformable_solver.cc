@@ -254,8 +254,8 @@ DeformableSolver::DeformableSolver(const TetMesh& mesh, std::vector<ZoneMaterial
     if (!scaled && dt_ > stable_time_step_of(mass, stiffness, beta))
       throw InputError(s_.source + ": entry 'Time step' in subsection 'Solver': " + number(dt_) +
                        " s is larger than the stable step of the zones, " +
-                       number(stable_time_step_of(mass, stiffness, beta)) +
-                       " s (eq. 84" + (beta > 0.0 ? " with Rayleigh beta" : "") +
+                       number(stable_time_step_of(mass, stiffness, beta)) + " s (eq. 84" +
+                       (beta > 0.0 ? " with Rayleigh beta" : "") +
                        "); allowed: at most that, or 0 for the automatic step");
   }
   else
@@ -400,8 +400,8 @@ void DeformableSolver::zone_masses(std::vector<double>& mass, std::vector<double
       const double damped =
           !s_.dynamic && (s_.damping == Damping::local || s_.damping == Damping::combined)
               ? 1.0 + s_.local_damping
-              : s_.dynamic ? 1.0 + s_.dynamic_local_damping
-                           : 1.0;
+          : s_.dynamic ? 1.0 + s_.dynamic_local_damping
+                       : 1.0;
       double m10[10], k10[10];
       tet10_mass_and_stiffness(mesh_, z, mat.density, mat.bulk_modulus, mat.shear_modulus, m10,
                                k10);
@@ -464,9 +464,9 @@ double DeformableSolver::stable_time_step_of(const std::vector<double>& mass,
     {
       ratio = std::min(ratio, mass[g] / stiffness[g]);
       if (beta > 0.0 && mass[g] > 0.0)
-        step = std::min(step, 2.0 * std::sqrt(mass[g] / stiffness[g]) *
-                                  stiffness_damping_step_factor(
-                                      beta, std::sqrt(stiffness[g] / mass[g])));
+        step = std::min(step,
+                        2.0 * std::sqrt(mass[g] / stiffness[g]) *
+                            stiffness_damping_step_factor(beta, std::sqrt(stiffness[g] / mass[g])));
     }
   return beta > 0.0 ? std::min(step, 2.0 * std::sqrt(ratio)) : 2.0 * std::sqrt(ratio);
 }
@@ -480,8 +480,8 @@ double DeformableSolver::stable_time_step(const std::vector<double>& joint_stiff
   return stable_time_step_of(true_mass_, k, beta);
 }
 
-void DeformableSolver::viscous_stresses(const ZoneMaterial& mat, unsigned int first,
-                                        unsigned int n, const double* de, double strain_dt)
+void DeformableSolver::viscous_stresses(const ZoneMaterial& mat, unsigned int first, unsigned int n,
+                                        const double* de, double strain_dt)
 {
   viscous_stress(n, mat.bulk_modulus, mat.shear_modulus, s_.stiffness_damping() / strain_dt, de,
                  viscous_stress_.data() + 6 * std::size_t(first));
@@ -1038,8 +1038,8 @@ void DeformableSolver::move_gridpoints()
         const double reach = 0.5 * h * (v_before + v[i]);
         const double viscous = fv != nullptr ? fv[i] : 0.0;
         gravity_work += weight * reach;
-        boundary_work += (load - f[i] - viscous) * reach +
-                         0.5 * m[i] * (v[i] * v[i] - v_before * v_before);
+        boundary_work +=
+            (load - f[i] - viscous) * reach + 0.5 * m[i] * (v[i] * v[i] - v_before * v_before);
         damping_work -= viscous * reach;
         kinetic += 0.5 * m[i] * v[i] * v[i] - 0.5 * (f[i] - weight - load) * v[i] * dt_;
         continue;
@@ -1308,8 +1308,9 @@ void DeformableSolver::set_dynamic(bool dynamic)
     // Alone (no block solver sets the step): eq. 84, or the unit step of
     // density scaling.
     std::vector<double> k = nodal_stiffness_;
-    dt_ = !dynamic && s_.density_scaling ? 1.0
-                                         : stable_time_step_of(true_mass_, k, s_.stiffness_damping());
+    dt_ = !dynamic && s_.density_scaling
+              ? 1.0
+              : stable_time_step_of(true_mass_, k, s_.stiffness_damping());
   }
   set_inertial_masses();
 }

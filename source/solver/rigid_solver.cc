@@ -246,8 +246,8 @@ void RigidSolver::set_masses_and_step()
     if (s_.time_step <= 0.0 && (s_.dynamic || !s_.density_scaling))
     {
       dt_ = std::min(dt_, zones_->stable_time_step(joint_stiffness));
-      dt_without_stiffness_damping_ = std::min(dt_without_stiffness_damping_,
-                                               zones_->stable_time_step(joint_stiffness, 0.0));
+      dt_without_stiffness_damping_ =
+          std::min(dt_without_stiffness_damping_, zones_->stable_time_step(joint_stiffness, 0.0));
     }
     else if (s_.time_step <= 0.0 && dt_ == 1e300)
       dt_ = dt_without_stiffness_damping_ = 1.0; // statics, deformable blocks only: unit step
@@ -369,9 +369,8 @@ double RigidSolver::stable_time_step(double beta) const
       if (is_deformable_[b] || (pass == 0 && fixed[b]))
         continue; // a deformable block's gridpoints have their own limit (eq. 84)
       const double step = 2.0 * std::sqrt(inertial_mass[b] / (k * largest_face_area(m_, b)));
-      smallest = std::min(smallest, beta > 0.0 ? step * stiffness_damping_step_factor(
-                                                             beta, 2.0 / step)
-                                               : step);
+      smallest = std::min(
+          smallest, beta > 0.0 ? step * stiffness_damping_step_factor(beta, 2.0 / step) : step);
     }
   if (smallest == 1e300)
     return 1e300; // no rigid block
@@ -547,8 +546,7 @@ void RigidSolver::contact_forces()
         for (int j = 0; j < 3; ++j)
           if (node[3 * side + j] >= 0)
             for (int d = 0; d < 3; ++d)
-              gp_damping_[3 * node[3 * side + j] + d] +=
-                  cs.sc_weight[6 * i + 3 * side + j] * fs[d];
+              gp_damping_[3 * node[3 * side + j] + d] += cs.sc_weight[6 * i + 3 * side + j] * fs[d];
     }
   }
   // Reference points follow the blocks (eq. 11) and relative rotation (eq. 12).

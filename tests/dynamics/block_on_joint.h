@@ -15,8 +15,8 @@ inline constexpr double rho = 2650.0, kn = 1e10, ks = 4e9, v0 = 1e-3;
 /// Pa), no gravity, the cube's initial velocity `velocity` ("x, y, z",
 /// m/s), Rayleigh damping `alpha` (1/s) and `beta` (s), 'Mode' `mode`, and
 /// `more` lines in 'Solver'.
-inline std::string block_on_joint(const char* mode, const char* velocity, double alpha,
-                                  double beta, const std::string& more = "")
+inline std::string block_on_joint(const char* mode, const char* velocity, double alpha, double beta,
+                                  const std::string& more = "")
 {
   std::ostringstream s;
   s.precision(17);
@@ -38,4 +38,3 @@ inline std::string block_on_joint(const char* mode, const char* velocity, double
     << more << "end\n";
   return s.str();
 }
-

@@ -7,7 +7,8 @@
 // that energy again at every bounce). The local damping's work is a term
 // of the energy account: its largest error within 5e-3 of its largest
 // term (3e-3; each impact leaves an error, of the contact closing part way
-// through a step: the undamped run's ten bounces leave 1e-2, not judged). Before issue 23 talus refused 'Dynamic local damping'.
+// through a step: the undamped run's ten bounces leave 1e-2, not judged). Before issue 23 talus
+// refused 'Dynamic local damping'.
 
 #include <talus/solver/energy_account.h>
 
@@ -47,7 +48,8 @@ void run(double alpha)
   std::fprintf(stderr,
                "alpha %g: %lu steps, kinetic energy over the last 0.2 s at most %.3g of m g h, "
                "damping dissipation %.4g of it, energy error at most %.2e of the largest term\n",
-               alpha, solver.steps_done(), late_kinetic / drop, damping / drop, worst_error / scale);
+               alpha, solver.steps_done(), late_kinetic / drop, damping / drop,
+               worst_error / scale);
   std::printf("alpha %g: at rest at the end (kinetic energy below 1e-6 m g h): %s; energy "
               "account within 5e-3 of its largest term: %s\n",
               alpha, late_kinetic < 1e-6 * drop ? "yes" : "no",

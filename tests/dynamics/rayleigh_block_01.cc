@@ -63,8 +63,8 @@ void run(const std::string& name, const char* mode, int component, double alpha,
   std::fprintf(stderr,
                "%s: %lu steps of %.4g s, omega %.6g rad/s (sqrt(k A / m) %.6g), xi %.6f, "
                "expected %.6f; energy error at most %.2e of the largest term\n",
-               name.c_str(), solver.steps_done(), solver.dt(), d.omega, std::sqrt(k / rho),
-               d.xi, expected, worst_error);
+               name.c_str(), solver.steps_done(), solver.dt(), d.omega, std::sqrt(k / rho), d.xi,
+               expected, worst_error);
   std::printf("%s: damping ratio within 2 %% of (alpha / omega + beta omega) / 2: %s; energy "
               "account error within 1e-6 of its largest term: %s\n",
               name.c_str(), talus_test::verdict(std::abs(d.xi / expected - 1.0) <= 0.02),

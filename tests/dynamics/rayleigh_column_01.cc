@@ -70,9 +70,8 @@ void run(const std::string& element, const std::string& name, double alpha, doub
   talus::MeshReport report;
   const talus::TetMesh mesh = talus::mesh_deformable_blocks(sc, model, {0}, report);
   talus::ZoneMaterials materials = talus::zone_materials(sc, model, mesh);
-  talus::DeformableSolver solver(mesh, std::move(materials.materials),
-                                 std::move(materials.of_zone), sc.solver,
-                                 sc.gridpoint_conditions, sc.face_pressures);
+  talus::DeformableSolver solver(mesh, std::move(materials.materials), std::move(materials.of_zone),
+                                 sc.solver, sc.gridpoint_conditions, sc.face_pressures);
   const unsigned int ng = mesh.n_gridpoints();
   std::vector<double> shape(ng);
   for (unsigned int g = 0; g < ng; ++g)
@@ -99,8 +98,8 @@ void run(const std::string& element, const std::string& name, double alpha, doub
                "%.6f, expected %.6f; energy error at most %.2e of the largest term, damping "
                "%.2f of it at the end\n",
                element.c_str(), name.c_str(), mesh.n_zones(), solver.steps_done(), solver.dt(),
-               d.omega, M_PI * std::sqrt(young / rho) / (2.0 * length), d.xi, expected,
-               worst_error, damping);
+               d.omega, M_PI * std::sqrt(young / rho) / (2.0 * length), d.xi, expected, worst_error,
+               damping);
   std::printf("%s, %s: damping ratio within 3 %% of (alpha / omega + beta omega) / 2: %s; "
               "energy account error within 1e-4 of its largest term: %s\n",
               element.c_str(), name.c_str(),

@@ -69,15 +69,14 @@ int main()
     const double dt = s.solver->dt(), without = s.solver->time_step_without_stiffness_damping();
     std::fprintf(stderr, "time step %.6g s, %.6g s without the stiffness term: %.9f of it\n", dt,
                  without, dt / without);
-    talus_test::check_within("time step over the step without the stiffness term", dt / without, factor,
-                      1e-12);
+    talus_test::check_within("time step over the step without the stiffness term", dt / without,
+                             factor, 1e-12);
     talus_test::check_within("that step over eq. 87", without, 0.1 * 2.0 / omega, 1e-12);
   }
   const double limit = 2.0 / omega * factor;
   const double below = growth(beta, 0.98 * limit, 4000), above = growth(beta, 1.02 * limit, 4000);
   std::fprintf(stderr, "swing growth over 4000 steps: %.3g at 0.98 of the limit, %.3g at 1.02\n",
                below, above);
-  std::printf("at 0.98 of the limit the vibration decays: %s\n",
-              talus_test::verdict(below < 1e-3));
+  std::printf("at 0.98 of the limit the vibration decays: %s\n", talus_test::verdict(below < 1e-3));
   std::printf("at 1.02 of the limit it grows: %s\n", talus_test::verdict(above > 1e3));
 }
