@@ -659,8 +659,9 @@ void declare_solver(ParameterFile& prm)
   prm.enter("Solver");
   prm.declare("Mode", "static", P::Selection("static|dynamic|factor of safety"),
               "static, dynamic or factor of safety",
-              "static: damped to equilibrium; dynamic: undamped motion in time; factor of "
-              "safety: static trials with the strengths divided by F, bisected on F.");
+              "static: damped to equilibrium; dynamic: motion in time (damped only by 'Rayleigh "
+              "...' and 'Dynamic local damping'); factor of safety: static trials with the "
+              "strengths divided by F, bisected on F.");
   prm.declare("Steps", "0", P::Integer(0), "an integer >= 0",
               "Step limit; 0 builds and writes the model only.");
   prm.declare("Target ratio", "1e-5", P::Double(0.0), "a number >= 0",
@@ -675,6 +676,18 @@ void declare_solver(ParameterFile& prm)
               "R of eq. 77: damping power over the rate of change of kinetic energy.");
   prm.declare("Density scaling", "true", P::Bool(), "true or false",
               "Static runs: raise inertial masses to the mean block mass (faster convergence).");
+  prm.declare("Rayleigh damping ratio", "0", P::Double(0.0, 1.0), "a number from 0 to 1",
+              "Dynamic runs: xi_min, the least fraction of critical damping of Rayleigh damping, "
+              "reached at 'Rayleigh frequency' (0: none).");
+  prm.declare("Rayleigh frequency", "0", P::Double(0.0), "a number > 0 (Hz)",
+              "Dynamic runs: f_min (Hz), the centre frequency of Rayleigh damping.");
+  prm.declare("Rayleigh alpha", "0", P::Double(0.0), "a number >= 0 (1/s)",
+              "Dynamic runs: the mass-proportional coefficient of Rayleigh damping (1/s), instead "
+              "of a ratio and a frequency.");
+  prm.declare("Rayleigh beta", "0", P::Double(0.0), "a number >= 0 (s)",
+              "Dynamic runs: the stiffness-proportional coefficient of Rayleigh damping (s).");
+  prm.declare("Dynamic local damping", "0", P::Double(0.0, 1.0), "a number from 0 to 1",
+              "Dynamic runs: alpha of local damping (eqs. 78-79); 0: none.");
   prm.declare("Rotation", "isotropic", P::Selection("isotropic|principal"),
               "isotropic or principal",
               "isotropic: the manual's approximate inertia (eq. 46); principal: full inertia "
@@ -778,6 +791,40 @@ void parse_solver(ParameterFile& prm, Scene& scene)
     throw prm.error("Global damping ratio", "must be positive for global damping",
                     "a number > 0 and <= 1");
   s.density_scaling = prm.get_bool("Density scaling");
+  // Rayleigh damping of dynamics, xi(omega) = (alpha / omega + beta omega)
+  // / 2: as the least ratio xi_min at omega_min = 2 pi f_min (alpha =
+  // xi_min omega_min, beta = xi_min / omega_min), or as the coefficients.
+  {
+    const std::map<std::string, unsigned int> set_here = prm.lines();
+    const auto given = [&](const std::string& entry)
+    { return set_here.count("Solver / " + entry) > 0; };
+    const bool as_ratio = given("Rayleigh damping ratio") || given("Rayleigh frequency");
+    const bool as_coefficients = given("Rayleigh alpha") || given("Rayleigh beta");
+    if (as_ratio && as_coefficients)
+      throw prm.error(given("Rayleigh alpha") ? "Rayleigh alpha" : "Rayleigh beta",
+                      "gives Rayleigh damping a second time: the file also sets '" +
+                          std::string(given("Rayleigh damping ratio") ? "Rayleigh damping ratio"
+                                                                      : "Rayleigh frequency") +
+                          "'",
+                      "either 'Rayleigh damping ratio' with 'Rayleigh frequency', or 'Rayleigh "
+                      "alpha' and 'Rayleigh beta', not both");
+    if (as_ratio)
+    {
+      const double xi = prm.get_double("Rayleigh damping ratio");
+      const double omega = 2.0 * M_PI * prm.get_double("Rayleigh frequency");
+      if (xi > 0.0 && !(omega > 0.0))
+        throw prm.error("Rayleigh frequency", "must be positive with a 'Rayleigh damping ratio'",
+                        "a number > 0 (Hz)");
+      s.rayleigh_alpha = xi * omega;
+      s.rayleigh_beta = xi > 0.0 ? xi / omega : 0.0;
+    }
+    else
+    {
+      s.rayleigh_alpha = prm.get_double("Rayleigh alpha");
+      s.rayleigh_beta = prm.get_double("Rayleigh beta");
+    }
+    s.dynamic_local_damping = prm.get_double("Dynamic local damping");
+  }
   s.principal_inertia = prm.get("Rotation") == "principal";
   s.time_step_fraction = prm.get_double("Time step fraction");
   if (!(s.time_step_fraction > 0.0))
@@ -945,7 +992,15 @@ void warn_about_ignored_entries(const ParameterFile& prm, Scene& scene,
     warn_ignored(
         prm, "Solver",
         {"Target ratio", "Damping", "Local damping", "Global damping ratio", "Density scaling"},
-        "'Mode' is dynamic (undamped, every one of 'Steps')", scene.warnings);
+        "'Mode' is dynamic (no static damping; every one of 'Steps')", scene.warnings);
+  bool any_dynamic = scene.solver.dynamic;
+  for (const StageSpec& stage : scene.stages)
+    any_dynamic |= stage.dynamic;
+  if (!any_dynamic)
+    warn_ignored(prm, "Solver",
+                 {"Rayleigh damping ratio", "Rayleigh frequency", "Rayleigh alpha", "Rayleigh beta",
+                  "Dynamic local damping"},
+                 "no stage is dynamic (static runs take 'Damping')", scene.warnings);
   if (scene.strength_reduction.enabled)
     warn_ignored(prm, "Solver", {"Output interval"},
                  "'Mode' is factor of safety (the last unstable trial's end is written)",

@@ -70,6 +70,7 @@ BlockCycle::BlockCycle(Scene& scene, BlockModel& model, const std::string& prefi
   else
     std::printf("Time step:    %.6g s (eq. 87, fraction %g%s)\n", solver.dt(),
                 scene.solver.time_step_fraction, zones ? "; eq. 84 for the zones" : "");
+  print_dynamic_damping(scene.solver, solver.dt(), solver.time_step_without_stiffness_damping());
   if (zones)
     zone_writer_ = std::make_unique<ZoneWriter>(system_.mesh, scene.output.vtu_encoding);
   points_ = std::make_unique<PointHistory>(system_.mesh, zones ? scene.solver.history_points
@@ -280,6 +281,9 @@ void BlockCycle::begin_stage(const StageSpec& stage)
     solver.set_dynamic(stage.dynamic);
     std::printf("  Mode:       %s, time step %.6g s\n", stage.dynamic ? "dynamic" : "static",
                 solver.dt());
+    SolverSettings now = scene_.solver;
+    now.dynamic = stage.dynamic;
+    print_dynamic_damping(now, solver.dt(), solver.time_step_without_stiffness_damping(), "  ");
   }
   if (stage.changes_boundaries)
   {

@@ -106,6 +106,9 @@ BodyCycle::BodyCycle(Scene& scene, BlockModel& model, const std::string& prefix)
   std::printf("Time step:    %.6g s (eq. 84%s)\n", solver_->dt(),
               !scene.solver.dynamic && scene.solver.density_scaling ? ", density scaling: unit step"
                                                                     : "");
+  print_dynamic_damping(scene.solver, solver_->dt(),
+                        scene.solver.time_step > 0.0 ? solver_->dt()
+                                                     : solver_->stable_time_step({}, 0.0));
   writer_ = std::make_unique<ZoneWriter>(mesh_, scene.output.vtu_encoding);
   points_ = std::make_unique<PointHistory>(mesh_, scene.solver.history_points);
   for (const GridpointCondition& c : scene.gridpoint_conditions)
@@ -225,6 +228,11 @@ void BodyCycle::begin_stage(const StageSpec& stage)
     solver_->set_dynamic(stage.dynamic);
     std::printf("  Mode:       %s, time step %.6g s\n", stage.dynamic ? "dynamic" : "static",
                 solver_->dt());
+    SolverSettings now = scene_.solver;
+    now.dynamic = stage.dynamic;
+    print_dynamic_damping(now, solver_->dt(),
+                          now.time_step > 0.0 ? solver_->dt() : solver_->stable_time_step({}, 0.0),
+                          "  ");
   }
   if (stage.changes_boundaries)
   {

@@ -53,6 +53,20 @@ void write_zone_frame(const Scene& scene, const TetMesh& mesh, const DeformableS
 }
 
 /// The largest displacement of a gridpoint (m).
+void print_dynamic_damping(const SolverSettings& s, double dt, double dt_without,
+                           const char* indent)
+{
+  if (!s.dynamic)
+    return;
+  if (s.rayleigh_alpha > 0.0 || s.rayleigh_beta > 0.0)
+    std::printf("%sRayleigh damping: alpha %.3g 1/s, beta %.3g s; time step %.3g s (%.3g s "
+                "without the stiffness term)\n",
+                indent, s.rayleigh_alpha, s.rayleigh_beta, dt, dt_without);
+  if (s.dynamic_local_damping > 0.0)
+    std::printf("%sLocal damping: alpha %g (eqs. 78-79), in dynamics\n", indent,
+                s.dynamic_local_damping);
+}
+
 double largest_gridpoint_displacement(const DeformableSolver& solver)
 {
   const std::vector<double> u = solver.displacements();

@@ -5,6 +5,7 @@
 #include <talus/zone/hex_mixed.h>
 #include <talus/zone/nodal_mixed.h>
 #include <talus/zone/tet10_mesh.h>
+#include <talus/zone/viscous_stress.h>
 #include <talus/zone/zone_models.h>
 
 #include <deal.II/lac/petsc_vector.h>
@@ -245,17 +246,19 @@ DeformableSolver::DeformableSolver(const TetMesh& mesh, std::vector<ZoneMaterial
   // Time step (eq. 84); statics with density scaling: unit time step and
   // each gridpoint's inertial mass set from its stiffness, m = k dt^2 / 4.
   const bool scaled = !s_.dynamic && s_.density_scaling;
+  const double beta = s_.stiffness_damping(); // Rayleigh, s
   if (s_.time_step > 0.0)
   {
     dt_ = s_.time_step;
-    if (!scaled && dt_ > stable_time_step_of(mass, stiffness))
+    if (!scaled && dt_ > stable_time_step_of(mass, stiffness, beta))
       throw InputError(s_.source + ": entry 'Time step' in subsection 'Solver': " + number(dt_) +
                        " s is larger than the stable step of the zones, " +
-                       number(stable_time_step_of(mass, stiffness)) +
-                       " s (eq. 84); allowed: at most that, or 0 for the automatic step");
+                       number(stable_time_step_of(mass, stiffness, beta)) + " s (eq. 84" +
+                       (beta > 0.0 ? " with Rayleigh beta" : "") +
+                       "); allowed: at most that, or 0 for the automatic step");
   }
   else
-    dt_ = scaled ? 1.0 : stable_time_step_of(mass, stiffness);
+    dt_ = scaled ? 1.0 : stable_time_step_of(mass, stiffness, beta);
   petsc_ = std::make_unique<PetscState>();
   for (auto* v : {&petsc_->position, &petsc_->velocity, &petsc_->force, &petsc_->inertial_mass})
     v->reinit(MPI_COMM_WORLD, 3 * ng, 3 * ng);
@@ -448,7 +451,8 @@ void DeformableSolver::zone_masses(std::vector<double>& mass, std::vector<double
       const double damped =
           !s_.dynamic && (s_.damping == Damping::local || s_.damping == Damping::combined)
               ? 1.0 + s_.local_damping
-              : 1.0;
+          : s_.dynamic ? 1.0 + s_.dynamic_local_damping
+                       : 1.0;
       double m10[10], k10[10];
       tet10_mass_and_stiffness(mesh_, z, mat.density, mat.bulk_modulus, mat.shear_modulus, m10,
                                k10);
@@ -501,22 +505,37 @@ void DeformableSolver::set_nodal_mixed_ring_limit(unsigned int batches)
 }
 
 double DeformableSolver::stable_time_step_of(const std::vector<double>& mass,
-                                             const std::vector<double>& stiffness)
+                                             const std::vector<double>& stiffness, double beta)
 {
-  // Eq. 84: dt = 2 min sqrt(m_i / k_i).
-  double ratio = 1e300;
+  // Eq. 84: dt = 2 min sqrt(m_i / k_i); with Rayleigh's stiffness term,
+  // each gridpoint's 2 / omega_i lowered at its own omega_i = sqrt(k_i / m_i).
+  double ratio = 1e300, step = 1e300;
   for (std::size_t g = 0; g < mass.size(); ++g)
     if (stiffness[g] > 0.0)
+    {
       ratio = std::min(ratio, mass[g] / stiffness[g]);
-  return 2.0 * std::sqrt(ratio);
+      if (beta > 0.0 && mass[g] > 0.0)
+        step = std::min(step,
+                        2.0 * std::sqrt(mass[g] / stiffness[g]) *
+                            stiffness_damping_step_factor(beta, std::sqrt(stiffness[g] / mass[g])));
+    }
+  return beta > 0.0 ? std::min(step, 2.0 * std::sqrt(ratio)) : 2.0 * std::sqrt(ratio);
 }
 
-double DeformableSolver::stable_time_step(const std::vector<double>& joint_stiffness) const
+double DeformableSolver::stable_time_step(const std::vector<double>& joint_stiffness,
+                                          double beta) const
 {
   std::vector<double> k = nodal_stiffness_;
   for (std::size_t g = 0; g < k.size() && g < joint_stiffness.size(); ++g)
     k[g] += joint_stiffness[g];
-  return stable_time_step_of(true_mass_, k);
+  return stable_time_step_of(true_mass_, k, beta);
+}
+
+void DeformableSolver::viscous_stresses(const ZoneMaterial& mat, unsigned int first, unsigned int n,
+                                        const double* de, double strain_dt)
+{
+  viscous_stress(n, mat.bulk_modulus, mat.shear_modulus, s_.stiffness_damping() / strain_dt, de,
+                 viscous_stress_.data() + 6 * std::size_t(first));
 }
 
 unsigned int DeformableSolver::time_step_gridpoint() const
@@ -613,6 +632,17 @@ void DeformableSolver::add_water(const double* x, double* f)
 void DeformableSolver::zone_forces()
 {
   LocalArray x(petsc_->position), v(petsc_->velocity), f(petsc_->force);
+  // Rayleigh's stiffness-proportional term (dynamics): its forces apart.
+  if (s_.stiffness_damping() > 0.0)
+  {
+    damping_force_.assign(3 * std::size_t(mesh_.n_gridpoints()), 0.0);
+    viscous_stress_.resize(stress_.size());
+  }
+  else if (!damping_force_.empty())
+  {
+    damping_force_.clear();
+    viscous_stress_.clear();
+  }
   external_forces(x.data(), f.data());
   // The velocities are those of the last motion (x - v dt -> x); before the
   // first motion there is none, so no strain.
@@ -626,6 +656,9 @@ void DeformableSolver::zone_forces(const double* x, const double* v, double* f, 
     nodal_mixed_zone_forces(x, v, f, strain_dt);
     return;
   }
+  // Rayleigh's stiffness-proportional term: the forces of the viscous
+  // stress into damping_force_ (none before the first motion).
+  const bool viscous = !damping_force_.empty() && strain_dt > 0.0;
   if (mesh_.quadratic())
   {
     // 10-node zones: the same three stages, the model at every Gauss point.
@@ -659,6 +692,12 @@ void DeformableSolver::zone_forces(const double* x, const double* v, double* f, 
           plastic_stress_work_ +=
               0.5 * stress_power(4 * n, batch.strain_increment, batch.stress, gauss_volume_.data());
         tet10_nodal_forces(mesh_, first, n, stress_.data(), scratch10_, f, force_size_.data());
+        if (viscous)
+        {
+          viscous_stresses(mat, 4 * first, 4 * n, batch.strain_increment, strain_dt);
+          tet10_nodal_forces(mesh_, first, n, viscous_stress_.data(), scratch10_,
+                             damping_force_.data());
+        }
       }
     }
     return;
@@ -682,6 +721,11 @@ void DeformableSolver::zone_forces(const double* x, const double* v, double* f, 
       if (hex) // each overlay's forces weighted 1/2
         hex_mixed_overlay_weight(n, scratch_.volume.data());
       tet4_nodal_forces(mesh_, first, n, stress_.data(), scratch_, f, force_size_.data());
+      if (viscous)
+      {
+        viscous_stresses(mat, first, n, batch.strain_increment, strain_dt);
+        tet4_nodal_forces(mesh_, first, n, viscous_stress_.data(), scratch_, damping_force_.data());
+      }
     }
   }
 }
@@ -842,6 +886,7 @@ void DeformableSolver::nodal_mixed_zone_forces(const double* x, const double* v,
   // sums stage reads nothing that the model stage writes, so the results
   // do not depend on the distance between the two stages, nor on the mode.
   const unsigned int ng = mesh_.n_gridpoints();
+  const bool viscous = !damping_force_.empty() && strain_dt > 0.0; // Rayleigh beta
   bool plastic_pass = false;
   for (const ZoneMaterial& m : materials_)
     plastic_pass |= m.nodal_mixed && m.model != ZoneModel::elastic;
@@ -966,6 +1011,13 @@ void DeformableSolver::nodal_mixed_zone_forces(const double* x, const double* v,
         hex_mixed_overlay_weight(n, scratch.volume.data());
       tet4_nodal_forces(mesh_, first, n, stress_.data(), scratch, f, force_size_.data());
     }
+    if (viscous) // Rayleigh's viscous stress, from the strain increments as they are now
+    {
+      viscous_stresses(mat, first, n, batch.strain_increment, strain_dt);
+      if (hex && !forces_now)
+        hex_mixed_overlay_weight(n, scratch.volume.data());
+      tet4_nodal_forces(mesh_, first, n, viscous_stress_.data(), scratch, damping_force_.data());
+    }
     if (force_stage_follows)
     {
       divide_by_pair_volume(plastic_gridpoint_.data() + plastic_start_[p],
@@ -1015,6 +1067,9 @@ void DeformableSolver::move_gridpoints()
   // Energy account (see EnergyAccount): each force works over h (v- + v+) / 2.
   double gravity_work = 0.0, boundary_work = 0.0, damping_work = 0.0, kinetic = 0.0;
   const bool pressed = !pressure_force_.empty();
+  // Rayleigh's stiffness-proportional forces (zones and contacts), which
+  // act with f and whose work is dissipation.
+  const double* fv = damping_force_.empty() ? nullptr : damping_force_.data();
   for (unsigned int g = 0; g < ng; ++g)
   {
     double f2 = 0.0, size2 = 0.0;
@@ -1032,22 +1087,28 @@ void DeformableSolver::move_gridpoints()
         // The support supplies minus the force on the component, and
         // whatever kinetic energy a change of the held velocity takes.
         const double reach = 0.5 * h * (v_before + v[i]);
+        const double viscous = fv != nullptr ? fv[i] : 0.0;
         gravity_work += weight * reach;
-        boundary_work += (load - f[i]) * reach + 0.5 * m[i] * (v[i] * v[i] - v_before * v_before);
+        boundary_work +=
+            (load - f[i] - viscous) * reach + 0.5 * m[i] * (v[i] * v[i] - v_before * v_before);
+        damping_work -= viscous * reach;
         kinetic += 0.5 * m[i] * v[i] * v[i] - 0.5 * (f[i] - weight - load) * v[i] * dt_;
         continue;
       }
-      f2 += f[i] * f[i];
+      const double viscous = fv != nullptr ? fv[i] : 0.0;
+      const double force = f[i] + viscous;
+      f2 += force * force;
       size2 += force_size_[i] * force_size_[i];
-      // Eq. 57 with the static damping chosen (eqs. 77-79, 83).
+      // Eq. 57 with the damping chosen (eqs. 77-79, 83; dynamics: eqs. 49,
+      // 79 and Rayleigh's).
       const double v_before = v[i];
-      const double fd = damper_.kick(v[i], f[i], combined ? last_force_[i] : 0.0, m[i], h);
+      const double fd = damper_.kick(v[i], force, combined ? last_force_[i] : 0.0, m[i], h);
       if (combined)
         last_force_[i] = f[i];
       const double reach = 0.5 * h * (v_before + v[i]);
       gravity_work += weight * reach;
       boundary_work += load * reach;
-      damping_work += fd * reach;
+      damping_work += (fd - viscous) * reach;
       kinetic += 0.5 * m[i] * v[i] * v[i] - 0.5 * (f[i] - weight - load) * v[i] * dt_;
     }
     if (held_[g] != 7u)
@@ -1246,6 +1307,8 @@ DeformableSolver::View::View(DeformableSolver& solver) : solver_(solver)
   VecGetArray(static_cast<const Vec&>(solver_.petsc_->position), &x);
   VecGetArray(static_cast<const Vec&>(solver_.petsc_->velocity), &v);
   VecGetArray(static_cast<const Vec&>(solver_.petsc_->force), &f);
+  if (!solver_.damping_force_.empty())
+    damping = solver_.damping_force_.data();
 }
 
 DeformableSolver::View::~View()
@@ -1262,9 +1325,11 @@ void DeformableSolver::use_time_step(double dt, const std::vector<double>& joint
   for (unsigned int g = 0; g < ng && g < joint_stiffness.size(); ++g)
     k[g] += joint_stiffness[g];
   const bool scaled = !s_.dynamic && s_.density_scaling;
-  if (!scaled && dt > stable_time_step_of(true_mass_, k) * (1.0 + 1e-12))
+  const double beta = s_.stiffness_damping();
+  if (!scaled && dt > stable_time_step_of(true_mass_, k, beta) * (1.0 + 1e-12))
     throw InputError("the time step " + number(dt) + " s exceeds the stable step of the zones, " +
-                     number(stable_time_step_of(true_mass_, k)) + " s (eq. 84)");
+                     number(stable_time_step_of(true_mass_, k, beta)) + " s (eq. 84" +
+                     (beta > 0.0 ? " with Rayleigh beta" : "") + ")");
   dt_ = dt;
   joint_stiffness_ = joint_stiffness;
   set_inertial_masses();
@@ -1294,7 +1359,9 @@ void DeformableSolver::set_dynamic(bool dynamic)
     // Alone (no block solver sets the step): eq. 84, or the unit step of
     // density scaling.
     std::vector<double> k = nodal_stiffness_;
-    dt_ = !dynamic && s_.density_scaling ? 1.0 : stable_time_step_of(true_mass_, k);
+    dt_ = !dynamic && s_.density_scaling
+              ? 1.0
+              : stable_time_step_of(true_mass_, k, s_.stiffness_damping());
   }
   set_inertial_masses();
 }

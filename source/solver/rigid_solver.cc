@@ -78,6 +78,8 @@ RigidSolver::RigidSolver(BlockModel& blocks, double density, const SolverSetting
   path.assign(nb, 0.0);
   last_force_.assign(nb, Vec3::Zero());
   last_moment_.assign(nb, Vec3::Zero());
+  damping_force_.assign(nb, Vec3::Zero());
+  damping_moment_.assign(nb, Vec3::Zero());
   is_deformable_.assign(nb, 0);
   removed_.assign(nb, 0);
   if (zones_ != nullptr)
@@ -212,6 +214,7 @@ void RigidSolver::set_masses_and_step()
         principal_moments[b] *= scale;
     }
   dt_ = s_.time_step > 0.0 ? s_.time_step : stable_time_step();
+  dt_without_stiffness_damping_ = s_.time_step > 0.0 ? s_.time_step : stable_time_step(0.0);
   if (s_.time_step > 0.0 && s_.time_step_fraction > 0.0)
   {
     // A step beyond eq. 87 without its safety fraction cannot be stable.
@@ -241,9 +244,13 @@ void RigidSolver::set_masses_and_step()
               k * area * (m_.face_corner_share.empty() ? 1.0 / 3.0 : m_.face_corner_share[f][j]);
       }
     if (s_.time_step <= 0.0 && (s_.dynamic || !s_.density_scaling))
+    {
       dt_ = std::min(dt_, zones_->stable_time_step(joint_stiffness));
+      dt_without_stiffness_damping_ =
+          std::min(dt_without_stiffness_damping_, zones_->stable_time_step(joint_stiffness, 0.0));
+    }
     else if (s_.time_step <= 0.0 && dt_ == 1e300)
-      dt_ = 1.0; // statics, deformable blocks only: unit step, scaled masses
+      dt_ = dt_without_stiffness_damping_ = 1.0; // statics, deformable blocks only: unit step
     zones_->use_time_step(dt_, joint_stiffness);
   }
   damper_ = damper_for(s_, dt_);
@@ -416,13 +423,15 @@ double RigidSolver::stiffest_joint() const
   return k;
 }
 
-double RigidSolver::stable_time_step() const
+double RigidSolver::stable_time_step(double beta) const
 {
   // Eq. 87 block by block: a contact is never stiffer than its joint
   // stiffness times the smaller face of its two blocks, so each free block
   // is bounded by its own mass against its own largest face. A fixed block
   // has no inertia to keep stable, and its faces (a large floor) do not
-  // enter; a model of fixed blocks only takes them all.
+  // enter; a model of fixed blocks only takes them all. Rayleigh's
+  // stiffness-proportional term lowers each block's step 2 / omega by
+  // stiffness_damping_step_factor at its omega = sqrt(k A / m).
   const double k = stiffest_joint();
   double smallest = 1e300;
   for (int pass = 0; pass < 2 && smallest == 1e300; ++pass)
@@ -430,8 +439,9 @@ double RigidSolver::stable_time_step() const
     {
       if (is_deformable_[b] || (pass == 0 && fixed[b]))
         continue; // a deformable block's gridpoints have their own limit (eq. 84)
-      smallest =
-          std::min(smallest, 2.0 * std::sqrt(inertial_mass[b] / (k * largest_face_area(m_, b))));
+      const double step = 2.0 * std::sqrt(inertial_mass[b] / (k * largest_face_area(m_, b)));
+      smallest = std::min(
+          smallest, beta > 0.0 ? step * stiffness_damping_step_factor(beta, 2.0 / step) : step);
     }
   if (smallest == 1e300)
     return 1e300; // no rigid block
@@ -479,6 +489,9 @@ void RigidSolver::contact_forces()
   const unsigned int n = cs.n_subcontacts();
   du_n_.resize(n);
   du_s_.resize(3 * n);
+  const double beta = s_.stiffness_damping(); // Rayleigh, s
+  if (beta > 0.0)
+    sc_velocity_.resize(3 * n);
   // Relative displacement increments (eqs. 15, 20-22).
   for (unsigned int i = 0; i < n; ++i)
   {
@@ -517,6 +530,9 @@ void RigidSolver::contact_forces()
       return vel;
     };
     const Vec3 vel = side_velocity(b, 1) - side_velocity(a, 0);
+    if (beta > 0.0)
+      for (int d = 0; d < 3; ++d)
+        sc_velocity_[3 * i + d] = vel[d];
     const Vec3 du = vel * dt_;
     const Vec3& nrm = cs.plane[c].normal;
     const double dun = du.dot(nrm);
@@ -575,6 +591,34 @@ void RigidSolver::contact_forces()
             for (int d = 0; d < 3; ++d)
               gp_f_[3 * node[3 * side + j] + d] += cs.sc_weight[6 * i + 3 * side + j] * fs[d];
     }
+    // Rayleigh's stiffness-proportional term: beta times the spring force
+    // of the relative velocity of the last half step, -beta k A v (normal
+    // while in contact, shear while it sticks), outside the joint's state.
+    const unsigned char state = cs.sc_state[i];
+    if (beta <= 0.0 || (state & open))
+      continue;
+    const JointProperties& joint = joints_[cs.sc_material[i]];
+    const Vec3 rv(sc_velocity_[3 * i], sc_velocity_[3 * i + 1], sc_velocity_[3 * i + 2]);
+    const Vec3& nrm = cs.plane[c].normal;
+    const double vn = rv.dot(nrm);
+    Vec3 fd = -beta * cs.sc_area[i] * joint.normal_stiffness * vn * nrm;
+    if (!(state & slipping))
+      fd -= beta * cs.sc_area[i] * joint.shear_stiffness * (rv - vn * nrm);
+    for (int side = 0; side < 2; ++side)
+    {
+      const unsigned int blk = side == 0 ? a : b;
+      const Vec3 fs = side == 0 ? Vec3(-fd) : fd;
+      if (node == nullptr || node[3 * side] < 0)
+      {
+        damping_force_[blk] += fs;
+        damping_moment_[blk] += (p - m_.centroid[blk]).cross(fs);
+      }
+      else
+        for (int j = 0; j < 3; ++j)
+          if (node[3 * side + j] >= 0)
+            for (int d = 0; d < 3; ++d)
+              gp_damping_[3 * node[3 * side + j] + d] += cs.sc_weight[6 * i + 3 * side + j] * fs[d];
+    }
   }
   // Reference points follow the blocks (eq. 11) and relative rotation (eq. 12).
   for (unsigned int c = 0; c < cs.n_slots(); ++c)
@@ -608,10 +652,15 @@ void RigidSolver::move_blocks()
     {
       force[b].setZero();
       moment[b].setZero();
+      damping_force_[b].setZero();
+      damping_moment_[b].setZero();
       continue;
     }
     const Vec3 applied = applied_force[b] + applied_force_rate[b] * time_;
-    const Vec3 f = force[b] + mass[b] * s_.gravity + applied;
+    // The sub-contacts' Rayleigh damping (zero without it) acts with the
+    // other forces; the account takes its work apart.
+    const Vec3 f = force[b] + mass[b] * s_.gravity + applied + damping_force_[b];
+    const Vec3 torque = moment[b] + damping_moment_[b];
     if (f.norm() > max_unbalanced)
     {
       max_unbalanced = f.norm();
@@ -646,7 +695,7 @@ void RigidSolver::move_blocks()
       const Vec3& I = principal_moments[b];
       Vec3 w = body_momentum(b).cwiseQuotient(I);
       const Vec3 w_before = w;
-      const Vec3 mloc = Q.transpose() * moment[b];
+      const Vec3 mloc = Q.transpose() * torque;
       const Vec3 mloc_before = Q.transpose() * last_moment_[b];
       Vec3 md;
       for (int d = 0; d < 3; ++d)
@@ -670,8 +719,8 @@ void RigidSolver::move_blocks()
     }
     else
       for (int d = 0; d < 3; ++d)
-        damping_moment[d] = kick(spin[b][d], moment[b][d], last_moment_[b][d], inertia[b]);
-    last_moment_[b] = moment[b];
+        damping_moment[d] = kick(spin[b][d], torque[d], last_moment_[b][d], inertia[b]);
+    last_moment_[b] = torque;
     // Eqs. 50-52, with the rotation applied exactly so that blocks keep
     // their shape through any number of turns.
     const Vec3 dx = velocity[b] * dt_;
@@ -686,7 +735,8 @@ void RigidSolver::move_blocks()
     for (int d = 0; d < 3; ++d)
       if (prescribed[b] & (1u << d))
         boundary_work_ -= f[d] * reach[d];
-    damping_work_ += damping_force.dot(reach) + damping_moment.dot(turn);
+    damping_work_ += (damping_force - damping_force_[b]).dot(reach) +
+                     (damping_moment - damping_moment_[b]).dot(turn);
     // Kinetic energy at the half step less half the contact forces' work
     // over it: the term that makes the account exact for linear joints.
     kinetic += 0.5 * inertial_mass[b] * velocity[b].squaredNorm() - 0.5 * force[b].dot(dx) -
@@ -721,6 +771,8 @@ void RigidSolver::move_blocks()
       too_fast_.emplace_back(b, max_du);
     force[b].setZero();
     moment[b].setZero();
+    damping_force_[b].setZero();
+    damping_moment_[b].setZero();
   }
   ratio_ = n_free > 0 && sum_weight > 0.0 ? max_unbalanced / (sum_weight / n_free) : 0.0;
   kinetic_whole_step_ = kinetic;
@@ -754,8 +806,9 @@ void RigidSolver::step()
     gp_x_ = view.x;
     gp_v_ = view.v;
     gp_f_ = view.f;
+    gp_damping_ = view.damping;
     contact_forces();
-    gp_x_ = gp_v_ = gp_f_ = nullptr;
+    gp_x_ = gp_v_ = gp_f_ = gp_damping_ = nullptr;
   }
   else
     contact_forces();

@@ -35,6 +35,13 @@ void print_nodal_mixed(const DeformableSolver& solver);
 /// The summary's lines on the history blocks, with a warning for a fixed one.
 void print_history_blocks(const Scene& scene, const BlockModel& model);
 
+/// The summary's line on the damping of a dynamic run (nothing when it has
+/// none, or is static): Rayleigh's coefficients and the time step `dt` (s)
+/// against `dt_without` (s), the step without the stiffness-proportional
+/// term; local damping. `indent` starts each line (a stage's lines).
+void print_dynamic_damping(const SolverSettings& s, double dt, double dt_without,
+                           const char* indent = "");
+
 /// The largest displacement of a gridpoint (m).
 double largest_gridpoint_displacement(const DeformableSolver& solver);
 

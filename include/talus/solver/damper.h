@@ -9,7 +9,8 @@ namespace talus
 class CheckpointReader;
 class CheckpointWriter;
 
-/// Damping of static runs (dynamic runs are undamped).
+/// Damping of static runs (dynamic runs take Rayleigh damping and,
+/// optionally, local damping; see damper_for).
 enum class Damping
 {
   local,           ///< eqs. 78-79: opposes the velocity, scales with the unbalanced force
@@ -24,12 +25,17 @@ enum class Damping
 /// averages that with the sign of the force change, so that a steady
 /// motion is not damped; adaptive global damping (eq. 77) is viscous, c m v,
 /// with c set by a servo, taken semi-implicitly (stable for any c h < 2).
+/// Dynamic runs add a fixed viscous term, the mass-proportional part of
+/// Rayleigh damping, -a m v, taken the same way (eqs. 44, 46, 49 with
+/// D1 = 1 - a h / 2, D2 = 1 / (1 + a h / 2)).
 class Damper
 {
 public:
-  /// `dt` (s) sets the servo's starting value and bounds.
-  Damper(Damping mode, double alpha, double ratio, double dt)
-      : mode_(mode), alpha_(alpha), ratio_(ratio), dt_(dt), c_(0.01 / dt)
+  /// `dt` (s) sets the servo's starting value and bounds; `mass_damping`
+  /// is the Rayleigh alpha (1/s) of dynamic runs.
+  Damper(Damping mode, double alpha, double ratio, double dt, double mass_damping = 0.0)
+      : mode_(mode), alpha_(alpha), ratio_(ratio), dt_(dt), c_(0.01 / dt),
+        mass_damping_(mass_damping)
   {
   }
 
@@ -58,6 +64,14 @@ public:
     }
     case Damping::none:
       break;
+    }
+    if (mass_damping_ > 0.0)
+    {
+      // Eq. 49: v+ = (D1 v- + (F - F_d) h / m) D2, the viscous force
+      // a m (v- + v+) / 2 over the step.
+      const double v_old = v, a = 0.5 * mass_damping_ * h;
+      v = (v * (1.0 - a) + (f - fd) * h / m) / (1.0 + a);
+      return fd + mass_damping_ * m * 0.5 * (v_old + v);
     }
     v += (f - fd) * h / m;
     return fd;
@@ -93,7 +107,21 @@ private:
   Damping mode_;
   double alpha_, ratio_, dt_;
   double c_;                                       ///< 1/s
+  double mass_damping_ = 0.0;                      ///< Rayleigh alpha, 1/s (dynamics)
   double damping_power_ = 0.0, force_power_ = 0.0; ///< W, since the last adjust()
 };
+
+/// The factor by which the stiffness-proportional part of Rayleigh damping
+/// lowers the stable step 2 / omega of an undamped mode of angular
+/// frequency omega (rad/s): with the damping force taken from the velocity
+/// of the last half step, the central difference scheme is stable for
+/// omega dt <= 2 (sqrt(1 + xi^2) - xi), xi = beta omega / 2 (from the
+/// roots of its characteristic polynomial; eqs. 84 and 87 are the case xi
+/// = 0).
+inline double stiffness_damping_step_factor(double beta, double omega)
+{
+  const double xi = 0.5 * beta * omega;
+  return std::sqrt(1.0 + xi * xi) - xi;
+}
 
 } // namespace talus

@@ -59,8 +59,14 @@ public:
   ~DeformableSolver();
 
   /// Time step of eqs. 84-86 with the true masses (s), with the joint
-  /// stiffness of boundary gridpoints (eq. 85, N/m per gridpoint) if given.
-  double stable_time_step(const std::vector<double>& joint_stiffness = {}) const;
+  /// stiffness of boundary gridpoints (eq. 85, N/m per gridpoint) if given,
+  /// lowered for the stiffness-proportional Rayleigh term of dynamics.
+  double stable_time_step(const std::vector<double>& joint_stiffness = {}) const
+  {
+    return stable_time_step(joint_stiffness, s_.stiffness_damping());
+  }
+  /// The same with the stiffness-proportional coefficient `beta` (s).
+  double stable_time_step(const std::vector<double>& joint_stiffness, double beta) const;
   /// The gridpoint whose mass over stiffness is smallest: the one that sets
   /// the stable step of eq. 84 (without joints), for the summary.
   unsigned int time_step_gridpoint() const;
@@ -85,6 +91,9 @@ public:
     double* x = nullptr;
     double* v = nullptr;
     double* f = nullptr;
+    /// Forces of Rayleigh's stiffness-proportional term (N, 3 per
+    /// gridpoint), kept apart for the energy account; null without it.
+    double* damping = nullptr;
 
   private:
     DeformableSolver& solver_;
@@ -230,8 +239,15 @@ public:
 
 private:
   struct PetscState;
+  /// Eq. 84, each gridpoint's step 2 sqrt(m / k) lowered by
+  /// stiffness_damping_step_factor for Rayleigh's `beta` (s).
   static double stable_time_step_of(const std::vector<double>& mass,
-                                    const std::vector<double>& stiffness);
+                                    const std::vector<double>& stiffness, double beta = 0.0);
+  /// Dynamics with Rayleigh beta: the viscous stresses of stress points
+  /// [first, first + n) of material `mat` from their strain increments
+  /// `de` over strain_dt, into viscous_stress_.
+  void viscous_stresses(const ZoneMaterial& mat, unsigned int first, unsigned int n,
+                        const double* de, double strain_dt);
   void zone_forces();
   /// The zone forces alone of positions x and velocities v (3 per
   /// gridpoint) over a motion of strain_dt, added to f.
@@ -362,6 +378,10 @@ private:
   bool last_step_yielded_ = false;
   Damper damper_{Damping::none, 0.0, 0.5, 1.0};
   std::vector<double> last_force_; ///< 3 per gridpoint, N (combined damping only)
+  /// Dynamics with Rayleigh beta only (empty otherwise): the viscous
+  /// stress of each stress point (6 each, Pa) and the forces of it and of
+  /// the contacts' damping on the gridpoints (3 each, N) of this step.
+  std::vector<double> viscous_stress_, damping_force_;
   unsigned int ratio_gridpoint_ = 0;
   double dt_ = 0.0, time_ = 0.0, ratio_ = 1.0;
   double seconds_zones_ = 0.0, seconds_gridpoints_ = 0.0;

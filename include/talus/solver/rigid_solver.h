@@ -47,6 +47,17 @@ struct SolverSettings
   Damping damping = Damping::local; ///< statics
   double local_damping = 0.8;       ///< alpha of eqs. 79 and 83
   double global_damping_ratio = 0.5; ///< R of eq. 77 that the servo keeps
+  /// Dynamics: Rayleigh damping, the ratio xi(omega) = (alpha / omega +
+  /// beta omega) / 2 of critical damping: a mass-proportional force -alpha
+  /// m v on blocks and gridpoints (alpha, 1/s) and a stiffness-proportional
+  /// one, beta times the elastic force of the velocities, in the zones and
+  /// at the sub-contacts in contact (beta, s). 0: none.
+  double rayleigh_alpha = 0.0;
+  double rayleigh_beta = 0.0;
+  /// Dynamics: alpha of local damping (eqs. 78-79); 0: none.
+  double dynamic_local_damping = 0.0;
+  /// The stiffness-proportional coefficient that the present mode takes (s).
+  double stiffness_damping() const { return dynamic ? rayleigh_beta : 0.0; }
   /// Statics only: inertial masses raised to the mean block mass so that the
   /// time step follows the mean block, not the smallest (density scaling).
   bool density_scaling = true;
@@ -80,12 +91,15 @@ struct SolverSettings
   unsigned long output_interval = 0;  ///< steps between VTU files (0: first and last)
 };
 
-/// The damper the settings ask for at time step `dt` (s): none for
-/// dynamics, the static damping chosen otherwise.
+/// The damper the settings ask for at time step `dt` (s): for dynamics
+/// local damping if asked for and the mass-proportional Rayleigh term, the
+/// static damping chosen otherwise.
 inline Damper damper_for(const SolverSettings& s, double dt)
 {
-  return Damper(s.dynamic ? Damping::none : s.damping, s.local_damping, s.global_damping_ratio,
-                dt);
+  if (s.dynamic)
+    return Damper(s.dynamic_local_damping > 0.0 ? Damping::local : Damping::none,
+                  s.dynamic_local_damping, s.global_damping_ratio, dt, s.rayleigh_alpha);
+  return Damper(s.damping, s.local_damping, s.global_damping_ratio, dt);
 }
 
 /// What a run did, for the summary.
@@ -165,8 +179,13 @@ public:
   /// rigid blocks and of the zones at the last step.
   std::string water_summary() const;
 
-  /// Stable time step of eq. 87 for this model (s).
-  double stable_time_step() const;
+  /// Stable time step of eq. 87 for this model (s), lowered for the
+  /// stiffness-proportional Rayleigh term of dynamics
+  /// (stiffness_damping_step_factor).
+  double stable_time_step() const { return stable_time_step(s_.stiffness_damping()); }
+  /// The time step the run would take without the stiffness-proportional
+  /// Rayleigh term (s): dt() when there is none or the step is given.
+  double time_step_without_stiffness_damping() const { return dt_without_stiffness_damping_; }
 
   /// Runs to the step limit or (statics) the target ratio. `output` is
   /// called with (step, time) whenever output is due.
@@ -234,6 +253,9 @@ public:
 
 private:
   void detect_contacts(bool everything);
+  /// Eq. 87 block by block with the stiffness-proportional coefficient
+  /// `beta` (s) of Rayleigh damping.
+  double stable_time_step(double beta) const;
   void contact_forces();
   void move_blocks();
   /// Throws DivergenceError, before anything moves, if a force or moment
@@ -259,6 +281,13 @@ private:
   std::vector<Box> envelopes_;
   std::vector<std::pair<unsigned int, unsigned int>> pairs_;
   std::vector<double> du_n_, du_s_;
+  /// Dynamics with Rayleigh beta only: the relative velocity at each
+  /// sub-contact (3 per sub-contact, m/s) of the step, and the damping
+  /// force and moment of the sub-contacts on each rigid block (N, N m),
+  /// kept apart from force and moment for the energy account.
+  std::vector<double> sc_velocity_;
+  std::vector<Vec3> damping_force_, damping_moment_;
+  double* gp_damping_ = nullptr; ///< the zones' damping forces during the contact stage
   /// Unbalanced force and moment of the last step (combined damping, eq. 83).
   std::vector<Vec3> last_force_, last_moment_;
   Damper damper_{Damping::none, 0.0, 0.5, 1.0};
@@ -281,6 +310,7 @@ private:
   double stiffest_joint() const;
   unsigned int ratio_block_ = 0;
   double dt_ = 0.0, time_ = 0.0, ratio_ = 1.0;
+  double dt_without_stiffness_damping_ = 0.0; ///< s, for the summary
   double gravity_work_ = 0.0, friction_work_ = 0.0, damping_work_ = 0.0;
   double boundary_work_ = 0.0;          ///< J: applied forces and prescribed velocities
   double kinetic_whole_step_ = 0.0;     ///< J: kinetic term of the account (see EnergyAccount)
