@@ -121,7 +121,8 @@ JointProperties parse_joint_properties(ParameterFile& prm, const std::string& se
                         "0, or 'Model = coulomb slip'");
     j.cohesion = j.tensile_strength = j.dilation_angle = j.dilation_limit = 0.0;
     if (!(j.roughness > 0.0))
-      throw prm.error("Roughness", "must be positive for a continuously yielding joint",
+      throw prm.error("Roughness", "is 0: a continuously yielding joint needs the plastic shear "
+                      "displacement over which its friction decays",
                       roughness_allowed);
     if (!(j.initial_friction_angle >= j.friction_angle))
       throw prm.error("Initial friction angle",
