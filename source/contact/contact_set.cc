@@ -383,8 +383,8 @@ void ContactSet::update(const BlockModel& m, const ContactSettings& settings,
           double* to = &sc_yield[yield_state_size * i];
           to[plastic_shear_displacement] = y[plastic_shear_displacement];
           to[reversal_ratio] = y[reversal_ratio];
-          Vec3 dir = turn * Vec3(y[loading_direction], y[loading_direction + 1],
-                                 y[loading_direction + 2]);
+          Vec3 dir =
+              turn * Vec3(y[loading_direction], y[loading_direction + 1], y[loading_direction + 2]);
           dir -= n * n.dot(dir);
           const double length = dir.norm();
           for (int d = 0; d < 3; ++d)

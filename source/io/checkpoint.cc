@@ -3,9 +3,9 @@
 #include <talus/contact/contact_set.h>
 #include <talus/io/block_vtu_writer.h>
 #include <talus/io/checkpoint.h>
-#include <talus/joint/continuously_yielding.h>
 #include <talus/io/file_output.h>
 #include <talus/io/history_file.h>
+#include <talus/joint/continuously_yielding.h>
 #include <talus/scene/scene.h>
 #include <talus/model/block_model.h>
 #include <talus/solver/damper.h>

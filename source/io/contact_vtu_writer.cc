@@ -89,7 +89,8 @@ void write_contacts_vtu(const std::string& path, const ContactSet& cs, const Blo
         reals(out, "shear_displacement", 3,
               [&](std::size_t i, unsigned int d) { return cs.sc_us[3 * i + d]; });
         if (!cs.sc_yield.empty()) // continuously yielding joints: u_p, m
-          reals(out, "plastic_shear_displacement", 1, [&](std::size_t i, unsigned int)
+          reals(out, "plastic_shear_displacement", 1,
+                [&](std::size_t i, unsigned int)
                 { return cs.sc_yield[yield_state_size * i + plastic_shear_displacement]; });
         reals(out, "area", 1, [&](std::size_t i, unsigned int) { return cs.sc_area[i]; });
         integers(out, "state", [&](std::size_t i) { return cs.sc_state[i]; });

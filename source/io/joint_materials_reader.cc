@@ -103,7 +103,7 @@ JointProperties parse_joint_properties(ParameterFile& prm, const std::string& se
   const bool model_set = inherit == nullptr || lines.count(section + " / Model") != 0;
   if (model_set)
     j.model = prm.get("Model") == "continuously yielding" ? JointModel::continuously_yielding
-                                                         : JointModel::coulomb_slip;
+                                                          : JointModel::coulomb_slip;
   j.normal_stiffness_factor = value("Normal stiffness factor", j.normal_stiffness_factor);
   j.normal_stiffness_exponent = value("Normal stiffness exponent", j.normal_stiffness_exponent);
   j.shear_stiffness_factor = value("Shear stiffness factor", j.shear_stiffness_factor);
@@ -121,13 +121,14 @@ JointProperties parse_joint_properties(ParameterFile& prm, const std::string& se
                         "0, or 'Model = coulomb slip'");
     j.cohesion = j.tensile_strength = j.dilation_angle = j.dilation_limit = 0.0;
     if (!(j.roughness > 0.0))
-      throw prm.error("Roughness", "is 0: a continuously yielding joint needs the plastic shear "
+      throw prm.error("Roughness",
+                      "is 0: a continuously yielding joint needs the plastic shear "
                       "displacement over which its friction decays",
                       roughness_allowed);
     if (!(j.initial_friction_angle >= j.friction_angle))
       throw prm.error("Initial friction angle",
-                      "is below the 'Friction angle' (" + dealii::Utilities::to_string(
-                                                             j.friction_angle) +
+                      "is below the 'Friction angle' (" +
+                          dealii::Utilities::to_string(j.friction_angle) +
                           "), which the bounding strength decays to",
                       initial_friction_allowed);
     if (j.normal_stiffness_factor > 0.0 || j.shear_stiffness_factor > 0.0)

@@ -81,8 +81,8 @@ double cy_shear_stiffness(const JointProperties& joint, double sigma_n)
 {
   if (!(joint.shear_stiffness_factor > 0.0))
     return joint.shear_stiffness;
-  const double k =
-      joint.shear_stiffness_factor * std::pow(std::max(sigma_n, 0.0), joint.shear_stiffness_exponent);
+  const double k = joint.shear_stiffness_factor *
+                   std::pow(std::max(sigma_n, 0.0), joint.shear_stiffness_exponent);
   return std::min(std::max(k, joint.shear_stiffness),
                   std::max(joint.maximum_stiffness, joint.shear_stiffness));
 }

@@ -69,12 +69,12 @@ int main()
   for (unsigned int i = 0; i < c.n_subcontacts(); ++i)
     u_p += c.sc_yield[talus::yield_state_size * i + talus::plastic_shear_displacement];
   u_p /= c.n_subcontacts();
-  const double phi_m = j.friction_angle * deg +
-                       (j.initial_friction_angle - j.friction_angle) * deg * std::exp(-u_p / j.roughness);
+  const double phi_m = j.friction_angle * deg + (j.initial_friction_angle - j.friction_angle) *
+                                                    deg * std::exp(-u_p / j.roughness);
   talus_test::check_error("plastic shear displacement after 3 mm (m)", u_p, ref.u_p, 1e-3);
   std::printf("residual shear stress on the bound sigma_n tan(phi_m(u_p)) within 1e-9: %s\n",
-              talus_test::verdict(talus_test::relative_error(shear_stress(),
-                                                             sigma * std::tan(phi_m)) <= 1e-9));
+              talus_test::verdict(
+                  talus_test::relative_error(shear_stress(), sigma * std::tan(phi_m)) <= 1e-9));
   talus_test::check_error("residual shear stress against sigma_n tan(phi) (Pa)", shear_stress(),
                           sigma * std::tan(j.friction_angle * deg), 1e-2);
 }

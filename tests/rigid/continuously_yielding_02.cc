@@ -61,11 +61,13 @@ int main()
   shear(-v, 0.0, back_ref);
   const double back_stress = shear_stress(), back_stress_ref = ref.tau;
   const double second = shear(v, 0.0015, second_ref);
-  std::fprintf(stderr, "peaks %.6g Pa then %.6g Pa (reference %.6g, %.6g); back at 0: %.6g Pa (%.6g)\n",
+  std::fprintf(stderr,
+               "peaks %.6g Pa then %.6g Pa (reference %.6g, %.6g); back at 0: %.6g Pa (%.6g)\n",
                first, second, first_ref, second_ref, back_stress, back_stress_ref);
   talus_test::check_error("first forward peak (Pa)", first, first_ref, 1e-3);
   talus_test::check_error("second forward peak (Pa)", second, second_ref, 1e-3);
-  talus_test::check_error("shear stress back at the start (Pa)", back_stress, back_stress_ref, 1e-3);
+  talus_test::check_error("shear stress back at the start (Pa)", back_stress, back_stress_ref,
+                          1e-3);
   std::printf("largest error of tau(u) over the cycles, relative to the first peak: %.1e %s\n",
               curve_error / first_ref, talus_test::verdict(curve_error / first_ref <= 1e-3));
   std::printf("second peak below the first by %.0f%% (reference %.0f%%): %s\n",

@@ -39,7 +39,8 @@ double closure_of(const talus::JointProperties& j, double sigma)
 /// Closure of the plate at rest at density rho (m), and its normal stress.
 double settled_closure(double rho, double& sigma)
 {
-  RigidScene s("verification/continuously_yielding.prm", [&](talus::Scene& sc) { sc.density = rho; });
+  RigidScene s("verification/continuously_yielding.prm",
+               [&](talus::Scene& sc) { sc.density = rho; });
   s.solver->velocity[1][0] = 0.0; // no shear; held: the solver keeps it
   const unsigned long steps = s.run_to_ratio(1e-9, 400000);
   std::fprintf(stderr, "density %g: %lu steps to the ratio\n", rho, steps);
@@ -70,12 +71,14 @@ int main()
     const double law = j.normal_stiffness_factor * std::pow(mid, j.normal_stiffness_exponent);
     std::fprintf(stderr, "kn %.10g Pa/m, a_n sigma^e_n %.10g Pa/m, relative error %.1e\n", kn[k],
                  law, talus_test::relative_error(kn[k], law));
-    std::printf("sigma_n %.2g kPa: kn from a 1 %% step %.2g Pa/m, within 1e-4 of a_n sigma^e_n: %s\n",
-                1e-3 * sigma, kn[k], talus_test::verdict(talus_test::relative_error(kn[k], law) <= 1e-4));
+    std::printf(
+        "sigma_n %.2g kPa: kn from a 1 %% step %.2g Pa/m, within 1e-4 of a_n sigma^e_n: %s\n",
+        1e-3 * sigma, kn[k], talus_test::verdict(talus_test::relative_error(kn[k], law) <= 1e-4));
     ++k;
   }
-  std::printf("kn at 21 kPa over kn at 5.2 kPa: %.2f (4^e_n = %.2f) %s\n", kn[1] / kn[0],
-              std::pow(4.0, j.normal_stiffness_exponent),
-              talus_test::verdict(std::abs(kn[1] / kn[0] / std::pow(4.0, j.normal_stiffness_exponent) - 1.0) <
-                                  1e-3));
+  std::printf(
+      "kn at 21 kPa over kn at 5.2 kPa: %.2f (4^e_n = %.2f) %s\n", kn[1] / kn[0],
+      std::pow(4.0, j.normal_stiffness_exponent),
+      talus_test::verdict(
+          std::abs(kn[1] / kn[0] / std::pow(4.0, j.normal_stiffness_exponent) - 1.0) < 1e-3));
 }
