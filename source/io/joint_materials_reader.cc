@@ -111,6 +111,17 @@ JointProperties parse_joint_properties(ParameterFile& prm, const std::string& se
   j.maximum_stiffness = value("Maximum stiffness", j.maximum_stiffness);
   j.initial_friction_angle = value("Initial friction angle", j.initial_friction_angle);
   j.roughness = value("Roughness", j.roughness);
+  if (j.model == JointModel::coulomb_slip)
+    // A continuously yielding entry in a Coulomb-slip section: most likely
+    // a forgotten 'Model' line, which would leave the joint Coulomb.
+    for (const char* entry :
+         {"Normal stiffness factor", "Normal stiffness exponent", "Shear stiffness factor",
+          "Shear stiffness exponent", "Maximum stiffness", "Initial friction angle", "Roughness"})
+      if (lines.count(section + " / " + entry) != 0)
+        throw prm.error(entry, "applies only to a continuously yielding joint, and this one is "
+                               "Coulomb slip",
+                        "'Model = continuously yielding' (here or, for a 'Joint material N', in "
+                        "'Joint properties'), or no such entry");
   if (j.model == JointModel::continuously_yielding)
   {
     // What the model has no place for, set in this section: refused
