@@ -1,5 +1,6 @@
 #include <talus/contact/contact_set.h>
 #include <talus/contact/joint_material_rule.h>
+#include <talus/joint/continuously_yielding.h>
 
 #include <talus/contact/contact_polygon.h>
 
@@ -245,6 +246,7 @@ void ContactSet::update(const BlockModel& m, const ContactSettings& settings,
   std::swap(old_fs_, sc_fs);
   std::swap(old_us_, sc_us);
   std::swap(old_dilation_, sc_dilation);
+  std::swap(old_yield_, sc_yield);
   std::swap(old_state_, sc_state);
   std::vector<Vec3> old_position;
   std::swap(old_position, sc_position);
@@ -264,6 +266,7 @@ void ContactSet::update(const BlockModel& m, const ContactSettings& settings,
   sc_fs.clear();
   sc_us.clear();
   sc_dilation.clear();
+  sc_yield.clear();
   sc_state.clear();
   sc_material.clear();
   sc_fresh.clear();
@@ -298,6 +301,9 @@ void ContactSet::update(const BlockModel& m, const ContactSettings& settings,
             sc_us.push_back(old_us_[3 * o + d]);
           if (settings.dilation)
             sc_dilation.push_back(old_dilation_[o]);
+          if (settings.yielding)
+            for (unsigned int k = 0; k < yield_state_size; ++k)
+              sc_yield.push_back(old_yield_[yield_state_size * o + k]);
           sc_state.push_back(old_state_[o]);
           sc_material.push_back(material[c]);
           sc_fresh.push_back(0);
@@ -369,6 +375,21 @@ void ContactSet::update(const BlockModel& m, const ContactSettings& settings,
         }
         if (settings.dilation)
           sc_dilation[i] = old_dilation_[match];
+        if (settings.yielding)
+        {
+          // The plastic shear and reversal ratio go with the shear; the
+          // loading direction turns with the plane as the force does.
+          const double* y = &old_yield_[yield_state_size * match];
+          double* to = &sc_yield[yield_state_size * i];
+          to[plastic_shear_displacement] = y[plastic_shear_displacement];
+          to[reversal_ratio] = y[reversal_ratio];
+          Vec3 dir =
+              turn * Vec3(y[loading_direction], y[loading_direction + 1], y[loading_direction + 2]);
+          dir -= n * n.dot(dir);
+          const double length = dir.norm();
+          for (int d = 0; d < 3; ++d)
+            to[loading_direction + d] = length > 0.0 ? dir[d] / length : 0.0;
+        }
         sc_state[i] = old_state_[match];
       }
     }
@@ -693,7 +714,17 @@ void ContactSet::build_subcontacts(unsigned int c, const BlockModel& m,
     // The normal offset holds the closure that carries the initial stress
     // (geometric re-initialisation of un keeps it), later also dilation.
     if (settings.dilation)
-      sc_dilation.push_back(fn > 0.0 ? fn / (settings.kn[material[c]] * seed.area) : 0.0);
+    {
+      const JointProperties* joint =
+          settings.joints != nullptr ? &(*settings.joints)[material[c]] : nullptr;
+      if (joint != nullptr && joint->model == JointModel::continuously_yielding)
+        sc_dilation.push_back(fn > 0.0 ? NormalStressLaw::of(*joint).closure(fn / seed.area) : 0.0);
+      else
+        sc_dilation.push_back(fn > 0.0 ? fn / (settings.kn[material[c]] * seed.area) : 0.0);
+    }
+    if (settings.yielding)
+      for (unsigned int k = 0; k < yield_state_size; ++k)
+        sc_yield.push_back(0.0);
     sc_state.push_back(0);
     sc_material.push_back(material[c]);
     sc_fresh.push_back(1);

@@ -5,6 +5,7 @@
 #include <talus/io/checkpoint.h>
 #include <talus/io/file_output.h>
 #include <talus/io/history_file.h>
+#include <talus/joint/continuously_yielding.h>
 #include <talus/scene/scene.h>
 #include <talus/model/block_model.h>
 #include <talus/solver/damper.h>
@@ -441,6 +442,7 @@ void ContactSet::save_state(CheckpointWriter& out) const
   out.put(sc_fs);
   out.put(sc_dilation);
   out.put(sc_us);
+  out.put(sc_yield);
   out.put(sc_state);
   out.put(sc_material);
   out.put(sc_fresh);
@@ -482,6 +484,9 @@ void ContactSet::load_state(CheckpointReader& in, unsigned int n_blocks)
   if (!sc_dilation.empty() && sc_dilation.size() != n)
     in.mismatch("sub-contact offsets", sc_dilation.size(), n);
   in.get(sc_us, 3 * n, "sub-contact shear displacement components");
+  in.get(sc_yield);
+  if (!sc_yield.empty() && sc_yield.size() != yield_state_size * n)
+    in.mismatch("sub-contact yield states", sc_yield.size(), yield_state_size * n);
   in.get(sc_state, n, "sub-contacts");
   in.get(sc_material, n, "sub-contacts");
   in.get(sc_fresh, n, "sub-contacts");

@@ -1,6 +1,7 @@
 #include <talus/contact/contact_origin.h>
 #include <talus/io/contact_vtu_writer.h>
 #include <talus/io/file_output.h>
+#include <talus/joint/continuously_yielding.h>
 #include <talus/solver/water_loads.h>
 
 #include <algorithm>
@@ -87,6 +88,10 @@ void write_contacts_vtu(const std::string& path, const ContactSet& cs, const Blo
               { return 1.0 / cs.sc_area[i] * cs.sc_fs[3 * i + d]; });
         reals(out, "shear_displacement", 3,
               [&](std::size_t i, unsigned int d) { return cs.sc_us[3 * i + d]; });
+        if (!cs.sc_yield.empty()) // continuously yielding joints: u_p, m
+          reals(out, "plastic_shear_displacement", 1,
+                [&](std::size_t i, unsigned int)
+                { return cs.sc_yield[yield_state_size * i + plastic_shear_displacement]; });
         reals(out, "area", 1, [&](std::size_t i, unsigned int) { return cs.sc_area[i]; });
         integers(out, "state", [&](std::size_t i) { return cs.sc_state[i]; });
         // Numbered from 1 in the order of ContactType.

@@ -12,6 +12,16 @@ namespace
 namespace P = dealii::Patterns;
 
 const std::string stiffness_allowed = "a number > 0 and at most 1e16 (Pa/m)";
+const std::string normal_factor_allowed = "a number >= 0 (Pa^(1-e_n)/m; 0: kn constant)";
+const std::string normal_exponent_allowed = "a number from 0 to less than 1";
+const std::string shear_factor_allowed = "a number >= 0 (Pa^(1-e_s)/m; 0: ks constant)";
+const std::string shear_exponent_allowed = "a number from 0 to 1";
+const std::string maximum_stiffness_allowed =
+    "with a stiffness factor, a number from the larger of 'Normal stiffness' and 'Shear "
+    "stiffness' to 1e16 (Pa/m)";
+const std::string initial_friction_allowed =
+    "a number from the 'Friction angle' to less than 90 (degrees)";
+const std::string roughness_allowed = "a number > 0 (m) for a continuously yielding joint";
 
 std::string material_names(const Scene& scene)
 {
@@ -24,6 +34,10 @@ std::string material_names(const Scene& scene)
 
 void declare_joint_properties(ParameterFile& prm)
 {
+  prm.declare("Model", "coulomb slip", P::Selection("coulomb slip|continuously yielding"),
+              "coulomb slip or continuously yielding",
+              "Joint constitutive model: Coulomb slip (eqs. 24-43) or the continuously yielding "
+              "model of Cundall and Lemos (1990).");
   prm.declare("Normal stiffness", "1e10", P::Double(), stiffness_allowed, "kn (Pa/m).");
   prm.declare("Shear stiffness", "1e10", P::Double(), stiffness_allowed, "ks (Pa/m).");
   prm.declare("Friction angle", "30", P::Double(0.0, 89.999),
@@ -35,6 +49,26 @@ void declare_joint_properties(ParameterFile& prm)
               "a number from 0 to less than 90 (degrees)", "psi (degrees), active while slipping.");
   prm.declare("Dilation limit", "0", P::Double(0.0), "a number >= 0 (m; 0: no limit)",
               "Shear displacement beyond which dilation stops (m).");
+  // Continuously yielding only.
+  prm.declare("Normal stiffness factor", "0", P::Double(0.0), normal_factor_allowed,
+              "Continuously yielding: a_n of kn = a_n sigma_n^e_n (Pa^(1-e_n)/m; 0: kn is "
+              "the 'Normal stiffness'), never below the 'Normal stiffness'.");
+  prm.declare("Normal stiffness exponent", "0", P::Double(0.0, 0.999), normal_exponent_allowed,
+              "Continuously yielding: e_n of kn = a_n sigma_n^e_n.");
+  prm.declare("Shear stiffness factor", "0", P::Double(0.0), shear_factor_allowed,
+              "Continuously yielding: a_s of ks = a_s sigma_n^e_s (Pa^(1-e_s)/m; 0: ks is the "
+              "'Shear stiffness'), never below the 'Shear stiffness'.");
+  prm.declare("Shear stiffness exponent", "0", P::Double(0.0, 1.0), shear_exponent_allowed,
+              "Continuously yielding: e_s of ks = a_s sigma_n^e_s.");
+  prm.declare("Maximum stiffness", "0", P::Double(0.0), maximum_stiffness_allowed,
+              "Continuously yielding with a stiffness factor: the largest kn and ks (Pa/m), "
+              "which the time step takes.");
+  prm.declare("Initial friction angle", "30", P::Double(0.0, 89.999), initial_friction_allowed,
+              "Continuously yielding: phi_i (degrees), the friction angle of the bounding "
+              "strength before any plastic shear; it decays to the 'Friction angle'.");
+  prm.declare("Roughness", "0", P::Double(0.0), roughness_allowed,
+              "Continuously yielding: R (m), the plastic shear displacement over which "
+              "(phi_m - phi) falls by the factor e.");
 }
 
 JointProperties parse_joint_properties(ParameterFile& prm, const std::string& section,
@@ -65,6 +99,61 @@ JointProperties parse_joint_properties(ParameterFile& prm, const std::string& se
   j.tensile_strength = value("Tensile strength", j.tensile_strength);
   j.dilation_angle = value("Dilation angle", j.dilation_angle);
   j.dilation_limit = value("Dilation limit", j.dilation_limit);
+
+  const bool model_set = inherit == nullptr || lines.count(section + " / Model") != 0;
+  if (model_set)
+    j.model = prm.get("Model") == "continuously yielding" ? JointModel::continuously_yielding
+                                                          : JointModel::coulomb_slip;
+  j.normal_stiffness_factor = value("Normal stiffness factor", j.normal_stiffness_factor);
+  j.normal_stiffness_exponent = value("Normal stiffness exponent", j.normal_stiffness_exponent);
+  j.shear_stiffness_factor = value("Shear stiffness factor", j.shear_stiffness_factor);
+  j.shear_stiffness_exponent = value("Shear stiffness exponent", j.shear_stiffness_exponent);
+  j.maximum_stiffness = value("Maximum stiffness", j.maximum_stiffness);
+  j.initial_friction_angle = value("Initial friction angle", j.initial_friction_angle);
+  j.roughness = value("Roughness", j.roughness);
+  if (j.model == JointModel::coulomb_slip)
+    // A continuously yielding entry in a Coulomb-slip section: most likely
+    // a forgotten 'Model' line, which would leave the joint Coulomb.
+    for (const char* entry :
+         {"Normal stiffness factor", "Normal stiffness exponent", "Shear stiffness factor",
+          "Shear stiffness exponent", "Maximum stiffness", "Initial friction angle", "Roughness"})
+      if (lines.count(section + " / " + entry) != 0)
+        throw prm.error(entry, "applies only to a continuously yielding joint, and this one is "
+                               "Coulomb slip",
+                        "'Model = continuously yielding' (here or, for a 'Joint material N', in "
+                        "'Joint properties'), or no such entry");
+  if (j.model == JointModel::continuously_yielding)
+  {
+    // What the model has no place for, set in this section: refused
+    // rather than ignored.
+    for (const char* entry : {"Cohesion", "Tensile strength", "Dilation angle", "Dilation limit"})
+      if (lines.count(section + " / " + entry) != 0 && prm.get_double(entry) != 0.0)
+        throw prm.error(entry, "does not apply to a continuously yielding joint",
+                        "0, or 'Model = coulomb slip'");
+    j.cohesion = j.tensile_strength = j.dilation_angle = j.dilation_limit = 0.0;
+    if (!(j.roughness > 0.0))
+      throw prm.error("Roughness",
+                      "is 0: a continuously yielding joint needs the plastic shear "
+                      "displacement over which its friction decays",
+                      roughness_allowed);
+    if (!(j.initial_friction_angle >= j.friction_angle))
+      throw prm.error("Initial friction angle",
+                      "is below the 'Friction angle' (" +
+                          dealii::Utilities::to_string(j.friction_angle) +
+                          "), which the bounding strength decays to",
+                      initial_friction_allowed);
+    if (j.normal_stiffness_factor > 0.0 || j.shear_stiffness_factor > 0.0)
+    {
+      const double k_min = std::max(j.normal_stiffness, j.shear_stiffness);
+      if (!(j.maximum_stiffness >= k_min && j.maximum_stiffness <= 1e16))
+        throw prm.error("Maximum stiffness",
+                        j.maximum_stiffness == 0.0
+                            ? "is missing: a stiffness factor makes kn or ks grow with the "
+                              "normal stress, and the time step needs their bound"
+                            : "is outside its range",
+                        maximum_stiffness_allowed);
+    }
+  }
   return j;
 }
 

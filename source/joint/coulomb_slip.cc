@@ -35,12 +35,21 @@ double coulomb_slip(const JointProperties& joint, SubContactBatch& s)
 double coulomb_slip(const std::vector<JointProperties>& joints, SubContactBatch& s)
 {
   CoulombRow rows[256];
+  bool other_model[256] = {};
+  bool mixed = false; // some materials are of another model: skip their sub-contacts
   for (std::size_t k = 0; k < joints.size() && k < 256; ++k)
+  {
     rows[k] = row_of(joints[k]);
+    other_model[k] = joints[k].model != JointModel::coulomb_slip;
+    mixed |= other_model[k];
+  }
   double dissipated = 0.0;
   for (unsigned int i = 0; i < s.size; ++i)
   {
-    const CoulombRow& joint = rows[s.material != nullptr ? s.material[i] : 0];
+    const unsigned char material = s.material != nullptr ? s.material[i] : 0;
+    if (mixed && other_model[material])
+      continue;
+    const CoulombRow& joint = rows[material];
     const double tan_phi = joint.tan_phi, tan_psi = joint.tan_psi;
     const double kn = joint.kn, ks = joint.ks;
     const double area = s.area[i];

@@ -22,6 +22,9 @@ double reduced_angle(double phi_degrees, double factor)
 void reduce(JointProperties& j, double factor)
 {
   j.friction_angle = reduced_angle(j.friction_angle, factor);
+  // Continuously yielding: phi_m runs from phi_i down to phi, both reduced
+  // the same way (tan / F), so phi_i >= phi still holds.
+  j.initial_friction_angle = reduced_angle(j.initial_friction_angle, factor);
   j.dilation_angle = std::min(j.dilation_angle, j.friction_angle);
   j.cohesion /= factor;
   j.tensile_strength /= factor;

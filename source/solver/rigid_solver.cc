@@ -58,7 +58,9 @@ RigidSolver::RigidSolver(BlockModel& blocks, double density, const SolverSetting
   {
     s_.contact.kn.push_back(j.normal_stiffness);
     dilates |= j.dilation_angle != 0.0;
+    s_.contact.yielding |= j.model == JointModel::continuously_yielding;
   }
+  s_.contact.joints = s_.contact.yielding ? &joints_ : nullptr;
   // No normal offset for joints that neither dilate nor start stressed.
   s_.contact.dilation = dilates || s_.initial_stress != nullptr;
   const unsigned int nb = m_.n_blocks();
@@ -419,7 +421,7 @@ double RigidSolver::stiffest_joint() const
 {
   double k = 0.0;
   for (const JointProperties& j : joints_)
-    k = std::max({k, j.normal_stiffness, j.shear_stiffness});
+    k = std::max(k, j.stiffest());
   return k;
 }
 
@@ -562,6 +564,7 @@ void RigidSolver::contact_forces()
   batch.shear_displacement = cs.sc_us.data();
   batch.dilation = cs.sc_dilation.empty() ? nullptr : cs.sc_dilation.data();
   batch.state = cs.sc_state.data();
+  batch.yield = cs.sc_yield.empty() ? nullptr : cs.sc_yield.data();
   batch.material = cs.sc_material.data();
   friction_work_ += apply_joint_model(joints_, batch);
 
@@ -983,6 +986,11 @@ double RigidSolver::joint_energy() const
                        cs.sc_fs[3 * i + 1] * cs.sc_fs[3 * i + 1] +
                        cs.sc_fs[3 * i + 2] * cs.sc_fs[3 * i + 2];
     const JointProperties& j = joints_[cs.sc_material[i]];
+    if (j.model == JointModel::continuously_yielding)
+    {
+      e += cy_stored_energy(j, cs.sc_fn[i], fs2, a);
+      continue;
+    }
     e += 0.5 * cs.sc_fn[i] * cs.sc_fn[i] / (j.normal_stiffness * a) +
          0.5 * fs2 / (j.shear_stiffness * a);
   }

@@ -1,6 +1,7 @@
 #pragma once
 
 #include <talus/contact/common_plane.h>
+#include <talus/joint/joint_properties.h>
 #include <talus/model/block_model.h>
 #include <talus/model/initial_stress.h>
 
@@ -30,6 +31,9 @@ struct ContactSettings
   /// Whether sub-contacts keep a normal offset (sc_dilation): joints that
   /// dilate, or that start under an initial stress.
   bool dilation = false;
+  /// Whether sub-contacts keep the state of continuously yielding joints
+  /// (sc_yield): some joint material is of that model.
+  bool yielding = false;
   /// When set, new sub-contacts start with the forces of this stress field
   /// on their plane, the normal force held by a normal offset of
   /// F^n / (kn A) (kn in Pa/m): joints of a model under in-situ stress.
@@ -37,6 +41,9 @@ struct ContactSettings
   const InitialStress* initial_stress = nullptr;
   /// kn of each joint material (Pa/m), for that normal offset.
   std::vector<double> kn;
+  /// The joint materials (null: all Coulomb slip): a continuously
+  /// yielding one takes the closure of its own normal law for that offset.
+  const std::vector<JointProperties>* joints = nullptr;
   /// Which joint material a new contact takes (null: material 0 for all).
   const JointMaterialRule* materials = nullptr;
   CommonPlaneSettings common_plane;
@@ -102,6 +109,10 @@ public:
   std::vector<double> sc_dilation;
   std::vector<double> sc_us; ///< total shear displacement U^s, 3 per sub-contact, m
   std::vector<unsigned char> sc_state;
+  /// Continuously yielding joints: yield_state_size doubles per
+  /// sub-contact (plastic shear displacement, reversal ratio, loading
+  /// direction; continuously_yielding.h); empty unless needed.
+  std::vector<double> sc_yield;
   std::vector<unsigned char> sc_material; ///< its contact's joint material
   /// 1 while un was just measured from the geometry: the next force
   /// calculation must not add the last step's motion to it a second time.
@@ -130,7 +141,7 @@ private:
   unsigned int n_alive_ = 0;
   // Sub-contacts of the previous update, indexed by contact slot, for carry-over.
   std::vector<unsigned int> old_start_, old_end_;
-  std::vector<double> old_un_, old_fn_, old_fs_, old_us_, old_dilation_;
+  std::vector<double> old_un_, old_fn_, old_fs_, old_us_, old_dilation_, old_yield_;
   std::vector<unsigned char> old_state_;
   std::vector<Vec3> old_normal_;
   const std::vector<char>* is_deformable_ = nullptr;

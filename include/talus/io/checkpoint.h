@@ -37,7 +37,7 @@ struct Scene;
 
 /// 4: contacts keep their joint material; 5: stages (the loop's place,
 /// removed blocks and zones, fixed blocks, mode, joint material rules).
-constexpr std::uint32_t checkpoint_format_version = 5;
+constexpr std::uint32_t checkpoint_format_version = 6;
 
 /// FNV-1a, 64 bits: a fingerprint, not a cryptographic hash.
 std::uint64_t fnv1a(const void* data, std::size_t size,

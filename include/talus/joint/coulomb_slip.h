@@ -32,6 +32,9 @@ struct SubContactBatch
                                          ///< (dilation limit and direction)
   double* dilation = nullptr;            ///< opening from dilation so far (eq. 42), m
   unsigned char* state = nullptr;
+  /// Continuously yielding sub-contacts only: yield_state_size doubles
+  /// each (continuously_yielding.h); null when no material yields so.
+  double* yield = nullptr;
   /// Joint material of each sub-contact (an index into the list given to
   /// the model); null: all take the first.
   const unsigned char* material = nullptr;
@@ -43,7 +46,8 @@ struct SubContactBatch
 /// balance.
 double coulomb_slip(const JointProperties& joint, SubContactBatch& batch);
 /// The same with a joint material per sub-contact (batch.material), each
-/// an index into `joints` (every one Coulomb slip).
+/// an index into `joints`; sub-contacts of materials of other models are
+/// left alone.
 double coulomb_slip(const std::vector<JointProperties>& joints, SubContactBatch& batch);
 
 } // namespace talus
