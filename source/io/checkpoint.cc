@@ -17,6 +17,8 @@
 #include <filesystem>
 #include <fstream>
 #include <iterator>
+#include <map>
+#include <regex>
 #include <sstream>
 #include <unistd.h>
 
@@ -162,37 +164,110 @@ std::string checkpoint_parameter_file(const std::string& checkpoint)
   return file;
 }
 
-std::uint64_t scene_fingerprint(const Scene& scene)
+SceneFingerprint scene_fingerprint(const Scene& scene)
 {
+  SceneFingerprint f;
+  f.base = fnv1a(nullptr, 0);
+  std::map<std::string, std::uint64_t> stage_hash; // by "Stage N"
   std::istringstream lines(scene.used_parameters);
-  std::uint64_t h = fnv1a(nullptr, 0);
+  int depth = 0;
+  std::uint64_t* into = &f.base;
   for (std::string line; std::getline(lines, line);)
   {
     const std::size_t first = line.find_first_not_of(" \t");
     if (first == std::string::npos || line[first] == '#')
       continue;
     line.erase(0, first);
+    if (line.rfind("subsection ", 0) == 0)
+    {
+      // A top-level 'Stage N' and what it holds go to its own fingerprint.
+      if (depth++ == 0 && std::regex_match(line.substr(11), std::regex("Stage [0-9]+")))
+      {
+        into = &stage_hash[line.substr(11)];
+        *into = fnv1a(nullptr, 0);
+      }
+    }
+    else if (line == "end" && --depth == 0)
+    {
+      *into = fnv1a(line.data(), line.size(), *into);
+      into = &f.base;
+      continue;
+    }
     if (line.rfind("set Steps ", 0) == 0 || line.rfind("set Checkpoint interval ", 0) == 0)
       continue;
-    h = fnv1a(line.data(), line.size(), h);
+    *into = fnv1a(line.data(), line.size(), *into);
   }
-  return h;
+  for (const StageSpec& stage : scene.stages)
+    f.stages.push_back(stage_hash[stage.section]);
+  return f;
 }
+
+namespace
+{
+/// The scene fingerprints of a checkpoint's header, with the stages begun.
+struct WrittenFingerprint
+{
+  SceneFingerprint scene;
+  std::uint64_t geometry = 0, step = 0;
+  unsigned int stages_begun = 0;
+};
+
+WrittenFingerprint read_fingerprints(CheckpointReader& in)
+{
+  WrittenFingerprint w;
+  std::string parameter_file;
+  in.get(parameter_file);
+  in.get(w.scene.base);
+  in.get(w.scene.stages);
+  in.get(w.stages_begun);
+  in.get(w.geometry);
+  in.get(w.step);
+  return w;
+}
+
+/// Refuses a scene whose parameters outside the stages, or in the stages
+/// the run has begun, differ from those the checkpoint was written with.
+void compare_fingerprints(const std::string& checkpoint, const Scene& scene,
+                          const WrittenFingerprint& written)
+{
+  const SceneFingerprint now = scene_fingerprint(scene);
+  const std::string what = checkpoint + ": the parameter file " + scene.parameter_file;
+  const std::string allowed = "the parameter file the checkpoint was written with; only 'Steps', "
+                              "'Checkpoint interval', the stages the run has not begun, and "
+                              "stages added after them may change";
+  if (now.base != written.scene.base && written.scene.stages.empty())
+    throw InputError(what + " has changed since the checkpoint was written (only 'Steps' and "
+                            "'Checkpoint interval' may change); allowed: the parameter file the "
+                            "checkpoint was written with");
+  if (now.base != written.scene.base)
+    throw InputError(what + " has changed outside its stages since the checkpoint was written; "
+                            "allowed: " +
+                     allowed);
+  if (written.scene.stages.empty() != now.stages.empty())
+    throw InputError(what + (now.stages.empty() ? " has no 'Stage N', and the run had stages"
+                                                : " has 'Stage N', and the run had none") +
+                     "; allowed: " + allowed);
+  for (unsigned int k = 0; k < written.stages_begun && !now.stages.empty(); ++k)
+  {
+    if (k >= now.stages.size())
+      throw InputError(what + " has " + std::to_string(now.stages.size()) +
+                       " stages, and the run had begun " +
+                       std::to_string(written.stages_begun) + "; allowed: " + allowed);
+    if (now.stages[k] != written.scene.stages[k])
+      throw InputError(what + ": '" + scene.stages[k].section +
+                       "' has changed since the checkpoint was written, and the run had begun "
+                       "it; allowed: " +
+                       allowed);
+  }
+}
+} // namespace
 
 void check_checkpoint_scene(const std::string& checkpoint, const Scene& scene)
 {
   CheckpointReader in = read_checkpoint(checkpoint);
-  std::string parameter_file;
-  in.get(parameter_file);
-  std::uint64_t scene_hash = 0, geometry_hash = 0, step = 0;
-  in.get(scene_hash);
-  if (scene_hash != scene_fingerprint(scene))
-    throw InputError(checkpoint + ": the parameter file " + scene.parameter_file +
-                     " has changed since the checkpoint was written (only 'Steps' and "
-                     "'Checkpoint interval' may change); allowed: the parameter file the "
-                     "checkpoint was written with");
-  in.get(geometry_hash);
-  in.get(step);
+  const WrittenFingerprint written = read_fingerprints(in);
+  compare_fingerprints(checkpoint, scene, written);
+  const std::uint64_t step = written.step;
   // A staged run may take the step limits of all its stages.
   unsigned long limit = scene.stages.empty() ? scene.solver.steps : 0;
   for (const StageSpec& stage : scene.stages)
@@ -254,19 +329,13 @@ Checkpoint::~Checkpoint()
 
 unsigned long Checkpoint::check_fingerprints(CheckpointReader& in, const std::string& file) const
 {
-  std::string parameter_file;
-  in.get(parameter_file);
-  std::uint64_t scene_hash = 0, geometry_hash = 0, step = 0;
-  in.get(scene_hash);
-  in.get(geometry_hash);
-  in.get(step);
-  if (scene_hash != scene_hash_)
-    check_checkpoint_scene(file, scene_); // throws its message
-  if (geometry_hash != geometry_hash_)
+  const WrittenFingerprint written = read_fingerprints(in);
+  compare_fingerprints(file, scene_, written);
+  if (written.geometry != geometry_hash_)
     throw InputError(file + ": the model built from " + scene_.parameter_file +
                      " differs from the one the checkpoint was written for (a changed mesh "
                      "file, or another version of talus); allowed: the same model");
-  return step;
+  return written.step;
 }
 
 void Checkpoint::after_step(unsigned long step)
@@ -285,7 +354,9 @@ void Checkpoint::write(unsigned long step) const
   CheckpointWriter out;
   out.tag("talus checkpoint");
   out.put(std::filesystem::absolute(scene_.parameter_file).lexically_normal().string());
-  out.put(scene_hash_);
+  out.put(scene_hash_.base);
+  out.put(scene_hash_.stages);
+  out.put(stages_begun_ != nullptr ? *stages_begun_ : 0u);
   out.put(geometry_hash_);
   out.put(static_cast<std::uint64_t>(step));
   out.tag("counters");

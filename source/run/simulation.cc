@@ -230,7 +230,7 @@ int Simulation::run()
   ProgressLine progress(total_steps);
   // The loop's place: the stage (0-based), the step it began at, the steps
   // of the last history row and output frame.
-  unsigned int stage_index = 0, stage_begun = 0;
+  unsigned int stage_index = 0, stage_begun = 0, stages_done = 0;
   unsigned long stage_start = 0, last_row = 0, last_output = 0;
   double stage_start_time = 0.0; // s
   checkpoint.add(history);
@@ -241,6 +241,8 @@ int Simulation::run()
   checkpoint.add(last_row);
   checkpoint.add(last_output);
   checkpoint.add(stage_start_time);
+  checkpoint.add(stages_done);
+  checkpoint.set_stages_begun(&stage_begun);
   if (!restart_from_.empty())
   {
     const unsigned long step = checkpoint.restore(restart_from_);
@@ -267,6 +269,8 @@ int Simulation::run()
   int exit_code = 0;
   for (; stage_index < stages.size(); ++stage_index)
   {
+    if (stages_done > stage_index)
+      continue; // done before the checkpoint this run restarted from
     const StageSpec& stage = stages[stage_index];
     if (stage_begun <= stage_index)
     {
@@ -327,6 +331,13 @@ int Simulation::run()
       cycle->print_end();
     if (static_stage_end(stage, end, staged) != 0)
       exit_code = exit_not_in_equilibrium;
+    if (staged)
+    {
+      // A checkpoint at each stage's end: a restart from it begins the next
+      // stage, or one appended to the file after the run has finished.
+      stages_done = stage_index + 1;
+      checkpoint.write(cycle->steps_done());
+    }
   }
   if (staged)
     cycle->print_end();

@@ -36,8 +36,10 @@ class RigidSolver;
 struct Scene;
 
 /// 4: contacts keep their joint material; 5: stages (the loop's place,
-/// removed blocks and zones, fixed blocks, mode, joint material rules).
-constexpr std::uint32_t checkpoint_format_version = 6;
+/// removed blocks and zones, fixed blocks, mode, joint material rules);
+/// 6: continuously yielding joints' state; 7: a fingerprint per stage and
+/// the stages begun (a stage may be appended to a finished run).
+constexpr std::uint32_t checkpoint_format_version = 7;
 
 /// FNV-1a, 64 bits: a fingerprint, not a cryptographic hash.
 std::uint64_t fnv1a(const void* data, std::size_t size,
@@ -68,14 +70,22 @@ int stop_signal_received();
 /// checkpoint of this format, or is truncated or corrupt.
 std::string checkpoint_parameter_file(const std::string& checkpoint);
 
-/// Fingerprint of the scene's parameters, leaving out the entries that do
-/// not change the state at a step: the step limit (a run may be extended)
-/// and the checkpoint interval.
-std::uint64_t scene_fingerprint(const Scene& scene);
+/// Fingerprints of the scene's parameters, leaving out the entries that do
+/// not change the state at a step: the step limits (a run may be extended)
+/// and the checkpoint interval. `base` is of everything but the 'Stage N';
+/// `stages` has one per stage, in the order they run, so that the stages
+/// a run has not begun may change, and stages may be appended.
+struct SceneFingerprint
+{
+  std::uint64_t base = 0;
+  std::vector<std::uint64_t> stages;
+};
+SceneFingerprint scene_fingerprint(const Scene& scene);
 
 /// Refuses (InputError) to continue from `checkpoint` with a scene whose
-/// parameters differ from the ones it was written with. Called before
-/// anything is written, so that a refused restart changes no file.
+/// parameters differ from the ones it was written with, outside the stages
+/// the run had not begun. Called before anything is written, so that a
+/// refused restart changes no file.
 void check_checkpoint_scene(const std::string& checkpoint, const Scene& scene);
 
 /// For talus --restart: check_checkpoint_scene (with 'Steps' not below the
@@ -112,6 +122,9 @@ public:
   void add(unsigned long& counter) { long_counters_.push_back(&counter); }
   /// A real number of the run loop (the model time a stage began at, s).
   void add(double& value) { real_values_.push_back(&value); }
+  /// The run loop's count of stages begun: the stages whose parameters a
+  /// restart must find unchanged.
+  void set_stages_begun(const unsigned int* begun) { stages_begun_ = begun; }
 
   /// Where checkpoints go: `<Output directory>/<Base name>_checkpoint.bin`.
   const std::string& path() const { return path_; }
@@ -135,7 +148,9 @@ private:
   const Scene& scene_;
   RigidSolver* rigid_;
   DeformableSolver* zones_;
-  std::uint64_t scene_hash_, geometry_hash_;
+  SceneFingerprint scene_hash_;
+  std::uint64_t geometry_hash_;
+  const unsigned int* stages_begun_ = nullptr;
   unsigned long interval_;
   long signal_test_step_ = -1;
   std::string path_;
