@@ -48,6 +48,8 @@ public:
   long get_integer(const std::string& name) const;
   bool get_bool(const std::string& name) const;
   Vec3 get_vec3(const std::string& name) const;
+  /// Whether the file sets entry `name` of the current subsection.
+  bool is_set(const std::string& name) const { return line_of(path(), name) > 0; }
   /// A list of numbers separated by commas (the pattern has checked them).
   std::vector<double> get_doubles(const std::string& name) const;
 

@@ -1122,6 +1122,9 @@ Scene read_scene(const std::string& filename, bool prepare_output)
         declare_boundary(prm, b);
       for (const std::string& l : stage_subsections(prm, name, "Load"))
         declare_load(prm, l);
+      const std::vector<std::string> inside = prm.sections_in(name);
+      if (std::find(inside.begin(), inside.end(), "Water") != inside.end())
+        declare_water(prm);
       prm.leave();
     }
     else
@@ -1182,6 +1185,21 @@ Scene read_scene(const std::string& filename, bool prepare_output)
     }
   parse_deformable(prm, scene);
   parse_water(prm, scene);
+  {
+    std::size_t k = 0;
+    for (const auto& [kind, name] : numbered_sections)
+      if (kind == "Stage")
+      {
+        StageSpec& stage = scene.stages[k++];
+        const std::vector<std::string> inside = prm.sections_in(name);
+        if (std::find(inside.begin(), inside.end(), "Water") == inside.end())
+          continue;
+        prm.enter(name);
+        parse_water(prm, scene, stage.water);
+        prm.leave();
+        stage.changes_water = true;
+      }
+  }
   for (const auto& [kind, name] : numbered_sections)
     if (kind == "Rock material")
       parse_rock_material(prm, name, scene);

@@ -94,16 +94,19 @@ void declare_water(ParameterFile& prm)
 
 void parse_water(ParameterFile& prm, Scene& scene)
 {
+  parse_water(prm, scene, scene.solver.water);
+}
+
+void parse_water(ParameterFile& prm, const Scene& scene, WaterSpec& w)
+{
   prm.enter("Water");
-  WaterSpec& w = scene.solver.water;
+  w = WaterSpec();
   w.density = prm.get_double("Density");
   if (!(w.density > 0.0 && w.density <= 1e5))
     throw prm.error("Density", "must be positive and at most 1e5",
                     "a number > 0 and at most 1e5 (kg/m^3)");
   const std::string surface = prm.get("Phreatic surface");
-  const std::map<std::string, unsigned int> lines = prm.lines();
-  const auto set = [&](const char* entry)
-  { return lines.count(std::string("Water / ") + entry) > 0; };
+  const auto set = [&](const char* entry) { return prm.is_set(entry); };
   if (surface != "none" && !(scene.solver.gravity.norm() > 0.0))
     throw prm.error("Phreatic surface", "gives water without weight: 'Gravity' of 'Solver' is zero",
                     "none, or a gravity that is not zero");

@@ -132,6 +132,11 @@ void BlockCycle::restore_stage(const StageSpec& stage)
   change_rock_materials(stage, false);
   if (stage.changes_boundaries)
     apply_boundaries(stage.boundaries);
+  RigidSolver& solver = *system_.solver;
+  if (stage.changes_water)
+    solver.set_water(stage.water);
+  else if (solver.water().active())
+    solver.set_water(solver.water()); // on the blocks the checkpoint has moving
 }
 
 void BlockCycle::step()
@@ -207,7 +212,7 @@ void BlockCycle::write_frame(bool diverged)
   std::snprintf(name, sizeof name, "_contacts_%05u.vtu", frame_ - 1);
   const std::string contacts_vtu = scene_.output.base_name + name;
   write_contacts_vtu(scene_.output.directory + "/" + contacts_vtu, solver.contacts(), model_,
-                     joint_numbers_, scene_.output.vtu_encoding, &scene_.solver.water,
+                     joint_numbers_, scene_.output.vtu_encoding, &solver.water(),
                      scene_.solver.gravity.norm());
   contact_series_.add(solver.time(), contacts_vtu);
   if (system_.zones)
@@ -270,6 +275,13 @@ void BlockCycle::begin_stage(const StageSpec& stage)
   }
   if (fixed + freed > 0)
     std::printf("  Fixed:      %u blocks held, %u let go\n", fixed, freed);
+  if (stage.changes_water)
+  {
+    solver.set_water(stage.water);
+    std::printf("  Water:      as '%s / Water' gives it\n", stage.section.c_str());
+  }
+  else if (solver.water().active() && fixed + freed + gone.size() > 0)
+    solver.set_water(solver.water()); // on the blocks that move now
   for (const JointMaterialChange& c : stage.joint_materials)
     solver.change_joint_material(c.origin, c.material);
   if (!stage.joint_materials.empty())
@@ -324,7 +336,7 @@ void BlockCycle::print_end()
   const SolverReport r = solver.report();
   std::printf("Steps:        %lu (time %.6g s)\n", r.steps, r.time);
   std::printf("Contacts:     %u with %u sub-contacts\n", r.contacts, r.subcontacts);
-  if (scene_.solver.water.active())
+  if (solver.water().active())
     std::printf("%s\n", solver.water_summary().c_str());
   if (scene_.joint_material_names.size() > 1)
   {

@@ -223,6 +223,11 @@ void BodyCycle::begin_stage(const StageSpec& stage)
                 report_.hexes > 0 ? 0.5 * volume : volume);
   }
   change_rock_materials(stage, true);
+  if (stage.changes_water)
+  {
+    solver_->set_water(stage.water);
+    std::printf("  Water:      as '%s / Water' gives it\n", stage.section.c_str());
+  }
   if (stage.dynamic != solver_->dynamic())
   {
     solver_->set_dynamic(stage.dynamic);
@@ -269,6 +274,8 @@ void BodyCycle::change_rock_materials(const StageSpec& stage, bool account)
 void BodyCycle::restore_stage(const StageSpec& stage)
 {
   change_rock_materials(stage, false);
+  if (stage.changes_water)
+    solver_->set_water(stage.water);
   if (stage.changes_boundaries)
     solver_->set_boundaries(stage.boundaries.gridpoint_conditions,
                             stage.boundaries.face_pressures);
@@ -285,9 +292,9 @@ void BodyCycle::print_end()
 {
   const DeformableSolver& solver = *solver_;
   std::printf("Steps:        %lu (time %.6g s)\n", solver.steps_done(), solver.time());
-  if (scene_.solver.water.active())
+  if (solver.water().active())
     std::printf("%s\n",
-                water_summary(scene_.solver.water, solver.water_faces_below(), solver.water_force())
+                water_summary(solver.water(), solver.water_faces_below(), solver.water_force())
                     .c_str());
   std::printf("Unbalanced force ratio: %.3g\n", solver.unbalanced_ratio());
   std::printf("Largest displacement: %.6g m\n", largest_gridpoint_displacement(solver));

@@ -282,20 +282,7 @@ DeformableSolver::DeformableSolver(const TetMesh& mesh, std::vector<ZoneMaterial
       v[i] = held_velocity_[i];
   }
   select_pressed_faces();
-  if (s_.water.active())
-  {
-    // Water on every boundary face, in contact or not (water_loads.h).
-    for (unsigned int f = 0; f < mesh_.n_faces(); ++f)
-    {
-      water_faces_.push_back(mesh_.face_gridpoint[f]);
-      water_weight_.push_back(in_hex[mesh_.face_zone[f]] ? 0.5 : 1.0);
-    }
-    for (const auto& face : mesh_.second_overlay_face_gridpoint)
-    {
-      water_faces_.push_back(face);
-      water_weight_.push_back(0.5);
-    }
-  }
+  select_water_faces();
   force_size_.assign(3 * ng, 0.0);
   if (!pressed_faces_.empty() || !water_faces_.empty())
     pressure_force_.assign(3 * ng, 0.0);
@@ -410,6 +397,38 @@ void DeformableSolver::select_pressed_faces()
     press(mesh_.face_gridpoint[f], in_hex[mesh_.face_zone[f]] ? 0.5 : 1.0);
   for (const auto& face : mesh_.second_overlay_face_gridpoint)
     press(face, 0.5);
+}
+
+void DeformableSolver::select_water_faces()
+{
+  water_faces_.clear();
+  water_weight_.clear();
+  if (!s_.water.active())
+    return;
+  // Water on every boundary face, in contact or not (water_loads.h).
+  const std::vector<char> in_hex = zones_in_hexes(mesh_);
+  for (unsigned int f = 0; f < mesh_.n_faces(); ++f)
+  {
+    water_faces_.push_back(mesh_.face_gridpoint[f]);
+    water_weight_.push_back(in_hex[mesh_.face_zone[f]] ? 0.5 : 1.0);
+  }
+  for (const auto& face : mesh_.second_overlay_face_gridpoint)
+  {
+    water_faces_.push_back(face);
+    water_weight_.push_back(0.5);
+  }
+}
+
+void DeformableSolver::set_water(const WaterSpec& water)
+{
+  s_.water = water;
+  select_water_faces();
+  water_faces_below_ = 0;
+  water_force_ = Vec3::Zero();
+  if (pressed_faces_.empty() && water_faces_.empty())
+    pressure_force_.clear();
+  else
+    pressure_force_.assign(3 * mesh_.n_gridpoints(), 0.0);
 }
 
 void DeformableSolver::set_boundaries(std::vector<GridpointCondition> conditions,

@@ -180,13 +180,7 @@ RigidSolver::RigidSolver(BlockModel& blocks, double density, const SolverSetting
     }
   initial_stored_ += joint_energy();
   kinetic_whole_step_ = initial_stored_ - joint_energy();
-  if (s_.water.active())
-  {
-    std::vector<char> wet(nb, 0); // fixed blocks need no water; zones take theirs
-    for (unsigned int b = 0; b < nb; ++b)
-      wet[b] = !fixed[b] && !is_deformable_[b];
-    water_loads_ = WaterLoads(s_.water, s_.gravity.norm(), wet);
-  }
+  build_water_loads();
   energy_floor_ = 1e-9 * weight_size + 1e-6; // J
 }
 
@@ -370,6 +364,26 @@ void RigidSolver::change_rock(const std::vector<char>& blocks, double density,
   set_masses_and_step();
   if (account)
     initial_stored_ -= energy_account().error() - error_before;
+}
+
+void RigidSolver::set_water(const WaterSpec& water)
+{
+  s_.water = water;
+  build_water_loads();
+  if (zones_ != nullptr)
+    zones_->set_water(water);
+}
+
+void RigidSolver::build_water_loads()
+{
+  water_loads_ = WaterLoads();
+  if (s_.water.active())
+  {
+    std::vector<char> wet(m_.n_blocks(), 0); // fixed blocks need no water; zones take theirs
+    for (unsigned int b = 0; b < m_.n_blocks(); ++b)
+      wet[b] = !fixed[b] && !is_deformable_[b] && !removed_[b];
+    water_loads_ = WaterLoads(s_.water, s_.gravity.norm(), wet);
+  }
 }
 
 void RigidSolver::reset_displacements()

@@ -111,6 +111,10 @@ struct StageSpec
   BoundarySet boundaries;
   /// What changed, for the summary ("Boundary 3 added", ...).
   std::vector<std::string> boundary_changes;
+  /// Its 'Water' subsection: the water from the stage's start (in place of
+  /// that of the file or of an earlier stage).
+  bool changes_water = false;
+  WaterSpec water;
 };
 
 /// Which blocks are deformable and what they are made of.

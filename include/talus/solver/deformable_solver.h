@@ -221,6 +221,11 @@ public:
   void set_boundaries(std::vector<GridpointCondition> conditions,
                       std::vector<FacePressure> pressures);
 
+  /// Stages: this water from now on (the phreatic surface's hydrostatic
+  /// pressure on every boundary face below it).
+  void set_water(const WaterSpec& water);
+  const WaterSpec& water() const { return s_.water; }
+
   /// Holds every component of gridpoint g at velocity `v` (m/s) from now on.
   void hold_gridpoint(unsigned int g, const Vec3& v);
 
@@ -302,6 +307,8 @@ private:
   void set_gravity_and_loads();
   /// held_, held_velocity_, held_until_ and gravity_force_ from conditions_.
   void apply_conditions();
+  /// The faces the water may load (every boundary face), if there is water.
+  void select_water_faces();
   /// The loaded boundary faces from pressures_.
   void select_pressed_faces();
   /// remove_zones' change of the model (null materials, batches, masses,

@@ -147,6 +147,10 @@ public:
   void change_rock(const std::vector<char>& blocks, double density, const ZoneMaterial& material,
                    bool account = true);
 
+  /// Stages: this water from now on (rigid blocks' faces and the zones).
+  void set_water(const WaterSpec& water);
+  const WaterSpec& water() const { return s_.water; }
+
   /// Stages: these loads ('Load N') from now on, in place of those before.
   /// A velocity prescribed anew is set at once (the kinetic energy of the
   /// change is the boundaries' work); one let go keeps its velocity.
@@ -303,6 +307,8 @@ private:
   /// Inertial masses (density scaling), the time step (eqs. 87-88) and
   /// the damper, from the settings and the blocks that remain.
   void set_masses_and_step();
+  /// water_loads_ from s_.water, on the rigid blocks that move.
+  void build_water_loads();
   std::vector<char> removed_;             ///< per block: excavated by a stage
   std::vector<double> true_inertia_;      ///< kg m^2, isotropic, before scaling
   std::vector<Vec3> true_principal_;      ///< kg m^2, before scaling (principal inertia)
