@@ -237,6 +237,15 @@ void declare_group(ParameterFile& prm, const std::string& section)
   prm.declare("Blocks", "", P::List(P::Integer(0, 2000000000)), "block numbers separated by commas",
               "These blocks (numbers as built, as the blocks' VTU shows them) join the group "
               "instead of those of the region.");
+  prm.declare("Side of joint", "", P::Anything(), "'Joint N' or 'Joint set N' of the file, or empty",
+              "Only the blocks on one side of this joint's plane join (with a 'Shape' set: "
+              "those in the region and on that side): a fault's hanging wall or footwall.");
+  prm.declare("Joint index", "0", P::Integer(-1000000000, 1000000000), "an integer",
+              "A joint set's joint: 0 the one through its 'Origin', k the one k spacings along "
+              "its normal (negative: the other way).");
+  prm.declare("Side", "above", P::Selection("above|below"), "above or below",
+              "above: the side the joint's normal points to (up; for a vertical joint, its dip "
+              "direction); below: the other.");
   prm.leave();
 }
 
@@ -244,11 +253,76 @@ GroupSpec parse_group(ParameterFile& prm, const std::string& section, const Scen
 {
   prm.enter(section);
   std::string description;
-  GroupSpec g{prm.get("Name"), parse_region(prm, scene.brick, description), {}, section};
+  GroupSpec g;
+  g.name = prm.get("Name");
+  g.region = parse_region(prm, scene.brick, description);
+  g.section = section;
   for (const std::string& b : dealii::Utilities::split_string_list(prm.get("Blocks")))
     g.blocks.push_back(static_cast<unsigned int>(std::stoul(b)));
+  g.side_of = prm.get("Side of joint");
+  g.joint_index = prm.get_integer("Joint index");
+  g.above = prm.get("Side") == "above";
+  if (!g.side_of.empty() && !g.blocks.empty())
+    throw prm.error("Side of joint", "is given with 'Blocks', which names the blocks itself",
+                    "either 'Blocks' or a region and 'Side of joint'");
+  // Without a shape of its own, the side of the joint is the whole region.
+  if (!g.side_of.empty() && !prm.is_set("Shape") && !prm.is_set("Corner min") &&
+      !prm.is_set("Corner max"))
+    g.region = ConvexRegion::box(scene.brick);
   prm.leave();
   return g;
+}
+
+/// The groups' 'Side of joint', once the joints are read: the half-space
+/// on that side of the joint's plane cuts the group's region.
+void apply_joint_sides(ParameterFile& prm, Scene& scene)
+{
+  for (GroupSpec& g : scene.groups)
+  {
+    if (g.side_of.empty())
+      continue;
+    prm.enter(g.section);
+    const std::string allowed = "'Joint N' or 'Joint set N', a subsection of the file";
+    Vec3 point, normal;
+    const auto set =
+        std::find(scene.joint_set_sections.begin(), scene.joint_set_sections.end(), g.side_of);
+    const auto joint =
+        std::find(scene.joint_plane_sections.begin(), scene.joint_plane_sections.end(), g.side_of);
+    if (set != scene.joint_set_sections.end())
+    {
+      const JointSetSpec& j = scene.joint_sets[std::size_t(set - scene.joint_set_sections.begin())];
+      normal = normal_from_dip(j.dip, j.dip_direction);
+      point = j.origin + double(g.joint_index) * j.spacing * normal;
+    }
+    else if (joint != scene.joint_plane_sections.end())
+    {
+      const JointPlaneSpec& j =
+          scene.joint_planes[std::size_t(joint - scene.joint_plane_sections.begin())];
+      normal = normal_from_dip(j.dip, j.dip_direction);
+      point = j.origin;
+      if (g.joint_index != 0)
+        throw prm.error("Joint index", "is for a joint set, and '" + g.side_of + "' is one joint",
+                        "0 with a 'Joint N'");
+    }
+    else
+      throw prm.error("Side of joint", "names '" + g.side_of + "', which is no subsection of the file",
+                      allowed);
+    const ConvexRegion side =
+        ConvexRegion::half_space(point, g.above ? normal : Vec3(-normal), scene.brick);
+    if (!(side.volume > 0.0))
+      throw prm.error("Side of joint", "leaves no part of the brick on the '" +
+                                           std::string(g.above ? "above" : "below") + "' side",
+                      "a joint whose plane crosses the brick, and the side that holds rock");
+    g.region.planes.insert(g.region.planes.end(), side.planes.begin(), side.planes.end());
+    for (int d = 0; d < 3; ++d)
+    {
+      g.region.bounds.lo[d] = std::max(g.region.bounds.lo[d], side.bounds.lo[d]);
+      g.region.bounds.hi[d] = std::min(g.region.bounds.hi[d], side.bounds.hi[d]);
+    }
+    g.region.is_box = false;
+    g.region.volume = 0.0; // not known in closed form; groups do not need it
+    prm.leave();
+  }
 }
 
 } // namespace
@@ -1159,6 +1233,7 @@ Scene read_scene(const std::string& filename, bool prepare_output)
     else if (kind == "Group")
       scene.groups.push_back(parse_group(prm, name, scene));
   }
+  apply_joint_sides(prm, scene);
   parse_solver(prm, scene);
   BoundarySet boundaries; // the file's
   for (const auto& [kind, name] : numbered_sections)

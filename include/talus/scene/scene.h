@@ -35,6 +35,12 @@ struct GroupSpec
   ConvexRegion region;
   std::vector<unsigned int> blocks;
   std::string section; ///< "Group N"
+  /// 'Side of joint': "Joint N" or "Joint set N" (empty: none). The
+  /// region then keeps only the side of that joint's plane (of its joint
+  /// `joint_index` for a set) that `above` says; read_scene makes it so.
+  std::string side_of;
+  long joint_index = 0;
+  bool above = true;
 };
 
 /// A 'Group contact N': contacts between blocks of groups `a` and `b` that
