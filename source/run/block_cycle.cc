@@ -75,6 +75,8 @@ BlockCycle::BlockCycle(Scene& scene, BlockModel& model, const std::string& prefi
     zone_writer_ = std::make_unique<ZoneWriter>(system_.mesh, scene.output.vtu_encoding);
   points_ = std::make_unique<PointHistory>(system_.mesh, zones ? scene.solver.history_points
                                                                : std::vector<Vec3>{});
+  points_->water = has_water(scene);
+  points_->gravity = scene.solver.gravity.norm();
   if (!zones && !scene.solver.history_points.empty())
     std::printf("Warning: 'History points' follow deformable blocks; this scene has none\n");
   // 'Joint set N' and 'Joint N' as N, for the contacts' joint_set and joint.
@@ -162,8 +164,12 @@ std::vector<std::string> BlockCycle::history_columns() const
   for (const std::string& c : EnergyAccount::column_names())
     columns.push_back(c);
   for (unsigned int b : scene_.solver.history_blocks)
+  {
     for (const char* q : {"ux", "uy", "uz", "vx", "vy", "vz"})
       columns.push_back("block " + std::to_string(b) + " " + q + (q[0] == 'u' ? " (m)" : " (m/s)"));
+    if (has_water(scene_))
+      columns.push_back("block " + std::to_string(b) + " pore pressure (Pa)");
+  }
   points_->add_columns(columns);
   return columns;
 }
@@ -174,10 +180,16 @@ std::vector<double> BlockCycle::history_row()
   const EnergyAccount e = solver.energy_account();
   std::vector<double> row{double(solver.steps_done()), solver.time(), solver.unbalanced_ratio()};
   e.append_to(row);
+  const bool water = has_water(scene_);
   for (unsigned int b : scene_.solver.history_blocks)
+  {
     for (const Vec3* q : {&solver.displacement[b], &solver.velocity[b]})
       for (int d = 0; d < 3; ++d)
         row.push_back((*q)[d]);
+    // At the block's centroid now: the water it stands in.
+    if (water)
+      row.push_back(pore_pressure(solver.water(), scene_.solver.gravity.norm(), model_.centroid[b]));
+  }
   if (system_.zones)
     points_->add_values(row, *system_.zones);
   return row;

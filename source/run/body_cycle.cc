@@ -111,6 +111,8 @@ BodyCycle::BodyCycle(Scene& scene, BlockModel& model, const std::string& prefix)
                                                      : solver_->stable_time_step({}, 0.0));
   writer_ = std::make_unique<ZoneWriter>(mesh_, scene.output.vtu_encoding);
   points_ = std::make_unique<PointHistory>(mesh_, scene.solver.history_points);
+  points_->water = has_water(scene);
+  points_->gravity = scene.solver.gravity.norm();
   for (const GridpointCondition& c : scene.gridpoint_conditions)
     if (std::isfinite(c.velocity_until))
       moving_until_ = std::max(moving_until_, c.velocity_until);

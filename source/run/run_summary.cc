@@ -225,6 +225,8 @@ void PointHistory::add_columns(std::vector<std::string>& columns) const
     for (const char* q : {"ux (m)", "uy (m)", "uz (m)", "vx (m/s)", "vy (m/s)", "vz (m/s)",
                           "sxx (Pa)", "syy (Pa)", "szz (Pa)", "sxy (Pa)", "syz (Pa)", "szx (Pa)"})
       columns.push_back(at + q);
+    if (water)
+      columns.push_back(at + "pore pressure (Pa)");
   }
 }
 
@@ -247,7 +249,28 @@ void PointHistory::add_values(std::vector<double>& row, const DeformableSolver& 
         sum += zones.stress()[6 * (p * zone[k] + q) + c];
       row.push_back(sum / p);
     }
+    if (water)
+    {
+      const std::vector<double> x = zones.positions();
+      const unsigned int g = gridpoint[k];
+      row.push_back(pore_pressure(zones.water(), gravity, Vec3(x[3 * g], x[3 * g + 1], x[3 * g + 2])));
+    }
   }
+}
+
+bool has_water(const Scene& scene)
+{
+  bool any = scene.solver.water.active();
+  for (const StageSpec& stage : scene.stages)
+    any |= stage.changes_water && stage.water.active();
+  return any;
+}
+
+double pore_pressure(const WaterSpec& water, double gravity, const Vec3& x)
+{
+  if (water.table.empty())
+    return 0.0;
+  return std::max(0.0, water.density * gravity * (water.table.height(x[0], x[1]) - x[2]));
 }
 
 } // namespace talus

@@ -3,7 +3,8 @@
 //    of kn = 1e9 Pa/m; dry it sinks W / kn (W = 25506 N); flooded over its
 //    top, (W - U) / kn with the buoyancy U = rho_w g V = 9810 N; with the
 //    surface at its middle, (W - U / 2) / (kn + rho_w g A) (its sinking
-//    deepens the water on it); drained, W / kn again (1e-6);
+//    deepens the water on it); drained, W / kn again (1e-6); and the
+//    history's pore pressure at its centroid, rho_w g (z_w - z) or 0;
 //  - a deformable cube (tests/scenes/staged_water_deformable.prm, every
 //    zone formulation) on a joint that holds, so that all is linear: the
 //    flooded stage ends where a run flooded from the start ends, and the
@@ -37,6 +38,18 @@ int main(int argc, char** argv)
                                column(last_of_stage(rows, columns, s + 1), columns,
                                       "block 1 uz (m)"),
                                expected[s], 1e-6);
+    // The history's pore pressure at the cube's centroid (z = 1.5 m + uz):
+    // rho_w g (z_w - z) below the surface, 0 above it or without water.
+    const double level[4] = {-1e9, 3.0, 1.5, -1e9};
+    for (int s = 0; s < 4; ++s)
+    {
+      const std::vector<double>& end = last_of_stage(rows, columns, s + 1);
+      const double z = 1.5 + column(end, columns, "block 1 uz (m)");
+      const double p = column(end, columns, "block 1 pore pressure (Pa)");
+      std::printf("rigid: stage %d, the history's pore pressure at the cube's centroid: %s\n",
+                  s + 1, talus_test::verdict(std::abs(p - std::max(0.0, U * (level[s] - z))) <=
+                                             1e-9 * U));
+    }
   }
   for (const auto& [element, nodal_mixed, name] :
        {std::tuple{ZoneElement::tet4, false, "tet4"}, std::tuple{ZoneElement::tet4, true, "nmd"},
@@ -62,6 +75,14 @@ int main(int argc, char** argv)
     const auto rows_flooded = read_history(
         flooded.output.directory + "/" + flooded.output.base_name + "_history.csv",
         columns_flooded);
+    {
+      // The history's pore pressure at the top face's middle, flooded.
+      const std::vector<double>& end = last_of_stage(rows, columns, 2);
+      const double z = 2 + column(end, columns, "point 0 uz (m)");
+      std::printf("  %s: the history's pore pressure at the top face, flooded: %s\n", name,
+                  talus_test::verdict(std::abs(column(end, columns, "point 0 pore pressure (Pa)") -
+                                               1000 * 9.81 * (3 - z)) <= 1e-9 * 1000 * 9.81));
+    }
     for (const auto& [point, where] :
          {std::pair{"point 0 uz (m)", "top face"}, std::pair{"point 1 uz (m)", "base"}})
     {

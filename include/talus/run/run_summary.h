@@ -57,10 +57,21 @@ void write_zone_frame(const Scene& scene, const TetMesh& mesh, const DeformableS
 struct PointHistory
 {
   std::vector<unsigned int> gridpoint, zone;
+  /// With water somewhere in the run: a pore pressure column per point
+  /// (the water's pressure at its present position, Pa).
+  bool water = false;
+  double gravity = 9.81; ///< m/s^2, its magnitude
 
   PointHistory(const TetMesh& mesh, const std::vector<Vec3>& points);
   void add_columns(std::vector<std::string>& columns) const;
   void add_values(std::vector<double>& row, const DeformableSolver& zones) const;
 };
+
+/// Whether the scene has water, from the start or from a stage.
+bool has_water(const Scene& scene);
+
+/// The pressure of `water` at `x` (Pa): rho_w g (z_w - z) below the
+/// phreatic surface, 0 above it or without one.
+double pore_pressure(const WaterSpec& water, double gravity, const Vec3& x);
 
 } // namespace talus
