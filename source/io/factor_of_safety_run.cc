@@ -129,8 +129,11 @@ int run_factor_of_safety(Scene& scene, BlockModel& model, const std::string& pre
     rows.push_back(std::move(row));
   };
   double mechanism_factor = 0.0;
+  std::string water_line; // of the last stable trial: the water the model stands in
   hooks.finished = [&](const TrialView& view, const StrengthReductionTrial& t)
   {
+    if (t.stable && scene.solver.water.active())
+      water_line = view.system.solver->water_summary();
     // Each unstable trial replaces the mechanism written before: the last
     // one, nearest the limit, stays.
     if (t.stable)
@@ -167,6 +170,8 @@ int run_factor_of_safety(Scene& scene, BlockModel& model, const std::string& pre
   }
   std::printf("Factor of safety: %.4g (between %.6g and %.6g, %zu trials)\n", r.factor(),
               r.stable_factor, r.unstable_factor, r.trials.size());
+  if (!water_line.empty())
+    std::printf("%s (the last stable trial)\n", water_line.c_str());
   std::printf(
       "Mechanism:    the last unstable trial (F = %.6g): %s%s_history.csv\n", mechanism_factor,
       scene.output.write_vtu ? (prefix + "_blocks.pvd, " + prefix + "_contacts.pvd, " +

@@ -22,6 +22,9 @@
 //   3. a = 30 deg, phi = 20 deg, c = 2000 Pa: V = 0.4 m^3, W = 10398.6 N,
 //      W sin a = 5199.3 N, W cos a tan phi = 9005.5 * 0.36397 = 3277.8 N,
 //      c A = 4000 N: F = 7277.8 / 5199.3 = 1.39975.
+//   4. a = 30 deg, phi = 35 deg, water of p = 1500 Pa in the joint ('Joint
+//      pressures'): the effective normal force is W cos a - p A = 9005.5 -
+//      3000 = 6005.5 N, and F = 6005.5 tan 35 / 5199.3 = 0.80878.
 // Each within 0.5 % (the search stops at a bracket of 0.5 % of F; its
 // middle is within 0.25 % of the limit).
 
@@ -35,7 +38,7 @@
 
 #include "../tests.h"
 
-double factor_of_safety(double slope, double phi, double cohesion)
+double factor_of_safety(double slope, double phi, double cohesion, double pressure = 0.0)
 {
   const double deg = M_PI / 180.0, a = slope * deg, g = 9.81;
   const std::string file = "factor_of_safety_01_scene.prm";
@@ -80,9 +83,13 @@ subsection Solver
   set Steps = 5000
   set Fixed groups = base
 end
+subsection Water
+  set Joint pressures = %s
+end
 )",
                   std::cos(a), std::sin(a), -std::cos(a), -std::sin(a), phi, cohesion,
-                  g * std::sin(a), -g * std::cos(a));
+                  g * std::sin(a), -g * std::cos(a),
+                  pressure > 0.0 ? ("1, " + std::to_string(pressure)).c_str() : "");
     prm << text;
   }
   talus::Scene scene = talus::read_scene(file, false);
@@ -155,4 +162,8 @@ int main()
       (2000 * A + W * std::cos(30 * deg) * std::tan(20 * deg)) / (W * std::sin(30 * deg));
   talus_test::check_within("F, a = 30, phi = 20, c = 2000 Pa", factor_of_safety(30, 20, 2000),
                            exact, 0.005);
+  const double wet = (W * std::cos(30 * deg) - 1500 * A) * std::tan(35 * deg) /
+                     (W * std::sin(30 * deg));
+  talus_test::check_within("F, a = 30, phi = 35, water of 1500 Pa in the joint",
+                           factor_of_safety(30, 35, 0, 1500), wet, 0.005);
 }
