@@ -146,11 +146,6 @@ void parse_water(ParameterFile& prm, const Scene& scene, WaterSpec& w)
   w.joint_set_pressure =
       joint_pressures(prm, "Joint set pressures", "Joint set", scene.joint_set_sections);
   w.joint_pressure = joint_pressures(prm, "Joint pressures", "Joint", scene.joint_plane_sections);
-  if (w.has_fixed_pressures() && !scene.deformable.groups.empty())
-    throw prm.error(set("Joint set pressures") ? "Joint set pressures" : "Joint pressures",
-                    "acts on the faces of rigid blocks only, and this scene has deformable blocks "
-                    "('Groups' of 'Deformable')",
-                    "no joint pressures with deformable blocks (the phreatic surface loads them)");
   prm.leave();
 }
 

@@ -85,6 +85,14 @@ TetMesh mesh_deformable_blocks(const Scene& scene, const BlockModel& model,
   }
 }
 
+bool has_joint_pressures(const Scene& scene)
+{
+  bool any = scene.solver.water.has_fixed_pressures();
+  for (const StageSpec& stage : scene.stages)
+    any |= stage.changes_water && stage.water.has_fixed_pressures();
+  return any;
+}
+
 BlockSystem build_block_system(const Scene& scene, BlockModel& model)
 {
   BlockSystem s;
@@ -95,12 +103,17 @@ BlockSystem build_block_system(const Scene& scene, BlockModel& model)
   if (!s.deformable_blocks.empty())
   {
     s.mesh = mesh_deformable_blocks(scene, model, s.deformable_blocks, s.mesh_report);
+    std::vector<int> face_origins;
+    if (has_joint_pressures(scene))
+      face_origins = zone_face_origins(model, s.mesh); // on the blocks' own faces
     s.vertex_gridpoint = use_zone_surfaces(model, s.mesh);
     ZoneMaterials m = zone_materials(scene, model, s.mesh);
     s.zones = std::make_unique<DeformableSolver>(
         s.mesh, std::move(m.materials), std::move(m.of_zone), scene.solver,
         scene.gridpoint_conditions, scene.face_pressures,
         scene.has_initial_stress ? &scene.initial_stress : nullptr);
+    if (!face_origins.empty())
+      s.zones->set_face_origins(std::move(face_origins));
   }
   SolverSettings settings = scene.solver;
   if (!scene.rock_materials.empty())

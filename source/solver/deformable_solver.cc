@@ -417,6 +417,29 @@ void DeformableSolver::select_water_faces()
     water_faces_.push_back(face);
     water_weight_.push_back(0.5);
   }
+  water_vertex_corner_.clear();
+  if (mesh_.quadratic())
+  {
+    std::vector<char> is_vertex(mesh_.n_gridpoints(), 0);
+    for (const auto& t : mesh_.zone_gridpoint)
+      for (unsigned int g : t)
+        is_vertex[g] = 1;
+    for (const auto& face : water_faces_)
+    {
+      int v = -1;
+      for (int j = 0; j < 3; ++j)
+        if (is_vertex[face[j]])
+          v = j;
+      water_vertex_corner_.push_back(v);
+    }
+  }
+}
+
+void DeformableSolver::set_face_origins(std::vector<int> origins)
+{
+  if (origins.size() != mesh_.n_faces() + mesh_.second_overlay_face_gridpoint.size())
+    throw InputError("internal: one face origin per boundary face of the zones is needed");
+  water_face_origin_ = std::move(origins);
 }
 
 void DeformableSolver::set_water(const WaterSpec& water)
@@ -618,13 +641,37 @@ unsigned int DeformableSolver::water_shares(const double* x, Add&& add) const
     const Vec3 a(x[3 * t[0]], x[3 * t[0] + 1], x[3 * t[0] + 2]);
     const Vec3 b(x[3 * t[1]], x[3 * t[1] + 1], x[3 * t[1] + 2]);
     const Vec3 c(x[3 * t[2]], x[3 * t[2] + 1], x[3 * t[2] + 2]);
-    if (std::min({a.z(), b.z(), c.z()}) >= highest)
-      continue;
+    // A face on a joint with a pressure of its own ('Joint set pressures'):
+    // that pressure, uniform, a third of its force on each corner.
+    const double fixed =
+        water_face_origin_.empty() ? std::nan("") : s_.water.fixed_pressure(water_face_origin_[k]);
     TriangleWater w;
-    integrate_water(s_.water.table, gamma, a, b, c, w);
+    if (fixed == fixed)
+    {
+      const double area = 0.5 * (b - a).cross(c - a).norm(); // m^2
+      w.force = fixed * area;
+      w.corner[0] = w.corner[1] = w.corner[2] = w.force / 3.0;
+    }
+    else
+    {
+      if (std::min({a.z(), b.z(), c.z()}) >= highest)
+        continue;
+      integrate_water(s_.water.table, gamma, a, b, c, w);
+    }
     if (!(w.force > 0.0))
       continue;
     ++below;
+    // A corner sub-triangle of a 10-node zone's face gives its vertex's
+    // share to its two midpoints, half each: the consistent load of a
+    // uniform pressure on a 6-node triangle (none at its vertices), as
+    // pressures and the joints' springs have it.
+    if (!water_vertex_corner_.empty() && water_vertex_corner_[k] >= 0)
+    {
+      const int v = water_vertex_corner_[k];
+      w.corner[(v + 1) % 3] += 0.5 * w.corner[v];
+      w.corner[(v + 2) % 3] += 0.5 * w.corner[v];
+      w.corner[v] = 0.0;
+    }
     const Vec3 n = (b - a).cross(c - a).normalized(); // outward
     for (int j = 0; j < 3; ++j)
       add(t[j], Vec3(-water_weight_[k] * w.corner[j] * n));

@@ -27,6 +27,29 @@ int face_origin_of_triangle(const BlockModel& m, unsigned int b, const Vec3& nor
   return 0;
 }
 
+} // namespace
+
+std::vector<int> zone_face_origins(const BlockModel& m, const TetMesh& mesh)
+{
+  const auto P = [&](unsigned int g)
+  { return Vec3(mesh.position[3 * g], mesh.position[3 * g + 1], mesh.position[3 * g + 2]); };
+  const auto origin = [&](const std::array<unsigned int, 3>& t)
+  {
+    const Vec3 normal = (P(t[1]) - P(t[0])).cross(P(t[2]) - P(t[0])).normalized();
+    return face_origin_of_triangle(m, mesh.gridpoint_block[t[0]], normal,
+                                   (P(t[0]) + P(t[1]) + P(t[2])) / 3.0);
+  };
+  std::vector<int> origins;
+  for (const auto& t : mesh.face_gridpoint)
+    origins.push_back(origin(t));
+  for (const auto& t : mesh.second_overlay_face_gridpoint)
+    origins.push_back(origin(t));
+  return origins;
+}
+
+namespace
+{
+
 double triangle_area(const TetMesh& mesh, unsigned int a, unsigned int b, unsigned int c)
 {
   const auto P = [&](unsigned int g)

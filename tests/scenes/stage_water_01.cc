@@ -9,7 +9,7 @@
 //    zone formulation) on a joint that holds, so that all is linear: the
 //    flooded stage ends where a run flooded from the start ends, and the
 //    drained stage where the dry one did (1e-3 of the water's effect at the
-//    top face's middle and the base's).
+//    top face's middle and the base's, or of U / kn where it is smaller).
 
 #include <talus/base/parallel_environment.h>
 
@@ -90,7 +90,9 @@ int main(int argc, char** argv)
                    wet = column(last_of_stage(rows, columns, 2), columns, point),
                    drained = column(last_of_stage(rows, columns, 4), columns, point),
                    from_start = column(rows_flooded.back(), columns_flooded, point);
-      const double effect = std::abs(from_start - dry);
+      // The water's effect there, or (where its parts cancel) that of the
+      // buoyancy on the joint, U / kn = 9.81e-6 m.
+      const double effect = std::max(std::abs(from_start - dry), 1000 * 9.81 / 1e9);
       std::fprintf(stderr, "%s %s: dry %.10g, flooded %.10g (from the start %.10g), drained %.10g\n",
                    name, where, dry, wet, from_start, drained);
       std::printf("  %s: %s, flooded by a stage as flooded from the start: %s\n", name, where,

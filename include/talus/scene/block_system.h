@@ -25,6 +25,10 @@ struct BlockSystem
   std::unique_ptr<RigidSolver> solver;
 };
 
+/// Whether a joint set or joint has a water pressure of its own, from the
+/// start or from a stage.
+bool has_joint_pressures(const Scene& scene);
+
 /// The order of each deformable block's zones: in columns for a block with
 /// nodal mixed discretization (its strain increments then wait in cache
 /// between the two stages, DeformableSolver::plan_nodal_mixed), in slabs

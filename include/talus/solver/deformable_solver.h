@@ -225,6 +225,9 @@ public:
   /// pressure on every boundary face below it).
   void set_water(const WaterSpec& water);
   const WaterSpec& water() const { return s_.water; }
+  /// What made each boundary face (zone_face_origins): the faces on a joint
+  /// with a pressure of its own take it ('Joint set pressures').
+  void set_face_origins(std::vector<int> origins);
 
   /// Holds every component of gridpoint g at velocity `v` (m/s) from now on.
   void hold_gridpoint(unsigned int g, const Vec3& v);
@@ -408,6 +411,11 @@ private:
   /// at the last step.
   std::vector<std::array<unsigned int, 3>> water_faces_;
   std::vector<double> water_weight_;
+  /// 10-node zones: per water face (a sub-triangle), its corner at a zone
+  /// vertex (-1: none, the middle one).
+  std::vector<int> water_vertex_corner_;
+  /// Per water face, what made it (BlockModel::face_origin; empty: unknown).
+  std::vector<int> water_face_origin_;
   unsigned int water_faces_below_ = 0;
   Vec3 water_force_ = Vec3::Zero();
   /// Calls add(gridpoint, force) with each corner's share of the water on

@@ -17,6 +17,12 @@ namespace talus
 /// (-1 for the vertices of rigid blocks).
 std::vector<int> use_zone_surfaces(BlockModel& blocks, const TetMesh& mesh);
 
+/// What made each boundary face of the zones (BlockModel::face_origin of
+/// the block face it lies on; 0 for none): the mesh's boundary faces, then
+/// its second overlay's. Call before use_zone_surfaces, on the blocks' own
+/// faces.
+std::vector<int> zone_face_origins(const BlockModel& blocks, const TetMesh& mesh);
+
 /// Moves the vertices of deformable blocks to their gridpoints' positions
 /// `x` (3 per gridpoint, m) and turns their face normals with them; adds
 /// each block's largest vertex move to `moved[b]` (eq. 1 needs it).
