@@ -1065,14 +1065,21 @@ void warn_about_ignored_entries(const ParameterFile& prm, Scene& scene,
                  "no stage is dynamic (static runs take 'Damping')", scene.warnings);
   if (!any_dynamic)
   {
-    // Quiet boundaries act in dynamic stages only.
+    // Quiet boundaries act in dynamic stages only (each section once: a
+    // stage's set holds those of the file it keeps).
+    std::vector<std::string> warned;
     const auto quiet_ignored = [&](const BoundarySet& set)
     {
       for (std::size_t i = 0; i < set.face_pressures.size(); ++i)
-        if (set.face_pressures[i].quiet)
+        if (set.face_pressures[i].quiet &&
+            std::find(warned.begin(), warned.end(), set.face_pressure_sections[i]) ==
+                warned.end())
+        {
+          warned.push_back(set.face_pressure_sections[i]);
           warn_ignored(prm, set.face_pressure_sections[i], {"Condition"},
                        "a quiet boundary acts in dynamic stages only, and no stage is dynamic",
                        scene.warnings);
+        }
     };
     BoundarySet file;
     file.face_pressures = scene.face_pressures;
