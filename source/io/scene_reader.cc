@@ -1072,8 +1072,7 @@ void warn_about_ignored_entries(const ParameterFile& prm, Scene& scene,
     {
       for (std::size_t i = 0; i < set.face_pressures.size(); ++i)
         if (set.face_pressures[i].quiet &&
-            std::find(warned.begin(), warned.end(), set.face_pressure_sections[i]) ==
-                warned.end())
+            std::find(warned.begin(), warned.end(), set.face_pressure_sections[i]) == warned.end())
         {
           warned.push_back(set.face_pressure_sections[i]);
           warn_ignored(prm, set.face_pressure_sections[i], {"Condition"},

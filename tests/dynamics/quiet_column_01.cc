@@ -123,9 +123,9 @@ void run(const std::string& element, bool staged = false)
                "%s: %u zones, %u quiet faces, %lu steps of %.4g s; travel %.6g s (L / 2 cp "
                "%.6g), peak rho cp v / sigma0 %.5f, energy left %.3e of the input %.5g J "
                "(quiet dissipation %.5g J), energy error at most %.2e\n",
-               (element + (staged ? " (static, then dynamic)" : "")).c_str(), mesh.n_zones(), solver.quiet_faces(), solver.steps_done(),
-               solver.dt(), travel, expected, peak * Z / sigma0, left, input,
-               solver.quiet_dissipation(), worst_error);
+               (element + (staged ? " (static, then dynamic)" : "")).c_str(), mesh.n_zones(),
+               solver.quiet_faces(), solver.steps_done(), solver.dt(), travel, expected,
+               peak * Z / sigma0, left, input, solver.quiet_dissipation(), worst_error);
   std::printf("%s: travel time within 2 %%: %s; stress amplitude rho cp v within 2 %%: %s; "
               "energy left at most 2 %% of the input: %s; energy account within 1e-3: %s\n",
               (element + (staged ? " (static, then dynamic)" : "")).c_str(),
