@@ -478,11 +478,18 @@ void check_boundary_selections(const Scene& scene, const BlockModel& model, cons
   for (std::size_t i = 0; i < set.face_pressures.size(); ++i)
   {
     const ConvexRegion& box = set.face_pressures[i].region;
-    bool any = !face_patches_in(model, rigid, box).empty();
+    const bool quiet = set.face_pressures[i].quiet; // zone faces only
+    bool any = !quiet && !face_patches_in(model, rigid, box).empty();
     for (const auto& face : mesh.face_gridpoint)
       any = any || face_in(box, face);
     for (const auto& face : mesh.second_overlay_face_gridpoint)
       any = any || face_in(box, face);
+    if (!any && quiet)
+      throw scene_error(scene, set.face_pressure_sections[i], "",
+                        "selects nothing: a quiet boundary acts on the boundary faces of "
+                        "deformable blocks' zones, and none has its centroid in its region",
+                        "a region around zone faces of deformable blocks (a thin box around a "
+                        "plane face, or a half-space beyond it)");
     if (!any)
       throw scene_error(scene, set.face_pressure_sections[i], "",
                         box.is_box ? "selects nothing: no part of a rigid block's face lies in "

@@ -589,10 +589,28 @@ void declare_boundary(ParameterFile& prm, const std::string& section)
                       "their centroid; of rigid blocks, the parts in a box, or the faces wholly "
                       "in another shape)");
   prm.declare(
-      "Condition", "fixed", P::Selection("fixed|velocity|pressure|traction|load"),
-      "fixed, velocity, pressure, traction or load",
+      "Condition", "fixed", P::Selection("fixed|velocity|pressure|traction|load|quiet"),
+      "fixed, velocity, pressure, traction, load or quiet",
       "fixed: held in place; velocity: held at 'Velocity'; pressure: 'Pressure' on the boundary "
-      "faces; traction: 'Traction' on the boundary faces; load: 'Force' on every gridpoint.");
+      "faces; traction: 'Traction' on the boundary faces; load: 'Force' on every gridpoint; "
+      "quiet: viscous dashpots on the zones' boundary faces (dynamic stages), with an "
+      "optional 'Stress wave' put in through them.");
+  prm.declare("Stress wave", "none", P::Selection("none|harmonic|half-sine"),
+              "none, harmonic or half-sine",
+              "quiet: the normal stress of a wave entering through the faces: harmonic, 'Wave "
+              "amplitude' sin(2 pi 'Wave frequency' (t - 'Wave start')) until 'Wave end'; "
+              "half-sine, a pulse 'Wave amplitude' sin(pi (t - 'Wave start') / 'Wave "
+              "duration'). Twice it is applied as a pressure on the faces.");
+  prm.declare("Wave amplitude", "0", P::Double(), "a number (Pa; positive pushes in)",
+              "quiet: the incident wave's normal stress amplitude (Pa).");
+  prm.declare("Wave frequency", "0", P::Double(0.0), "a number > 0 (Hz)",
+              "quiet, harmonic wave: its frequency (Hz).");
+  prm.declare("Wave start", "0", P::Double(0.0), "a number >= 0 (s)",
+              "quiet: the model time the wave starts (s).");
+  prm.declare("Wave end", "0", P::Double(0.0), "a number >= 0 (s; 0: no end)",
+              "quiet, harmonic wave: the model time it stops (s).");
+  prm.declare("Wave duration", "0", P::Double(0.0), "a number > 0 (s)",
+              "quiet, half-sine wave: the pulse's length (s).");
   prm.declare("Traction", "0, 0, 0", vec3_pattern(), vec3_allowed,
               "Force per unit area on the boundary faces whose centroid lies in the region (Pa).");
   prm.declare("Force", "0, 0, 0", vec3_pattern(), vec3_allowed,
@@ -635,13 +653,57 @@ void parse_boundary(ParameterFile& prm, const std::string& section, const std::s
                       "false in a stage; report it on a 'Boundary N' of the file's top level "
                       "with the same box");
   }
-  (condition == "pressure" || condition == "traction" ? into.face_pressure_sections
-                                                      : into.gridpoint_condition_sections)
+  (condition == "pressure" || condition == "traction" || condition == "quiet"
+       ? into.face_pressure_sections
+       : into.gridpoint_condition_sections)
       .push_back(path);
-  if (condition == "pressure")
-    into.face_pressures.push_back(FacePressure{region, prm.get_double("Pressure"), Vec3::Zero()});
+  const std::string wave = prm.get("Stress wave");
+  if (wave != "none" && condition != "quiet")
+    throw prm.error("Stress wave", "needs a quiet boundary (the wave enters through its dashpots)",
+                    "none, or 'Condition' quiet");
+  if (condition == "quiet")
+  {
+    FacePressure q;
+    q.region = region;
+    q.quiet = true;
+    q.wave.amplitude = prm.get_double("Wave amplitude");
+    q.wave.start = prm.get_double("Wave start");
+    if (wave == "harmonic")
+    {
+      q.wave.kind = WaveSignal::Kind::harmonic;
+      q.wave.frequency = prm.get_double("Wave frequency");
+      q.wave.end = prm.get_double("Wave end");
+      if (!(q.wave.frequency > 0.0))
+        throw prm.error("Wave frequency", "must be positive for a harmonic 'Stress wave'",
+                        "a frequency > 0 (Hz)");
+      if (q.wave.end != 0.0 && q.wave.end <= q.wave.start)
+        throw prm.error("Wave end", "is not after 'Wave start'",
+                        "0 (no end) or a time after 'Wave start' (s)");
+    }
+    else if (wave == "half-sine")
+    {
+      q.wave.kind = WaveSignal::Kind::half_sine;
+      q.wave.duration = prm.get_double("Wave duration");
+      if (!(q.wave.duration > 0.0))
+        throw prm.error("Wave duration", "must be positive for a half-sine 'Stress wave'",
+                        "the pulse's length > 0 (s)");
+    }
+    into.face_pressures.push_back(q);
+  }
+  else if (condition == "pressure")
+  {
+    FacePressure p;
+    p.region = region;
+    p.pressure = prm.get_double("Pressure");
+    into.face_pressures.push_back(p);
+  }
   else if (condition == "traction")
-    into.face_pressures.push_back(FacePressure{region, 0.0, prm.get_vec3("Traction")});
+  {
+    FacePressure p;
+    p.region = region;
+    p.traction = prm.get_vec3("Traction");
+    into.face_pressures.push_back(p);
+  }
   else if (condition == "load")
   {
     GridpointCondition c;
@@ -1075,6 +1137,30 @@ void warn_about_ignored_entries(const ParameterFile& prm, Scene& scene,
                  {"Rayleigh damping ratio", "Rayleigh frequency", "Rayleigh alpha", "Rayleigh beta",
                   "Dynamic local damping"},
                  "no stage is dynamic (static runs take 'Damping')", scene.warnings);
+  if (!any_dynamic)
+  {
+    // Quiet boundaries act in dynamic stages only (each section once: a
+    // stage's set holds those of the file it keeps).
+    std::vector<std::string> warned;
+    const auto quiet_ignored = [&](const BoundarySet& set)
+    {
+      for (std::size_t i = 0; i < set.face_pressures.size(); ++i)
+        if (set.face_pressures[i].quiet &&
+            std::find(warned.begin(), warned.end(), set.face_pressure_sections[i]) == warned.end())
+        {
+          warned.push_back(set.face_pressure_sections[i]);
+          warn_ignored(prm, set.face_pressure_sections[i], {"Condition"},
+                       "a quiet boundary acts in dynamic stages only, and no stage is dynamic",
+                       scene.warnings);
+        }
+    };
+    BoundarySet file;
+    file.face_pressures = scene.face_pressures;
+    file.face_pressure_sections = scene.face_pressure_sections;
+    quiet_ignored(file);
+    for (const StageSpec& stage : scene.stages)
+      quiet_ignored(stage.boundaries);
+  }
   if (scene.strength_reduction.enabled)
     warn_ignored(prm, "Solver", {"Output interval"},
                  "'Mode' is factor of safety (the last unstable trial's end is written)",

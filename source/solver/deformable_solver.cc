@@ -284,7 +284,7 @@ DeformableSolver::DeformableSolver(const TetMesh& mesh, std::vector<ZoneMaterial
   select_pressed_faces();
   select_water_faces();
   force_size_.assign(3 * ng, 0.0);
-  if (!pressed_faces_.empty() || !water_faces_.empty())
+  if (!pressed_faces_.empty() || !water_faces_.empty() || !quiet_waves_.empty())
     pressure_force_.assign(3 * ng, 0.0);
   std::tie(initial_elastic_, initial_plastic_elastic_) = elastic_energy(mesh_.position.data());
   {
@@ -368,7 +368,7 @@ void DeformableSolver::select_pressed_faces()
       for (int d = 0; d < 3; ++d)
         c[d] += mesh_.position[3 * g + d] / 3.0;
     for (const FacePressure& p : pressures_)
-      if (inside(p.region, c))
+      if (!p.quiet && inside(p.region, c))
       {
         pressed_faces_.push_back(face);
         face_pressure_.push_back(p.pressure);
@@ -397,6 +397,110 @@ void DeformableSolver::select_pressed_faces()
     press(mesh_.face_gridpoint[f], in_hex[mesh_.face_zone[f]] ? 0.5 : 1.0);
   for (const auto& face : mesh_.second_overlay_face_gridpoint)
     press(face, 0.5);
+  select_quiet_faces(in_hex, is_vertex);
+}
+
+void DeformableSolver::select_quiet_faces(const std::vector<char>& in_hex,
+                                          const std::vector<bool>& is_vertex)
+{
+  quiet_faces_.clear();
+  quiet_share_.clear();
+  quiet_area_.clear();
+  quiet_wave_.clear();
+  quiet_waves_.clear();
+  quiet_slot_.clear();
+  quiet_c_.clear();
+  std::vector<unsigned int> wave_of_pressure(pressures_.size(), ~0u);
+  for (std::size_t i = 0; i < pressures_.size(); ++i)
+    if (pressures_[i].quiet && pressures_[i].wave.active())
+    {
+      wave_of_pressure[i] = static_cast<unsigned int>(quiet_waves_.size());
+      quiet_waves_.push_back(pressures_[i].wave);
+    }
+  // The second overlay's faces: the zone of the hexahedron holding all
+  // three corners (one boundary quadrilateral has one hexahedron).
+  std::vector<std::vector<unsigned int>> hexes_at;
+  if (!mesh_.second_overlay_face_gridpoint.empty())
+  {
+    hexes_at.resize(mesh_.n_gridpoints());
+    for (unsigned int h = 0; h < mesh_.n_hexes(); ++h)
+      for (unsigned int g : mesh_.hex_gridpoint[h])
+        hexes_at[g].push_back(h);
+  }
+  const auto hex_zone_of = [&](const std::array<unsigned int, 3>& face)
+  {
+    for (unsigned int h : hexes_at[face[0]])
+    {
+      const auto& corners = mesh_.hex_gridpoint[h];
+      const auto has = [&](unsigned int g)
+      { return std::find(corners.begin(), corners.end(), g) != corners.end(); };
+      if (has(face[1]) && has(face[2]))
+        return mesh_.hex_first_zone[h];
+    }
+    return 0u;
+  };
+  const auto quiet = [&](const std::array<unsigned int, 3>& face, unsigned int zone, double weight)
+  {
+    if (zone_removed(zone))
+      return;
+    const double* p0 = &mesh_.position[3 * face[0]];
+    const double* p1 = &mesh_.position[3 * face[1]];
+    const double* p2 = &mesh_.position[3 * face[2]];
+    const double c[3] = {(p0[0] + p1[0] + p2[0]) / 3.0, (p0[1] + p1[1] + p2[1]) / 3.0,
+                         (p0[2] + p1[2] + p2[2]) / 3.0};
+    for (std::size_t i = 0; i < pressures_.size(); ++i)
+      if (pressures_[i].quiet && inside(pressures_[i].region, c))
+      {
+        // The shares of a pressure (select_pressed_faces): a third at each
+        // corner, a 10-node face's load on its midpoints, half on each
+        // overlay's split of a hexahedral zone's face.
+        std::array<double, 3> share{{1.0 / 3.0, 1.0 / 3.0, 1.0 / 3.0}};
+        for (int k = 0; k < 3 && mesh_.quadratic(); ++k)
+          if (is_vertex[face[k]])
+          {
+            share = {{0.5, 0.5, 0.5}};
+            share[k] = 0.0;
+          }
+        for (double& w : share)
+          w *= weight;
+        const Vec3 a(p0[0], p0[1], p0[2]), b(p1[0], p1[1], p1[2]), e(p2[0], p2[1], p2[2]);
+        const Vec3 area = 0.5 * (b - a).cross(e - a); // A n, outward
+        quiet_faces_.push_back(face);
+        quiet_share_.push_back(share);
+        quiet_area_.push_back(area);
+        quiet_wave_.push_back(wave_of_pressure[i]);
+        // Lysmer and Kuhlemeyer: t = -rho cp (v.n) n - rho cs (v - (v.n) n).
+        const ZoneMaterial& mat = materials_[material_of_zone_[zone]];
+        const double rho = mat.density;
+        const double cp = std::sqrt((mat.bulk_modulus + 4.0 * mat.shear_modulus / 3.0) / rho);
+        const double cs = std::sqrt(mat.shear_modulus / rho);
+        const double A = area.norm();
+        const Vec3 n = area / A;
+        const double cn = rho * cp * A, ct = rho * cs * A;
+        if (quiet_slot_.empty())
+          quiet_slot_.assign(mesh_.n_gridpoints(), -1);
+        for (int k = 0; k < 3; ++k)
+        {
+          if (share[k] == 0.0)
+            continue;
+          int& slot = quiet_slot_[face[k]];
+          if (slot < 0)
+          {
+            slot = static_cast<int>(quiet_c_.size());
+            quiet_c_.push_back({{0, 0, 0, 0, 0, 0}});
+          }
+          auto& cg = quiet_c_[slot];
+          const int row[6] = {0, 1, 2, 0, 1, 2}, col[6] = {0, 1, 2, 1, 2, 0};
+          for (int j = 0; j < 6; ++j)
+            cg[j] += share[k] * ((cn - ct) * n[row[j]] * n[col[j]] + (j < 3 ? ct : 0.0));
+        }
+        break;
+      }
+  };
+  for (unsigned int f = 0; f < mesh_.n_faces(); ++f)
+    quiet(mesh_.face_gridpoint[f], mesh_.face_zone[f], in_hex[mesh_.face_zone[f]] ? 0.5 : 1.0);
+  for (const auto& face : mesh_.second_overlay_face_gridpoint)
+    quiet(face, hex_zone_of(face), 0.5);
 }
 
 void DeformableSolver::select_water_faces()
@@ -464,7 +568,7 @@ void DeformableSolver::set_boundaries(std::vector<GridpointCondition> conditions
   // component let go keeps the velocity it has.
   apply_conditions();
   select_pressed_faces();
-  if (pressed_faces_.empty() && water_faces_.empty())
+  if (pressed_faces_.empty() && water_faces_.empty() && quiet_waves_.empty())
     pressure_force_.clear();
   else
     pressure_force_.assign(3 * mesh_.n_gridpoints(), 0.0);
@@ -620,6 +724,28 @@ void DeformableSolver::external_forces(const double* x, double* f)
       }
     }
   }
+  // An incident wave through a quiet boundary (dynamics): the pressure
+  // 2 sigma_in(t) on its faces, so that with the dashpot's rho cp v the
+  // face carries sigma_in and the wave enters at v_in = sigma_in / (rho cp)
+  // (initial geometry, as the dashpots).
+  if (s_.dynamic)
+    for (std::size_t k = 0; k < quiet_faces_.size(); ++k)
+    {
+      if (quiet_wave_[k] == ~0u)
+        continue;
+      const Vec3 load = -2.0 * quiet_waves_[quiet_wave_[k]](time_) * quiet_area_[k];
+      for (int a = 0; a < 3; ++a)
+      {
+        const unsigned int g = quiet_faces_[k][a];
+        for (int d = 0; d < 3; ++d)
+        {
+          const double share = quiet_share_[k][a] * load[d];
+          f[3 * g + d] += share;
+          force_size_[3 * g + d] += std::abs(share);
+          pressure_force_[3 * g + d] += share;
+        }
+      }
+    }
   if (!water_faces_.empty())
     add_water(x, f);
 }
@@ -1136,9 +1262,18 @@ void DeformableSolver::move_gridpoints()
   // Rayleigh's stiffness-proportional forces (zones and contacts), which
   // act with f and whose work is dissipation.
   const double* fv = damping_force_.empty() ? nullptr : damping_force_.data();
+  // Quiet boundaries' dashpots (dynamics): the diagonal of each
+  // gridpoint's c taken semi-implicitly, on (v- + v+) / 2 as eq. 49's
+  // viscous term (an explicit kick with the mass m + c h / 2: stable for
+  // any c), the off-diagonal part of an inclined face on v-.
+  const bool quiet = s_.dynamic && !quiet_c_.empty();
+  double quiet_work = 0.0;
   for (unsigned int g = 0; g < ng; ++g)
   {
     double f2 = 0.0, size2 = 0.0;
+    const std::array<double, 6>* cq =
+        quiet && quiet_slot_[g] >= 0 ? &quiet_c_[quiet_slot_[g]] : nullptr;
+    const double v0[3] = {v[3 * g], v[3 * g + 1], v[3 * g + 2]};
     for (int d = 0; d < 3; ++d)
     {
       const unsigned int i = 3 * g + d;
@@ -1168,10 +1303,24 @@ void DeformableSolver::move_gridpoints()
       // Eq. 57 with the damping chosen (eqs. 77-79, 83; dynamics: eqs. 49,
       // 79 and Rayleigh's).
       const double v_before = v[i];
-      const double fd = damper_.kick(v[i], force, combined ? last_force_[i] : 0.0, m[i], h);
+      double c = 0.0, off = 0.0;
+      if (cq != nullptr)
+      {
+        static constexpr int slot[3][3] = {{0, 3, 5}, {3, 1, 4}, {5, 4, 2}};
+        c = (*cq)[d];
+        for (int e = 0; e < 3; ++e)
+          if (e != d)
+            off += (*cq)[slot[d][e]] * v0[e];
+      }
+      const double fd =
+          cq == nullptr
+              ? damper_.kick(v[i], force, combined ? last_force_[i] : 0.0, m[i], h)
+              : damper_.kick(v[i], force - c * v_before - off, 0.0, m[i] + 0.5 * c * h, h);
       if (combined)
         last_force_[i] = f[i];
       const double reach = 0.5 * h * (v_before + v[i]);
+      if (cq != nullptr)
+        quiet_work += (c * 0.5 * (v_before + v[i]) + off) * reach;
       gravity_work += weight * reach;
       boundary_work += load * reach;
       damping_work += (fd - viscous) * reach;
@@ -1193,7 +1342,8 @@ void DeformableSolver::move_gridpoints()
   ratio_ = n_free > 0 && size_sum > 0.0 ? largest / (size_sum / n_free) : 0.0;
   gravity_work_ += gravity_work;
   boundary_work_ += boundary_work;
-  damping_work_ += damping_work;
+  damping_work_ += damping_work + quiet_work;
+  quiet_work_ += quiet_work;
   kinetic_whole_step_ = kinetic;
 }
 

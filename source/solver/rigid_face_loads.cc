@@ -116,7 +116,8 @@ RigidFaceLoads::RigidFaceLoads(const BlockModel& blocks, const std::vector<char>
 {
   std::vector<unsigned int> slot_of_block(blocks.n_blocks(), ~0u);
   for (const FacePressure& load : loads)
-    for (const FacePatch& patch : face_patches_in(blocks, rigid, load.region))
+    for (const FacePatch& patch :
+         load.quiet ? std::vector<FacePatch>{} : face_patches_in(blocks, rigid, load.region))
     {
       unsigned int& slot = slot_of_block[patch.block];
       if (slot == ~0u)

@@ -165,6 +165,11 @@ public:
   /// Throws DivergenceError if a gridpoint force is not finite (before
   /// anything moves), naming the zone; `step` and `dt` for the message.
   void check_finite_forces(unsigned long step, double dt) const;
+  /// Work dissipated so far by the dashpots of quiet boundaries (J; part
+  /// of the account's damping dissipation), and the number of zone faces
+  /// they act on.
+  double quiet_dissipation() const { return quiet_work_; }
+  unsigned int quiet_faces() const { return static_cast<unsigned int>(quiet_faces_.size()); }
   /// Largest kinetic energy of one gridpoint (J) and the message of a
   /// divergence there: the zone, and the likely cause.
   double largest_gridpoint_energy() const;
@@ -333,6 +338,22 @@ private:
   std::vector<std::array<double, 3>> face_share_;
   /// The load of pressed face k at positions x (N).
   Vec3 face_load(std::size_t k, const double* x) const;
+  /// Quiet boundaries (dynamics, 'Condition = quiet'): the boundary faces
+  /// in their regions, with the shares of face_share_, their area times
+  /// outward normal (m^2, initial geometry) and the wave they put in
+  /// (an index into quiet_waves_, or ~0u); and the dashpot of each
+  /// gridpoint on them, c = sum of share A (rho cp n n + rho cs (I - n n))
+  /// (kg/s; xx, yy, zz, xy, yz, zx) in quiet_c_[quiet_slot_[g]].
+  std::vector<std::array<unsigned int, 3>> quiet_faces_;
+  std::vector<std::array<double, 3>> quiet_share_;
+  std::vector<Vec3> quiet_area_;
+  std::vector<unsigned int> quiet_wave_;
+  std::vector<WaveSignal> quiet_waves_;
+  std::vector<int> quiet_slot_;
+  std::vector<std::array<double, 6>> quiet_c_;
+  double quiet_work_ = 0.0; ///< J dissipated by the dashpots
+  /// The quiet faces and dashpots from pressures_ (select_pressed_faces).
+  void select_quiet_faces(const std::vector<char>& in_hex, const std::vector<bool>& is_vertex);
   std::vector<double> force_size_; ///< 3 per gridpoint: sum of |zone force| (N), for the ratio
   Tet4Scratch scratch_;
   Tet10Scratch scratch10_;           ///< 10-node zones only

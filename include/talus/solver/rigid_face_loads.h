@@ -3,6 +3,7 @@
 #include <talus/geometry/plane.h>
 #include <talus/geometry/region.h>
 #include <talus/model/block_model.h>
+#include <talus/model/wave_signal.h>
 
 #include <array>
 #include <vector>
@@ -21,6 +22,12 @@ struct FacePressure
   ConvexRegion region;
   double pressure = 0.0;
   Vec3 traction = Vec3::Zero();
+  /// 'Condition = quiet' (dynamic runs, zone faces only): viscous
+  /// dashpots on the faces (Lysmer and Kuhlemeyer), and `wave`, the
+  /// normal stress of an incident wave put in through them; pressure and
+  /// traction are then zero. Rigid blocks take nothing of it.
+  bool quiet = false;
+  WaveSignal wave;
 };
 
 /// The part of a rigid block's face inside a region, tied to the face so
