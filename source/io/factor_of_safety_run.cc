@@ -17,12 +17,6 @@
 namespace talus
 {
 
-namespace
-{
-
-/// The end of an unstable trial as one frame of each series: blocks (with
-/// displacement, velocity, rotation), contacts and zones (displacement,
-/// velocity at the gridpoints; plastic state per zone).
 void write_mechanism(const Scene& scene, const TrialView& view, const std::string& prefix)
 {
   const BlockSystem& system = view.system;
@@ -70,6 +64,9 @@ void write_mechanism(const Scene& scene, const TrialView& view, const std::strin
              {{"displacement", 3, u}, {"velocity", 3, zones.velocities()}}, cells, zones.time());
   PvdSeries(prefix + "_zones.pvd").add(zones.time(), base + "_zones_00000.vtu");
 }
+
+namespace
+{
 
 } // namespace
 

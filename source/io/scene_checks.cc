@@ -126,10 +126,20 @@ void check_stages(const Scene& scene, const BlockModel& model, const BuildReport
     throw scene_error(scene, "Solver", "Mode",
                       "the factor of safety is searched for the model as built, and this scene "
                       "has stages",
-                      "'static' or 'dynamic' with stages; 'factor of safety' without them");
+                      "'static' or 'dynamic' with stages (a stage of its own may have 'Mode = "
+                      "factor of safety'); 'factor of safety' without them");
   std::size_t k = 0;
   for (const StageSpec& stage : scene.stages)
   {
+    if (body && stage.factor_of_safety)
+      throw scene_error(scene, stage.section, "Mode",
+                        "factor of safety is searched on blocks, and the scene is one "
+                        "deformable body",
+                        "static or dynamic for a body alone ('Solver / Mode = factor of "
+                        "safety' searches it without stages)");
+    if (stage.factor_of_safety && !scene.deformable.mesh_file.empty())
+      throw scene_error(scene, stage.section, "Mode", "factor of safety does not take a 'Mesh file'",
+                        "static or dynamic");
     const std::pair<const char*, const std::vector<std::string>*> lists[] = {
         {"Excavate groups", &stage.excavate_groups},
         {"Fix groups", &stage.fix_groups},

@@ -1168,9 +1168,10 @@ void warn_about_ignored_entries(const ParameterFile& prm, Scene& scene,
   if (scene.strength_reduction.enabled)
     warn_ignored(prm, "Output", {"Checkpoint interval"},
                  "'Mode' is factor of safety (trials write no checkpoints)", scene.warnings);
-  else
+  else if (std::none_of(scene.stages.begin(), scene.stages.end(),
+                        [](const StageSpec& stage) { return stage.factor_of_safety; }))
     warn_ignored(prm, "Solver", {"Factor tolerance", "Initial factor", "Reduce zone strength"},
-                 "'Mode' is not factor of safety", scene.warnings);
+                 "'Mode' is not factor of safety, in 'Solver' or in a stage", scene.warnings);
   if (scene.deformable.groups.empty())
     warn_ignored(prm, "Deformable",
                  {"Edge length",

@@ -50,9 +50,11 @@ void declare_stage(ParameterFile& prm, const std::string& section,
   prm.enter(section);
   prm.declare("Name", "", P::Anything(), "any name (empty: the subsection's)",
               "What the stage does, for the summary and the history.");
-  prm.declare("Mode", "solver", P::Selection("solver|static|dynamic"), "solver, static or dynamic",
-              "static: damped to equilibrium; dynamic: undamped motion; solver: as 'Solver / "
-              "Mode'.");
+  prm.declare("Mode", "solver", P::Selection("solver|static|dynamic|factor of safety"),
+              "solver, static, dynamic or factor of safety",
+              "static: damped to equilibrium; dynamic: motion in time; factor of safety: the "
+              "strength reduction search from the state the stage starts in (the model goes on "
+              "unchanged to the next stage); solver: as 'Solver / Mode'.");
   prm.declare("Steps", "solver", P::Anything(), "an integer >= 0, or solver",
               "Step limit of this stage (counted from its start); solver: 'Solver / Steps'.");
   prm.declare("Target ratio", "solver", P::Anything(), "a number >= 0, or solver",
@@ -101,6 +103,7 @@ void parse_stage(ParameterFile& prm, const std::string& section,
   stage.name = prm.get("Name").empty() ? section : prm.get("Name");
   const std::string mode = prm.get("Mode");
   stage.dynamic = mode == "solver" ? scene.solver.dynamic : mode == "dynamic";
+  stage.factor_of_safety = mode == "factor of safety";
   const double steps = number_or_solver(prm, "Steps", double(scene.solver.steps),
                                         "an integer >= 0, or solver (the Solver's 'Steps')");
   if (steps != std::floor(steps) || steps > 1e15)

@@ -1,5 +1,8 @@
 #include <talus/base/memory.h>
+#include <talus/base/exceptions.h>
 #include <talus/io/checkpoint.h>
+#include <talus/io/factor_of_safety_run.h>
+#include <talus/scene/factor_of_safety.h>
 #include <talus/io/scene_checks.h>
 #include <talus/run/block_cycle.h>
 #include <talus/scene/build_blocks.h>
@@ -29,10 +32,19 @@ std::unique_ptr<ParallelEnvironment> prepare(Scene& scene, BlockModel& model)
     return nullptr;
   return ParallelEnvironment::unless_running();
 }
+
+bool needs_built_model(const Scene& scene)
+{
+  for (const StageSpec& stage : scene.stages)
+    if (stage.changes_boundaries || stage.factor_of_safety)
+      return true;
+  return false;
+}
 } // namespace
 
 BlockCycle::BlockCycle(Scene& scene, BlockModel& model, const std::string& prefix)
     : scene_(scene), model_(model), prefix_(prefix), parallel_(prepare(scene, model)),
+      built_model_(needs_built_model(scene) ? std::make_unique<BlockModel>(model) : nullptr),
       meshing_start_(now()),
       // Deformable blocks among rigid ones: their zones, and their surfaces
       // as their shapes for the contacts.
@@ -84,42 +96,45 @@ BlockCycle::BlockCycle(Scene& scene, BlockModel& model, const std::string& prefi
     joint_numbers_.joint_set_number.push_back(std::stoi(section.substr(section.rfind(' ') + 1)));
   for (const std::string& section : scene.joint_plane_sections)
     joint_numbers_.joint_number.push_back(std::stoi(section.substr(section.rfind(' ') + 1)));
-  for (const StageSpec& stage : scene.stages)
-    if (stage.changes_boundaries && !built_model_)
-      built_model_ = std::make_unique<BlockModel>(model);
 }
 
-void BlockCycle::apply_boundaries(const BoundarySet& set)
+namespace
 {
-  RigidSolver& solver = *system_.solver;
-  std::vector<char> rigid(model_.n_blocks(), 1);
-  if (system_.zones)
-    for (unsigned int b = 0; b < model_.n_blocks(); ++b)
-      rigid[b] = !solver.is_deformable(b);
-  solver.set_face_loads(RigidFaceLoads(*built_model_, rigid, set.face_pressures));
-  if (system_.zones)
-    system_.zones->set_boundaries(set.gridpoint_conditions, set.face_pressures);
+/// A stage's boundaries and loads ('Boundary N' face loads selected on the
+/// blocks as built, `built`) into `system`.
+void apply_boundaries(BlockSystem& system, const BlockModel& built, const BoundarySet& set)
+{
+  RigidSolver& solver = *system.solver;
+  std::vector<char> rigid(built.n_blocks(), 1);
+  for (unsigned int b = 0; b < built.n_blocks(); ++b)
+    rigid[b] = !solver.is_deformable(b);
+  solver.set_face_loads(RigidFaceLoads(built, rigid, set.face_pressures));
+  if (system.zones)
+    system.zones->set_boundaries(set.gridpoint_conditions, set.face_pressures);
 }
 
-void BlockCycle::change_rock_materials(const StageSpec& stage, bool account)
+/// A stage's 'Rock materials' (of `scene`) into `system`; prints what
+/// changed when `account` (a stage's start, not a restart).
+void change_rock_materials(const Scene& scene, const BlockModel& model, BlockSystem& system,
+                           const StageSpec& stage, bool account)
 {
-  RigidSolver& solver = *system_.solver;
+  RigidSolver& solver = *system.solver;
   for (const RockMaterialChange& c : stage.rock_materials)
   {
     const RockMaterialSpec* rock =
-        c.material < 0 ? nullptr : &scene_.rock_materials[std::size_t(c.material)];
-    std::vector<char> blocks(model_.n_blocks(), 0);
+        c.material < 0 ? nullptr : &scene.rock_materials[std::size_t(c.material)];
+    std::vector<char> blocks(model.n_blocks(), 0);
     unsigned int count = 0;
-    for (unsigned int b = 0; b < model_.n_blocks(); ++b)
-      if (model_.group_names[model_.group[b]] == c.group && !solver.removed(b))
+    for (unsigned int b = 0; b < model.n_blocks(); ++b)
+      if (model.group_names[model.group[b]] == c.group && !solver.removed(b))
       {
         blocks[b] = 1;
         ++count;
       }
-    ZoneMaterial zone = rock ? rock->zone : scene_.deformable.material;
-    zone.element = scene_.deformable.material.element;
-    zone.nodal_mixed = scene_.deformable.nodal_mixed(c.group);
-    zone.density = rock ? rock->density : scene_.density;
+    ZoneMaterial zone = rock ? rock->zone : scene.deformable.material;
+    zone.element = scene.deformable.material.element;
+    zone.nodal_mixed = scene.deformable.nodal_mixed(c.group);
+    zone.density = rock ? rock->density : scene.density;
     solver.change_rock(blocks, zone.density, zone, account);
     if (account)
       std::printf("  Rock:       %u blocks of group %s take %s\n", count, c.group.c_str(),
@@ -127,18 +142,85 @@ void BlockCycle::change_rock_materials(const StageSpec& stage, bool account)
   }
 }
 
+/// What a checkpoint (or a saved state) does not hold of a stage's
+/// changes, set again on `system` after its state was loaded.
+void restore_changes(const Scene& scene, const BlockModel& model, const BlockModel* built,
+                     BlockSystem& system, const StageSpec& stage)
+{
+  change_rock_materials(scene, model, system, stage, false);
+  if (stage.changes_boundaries)
+    apply_boundaries(system, *built, stage.boundaries);
+  RigidSolver& solver = *system.solver;
+  if (stage.changes_water)
+    solver.set_water(stage.water);
+  else if (solver.water().active())
+    solver.set_water(solver.water()); // on the blocks the state has moving
+}
+} // namespace
+
 void BlockCycle::restore_stage(const StageSpec& stage)
 {
   // The loads' state (forces, held velocities) is in the checkpoint; what
   // the materials are is not.
-  change_rock_materials(stage, false);
-  if (stage.changes_boundaries)
-    apply_boundaries(stage.boundaries);
-  RigidSolver& solver = *system_.solver;
-  if (stage.changes_water)
-    solver.set_water(stage.water);
-  else if (solver.water().active())
-    solver.set_water(solver.water()); // on the blocks the checkpoint has moving
+  restore_changes(scene_, model_, built_model_.get(), system_, stage);
+}
+
+int BlockCycle::factor_of_safety(const std::vector<StageSpec>& stages, unsigned int k)
+{
+  const StageSpec& stage = stages[k];
+  const RigidSolver& solver = *system_.solver;
+  // The state the stage starts in, and what it does not hold, set again on
+  // each trial's system: every stage's changes up to this one, in order.
+  CheckpointWriter out;
+  solver.save_state(out);
+  if (system_.zones)
+    system_.zones->save_state(out);
+  Scene scene = scene_;
+  scene.solver.steps = stage.steps;
+  scene.solver.target_ratio = stage.target_ratio;
+  scene.stages.clear(); // the trials' scene: this stage's settings
+  const std::vector<StageSpec> begun(stages.begin(), stages.begin() + k + 1);
+  const BlockModel& built = *built_model_;
+  const StrengthReductionTrials trials(
+      scene, built, out.bytes(),
+      [&](const Scene& reduced, BlockSystem& system)
+      {
+        for (const StageSpec& s : begun)
+          restore_changes(reduced, built, &built, system, s);
+      },
+      solver.steps_done(), solver.time(), solver.displacement,
+      system_.zones ? system_.zones->displacements() : std::vector<double>());
+  const std::string prefix = prefix_ + "_stage" + std::to_string(k + 1) + "_mechanism";
+  double mechanism = 0.0;
+  TrialHooks hooks;
+  hooks.finished = [&](const TrialView& view, const StrengthReductionTrial& t)
+  {
+    if (t.stable)
+      return;
+    mechanism = t.factor;
+    if (scene_.output.write_vtu)
+      write_mechanism(scene, view, prefix);
+  };
+  std::printf("  Strength reduction from the stage's state: up to %lu steps a trial, stable "
+              "below ratio %g\n",
+              stage.steps, stage.target_ratio);
+  const StrengthReductionResult r = find_factor_of_safety(
+      [&](double factor)
+      {
+        const StrengthReductionTrial t = trials.run(factor, hooks);
+        std::printf("  %s\n", trial_line(t).c_str());
+        return t;
+      },
+      scene_.strength_reduction);
+  if (!r.found)
+    throw scene_error(scene_, stage.section, "Mode", "factor of safety: " + r.failure,
+                      "a model that is stable at some F and fails at a larger one");
+  std::printf("  Factor of safety: %.4g (between %.6g and %.6g, %zu trials)\n", r.factor(),
+              r.stable_factor, r.unstable_factor, r.trials.size());
+  if (scene_.output.write_vtu)
+    std::printf("  Mechanism:  the last unstable trial (F = %.6g): %s_blocks.pvd\n", mechanism,
+                prefix.c_str());
+  return 0;
 }
 
 void BlockCycle::step()
@@ -299,7 +381,7 @@ void BlockCycle::begin_stage(const StageSpec& stage)
   if (!stage.joint_materials.empty())
     std::printf("  Joints:     %zu joint sets or joints change material\n",
                 stage.joint_materials.size());
-  change_rock_materials(stage, true);
+  change_rock_materials(scene_, model_, system_, stage, true);
   if (stage.dynamic != solver.dynamic())
   {
     solver.set_dynamic(stage.dynamic);
@@ -312,7 +394,7 @@ void BlockCycle::begin_stage(const StageSpec& stage)
   if (stage.changes_boundaries)
   {
     solver.set_loads(stage.boundaries.loads);
-    apply_boundaries(stage.boundaries);
+    apply_boundaries(system_, *built_model_, stage.boundaries);
     std::printf("  Boundaries: ");
     for (std::size_t k = 0; k < stage.boundary_changes.size(); ++k)
       std::printf("%s%s", k == 0 ? "" : ", ", stage.boundary_changes[k].c_str());

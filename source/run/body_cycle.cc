@@ -273,6 +273,12 @@ void BodyCycle::change_rock_materials(const StageSpec& stage, bool account)
   }
 }
 
+int BodyCycle::factor_of_safety(const std::vector<StageSpec>&, unsigned int)
+{
+  // Refused before the run (check_stages): the search's trials are block systems.
+  throw InputError("internal: a stage's factor of safety needs blocks");
+}
+
 void BodyCycle::restore_stage(const StageSpec& stage)
 {
   change_rock_materials(stage, false);

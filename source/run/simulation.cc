@@ -290,7 +290,10 @@ int Simulation::run()
     }
     try
     {
-      while (cycle->steps_done() - stage_start < stage.steps)
+      if (stage.factor_of_safety && stage_begun == stage_index + 1 &&
+          cycle->steps_done() == stage_start)
+        cycle->factor_of_safety(stages, stage_index); // on copies: the model stays
+      while (!stage.factor_of_safety && cycle->steps_done() - stage_start < stage.steps)
       {
         cycle->step();
         const unsigned long n = cycle->steps_done();
@@ -329,7 +332,7 @@ int Simulation::run()
                   cycle->displacement_text().c_str());
     else
       cycle->print_end();
-    if (static_stage_end(stage, end, staged) != 0)
+    if (!stage.factor_of_safety && static_stage_end(stage, end, staged) != 0)
       exit_code = exit_not_in_equilibrium;
     if (staged)
     {

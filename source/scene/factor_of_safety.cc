@@ -178,18 +178,36 @@ StrengthReductionTrials::StrengthReductionTrials(const Scene& scene, const Block
   start_displacement_ = system.solver->displacement;
 }
 
+StrengthReductionTrials::StrengthReductionTrials(
+    const Scene& scene, const BlockModel& model, std::string state,
+    std::function<void(const Scene& reduced, BlockSystem& system)> prepare,
+    unsigned long start_step, double start_time, std::vector<Vec3> start_displacement,
+    std::vector<double> start_gridpoint_displacement)
+    : scene_(scene), model_(model), state_(std::move(state)), prepare_(std::move(prepare)),
+      start_step_(start_step), start_time_(start_time),
+      start_displacement_(std::move(start_displacement)),
+      start_gridpoint_displacement_(std::move(start_gridpoint_displacement))
+{
+  initial_.stable = true;
+  initial_.reached_target = true;
+}
+
 StrengthReductionTrial StrengthReductionTrials::run(double factor, const TrialHooks& hooks) const
 {
   Scene reduced = scene_;
   reduce_strengths(reduced, factor);
+  reduced.solver.dynamic = false;
   BlockModel copy = model_;
-  const BlockSystem system = build_block_system(reduced, copy);
+  BlockSystem system = build_block_system(reduced, copy);
   // The initial state; the joint materials and zone strengths stay the
   // reduced ones the solvers were built with (they are not in the state).
   CheckpointReader in(state_, "the initial state of the strength reduction");
   system.solver->load_state(in);
   if (system.zones)
     system.zones->load_state(in);
+  if (prepare_) // after the state, as a restart sets a stage's changes
+    prepare_(reduced, system);
+  system.solver->set_dynamic(false); // the trials are static
   const TrialView view{factor,
                        system,
                        copy,

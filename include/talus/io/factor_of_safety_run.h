@@ -18,4 +18,10 @@ namespace talus
 /// 100.
 int run_factor_of_safety(Scene& scene, BlockModel& model, const std::string& prefix);
 
+struct TrialView;
+/// The end of an unstable trial as one frame of each series under
+/// `prefix`: blocks (displacement since the trial's start, velocity,
+/// rotation), contacts and zones (displacement, velocity, plastic state).
+void write_mechanism(const Scene& scene, const TrialView& view, const std::string& prefix);
+
 } // namespace talus

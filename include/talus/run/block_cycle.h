@@ -40,6 +40,7 @@ public:
   DeformableSolver* zones() override { return system_.zones.get(); }
   void begin_stage(const StageSpec& stage) override;
   void restore_stage(const StageSpec& stage) override;
+  int factor_of_safety(const std::vector<StageSpec>& stages, unsigned int k) override;
   std::string displacement_text() const override;
   void print_end() override;
   std::string unbalanced_where() const override;
@@ -49,6 +50,11 @@ private:
   BlockModel& model_;
   std::string prefix_;
   std::unique_ptr<ParallelEnvironment> parallel_;
+  /// The blocks as built (before the zones' surfaces replace the faces of
+  /// deformable ones), where a stage's face loads are selected (as those of
+  /// the file were) and a stage's factor of safety builds its trials; kept
+  /// only when a stage needs it.
+  std::unique_ptr<BlockModel> built_model_;
   double meshing_start_; ///< s, steady clock: when the zones began
   /// Built in place: its solvers hold references to its mesh.
   BlockSystem system_;
@@ -59,14 +65,7 @@ private:
   unsigned int frame_ = 0, zone_frame_ = 0;
   /// The blocks' centroids as built (m): where stage regions select them.
   std::vector<Vec3> built_centroid_;
-  /// The blocks as built, where a stage's face loads are selected (as those
-  /// of the file were); kept only when a stage changes the face loads.
-  std::unique_ptr<BlockModel> built_model_;
-  /// A stage's 'Rock materials' into the solvers; prints what changed
-  /// unless restoring (`account` false).
-  void change_rock_materials(const StageSpec& stage, bool account);
-  /// Boundaries and loads of a stage into the solvers.
-  void apply_boundaries(const BoundarySet& set);
+
 };
 
 } // namespace talus

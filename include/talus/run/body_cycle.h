@@ -41,6 +41,7 @@ public:
   DeformableSolver* zones() override { return solver_.get(); }
   void begin_stage(const StageSpec& stage) override;
   void restore_stage(const StageSpec& stage) override;
+  int factor_of_safety(const std::vector<StageSpec>& stages, unsigned int k) override;
   std::string displacement_text() const override;
   void print_end() override;
   std::string unbalanced_where() const override;

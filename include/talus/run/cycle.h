@@ -54,6 +54,11 @@ public:
   /// A stage's changes at its start (excavations, fixed groups, joint
   /// materials, mode, displacements); prints what it did.
   virtual void begin_stage(const StageSpec& stage) = 0;
+  /// A stage of 'Mode = factor of safety' (stages[k], its changes made):
+  /// the strength reduction search from the present state, on copies; the
+  /// model goes on unchanged. Prints the trials and F, writes the
+  /// mechanism; returns 0, or throws InputError when no F is found.
+  virtual int factor_of_safety(const std::vector<StageSpec>& stages, unsigned int k) = 0;
   /// After a restart inside `stage` or after it: what a checkpoint does not
   /// hold of the stages' changes (the boundaries and loads in force).
   virtual void restore_stage(const StageSpec& stage) = 0;

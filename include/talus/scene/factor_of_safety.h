@@ -62,6 +62,17 @@ public:
   /// Brings a copy of `model` (built, the scene's group names resolved) to
   /// the initial state.
   StrengthReductionTrials(const Scene& scene, const BlockModel& model);
+  /// Trials from a state the run has reached (a stage's): `state` is the
+  /// solvers' save_state, `model` the blocks as built. Each trial builds
+  /// its system from a copy of `model` with the reduced strengths, loads
+  /// the state, calls `prepare` on it (what the state does not hold: the
+  /// stages' boundaries, rock materials and water, from the reduced scene
+  /// it is given) and runs statically. initial() is stable.
+  StrengthReductionTrials(
+      const Scene& scene, const BlockModel& model, std::string state,
+      std::function<void(const Scene& reduced, BlockSystem& system)> prepare,
+      unsigned long start_step, double start_time, std::vector<Vec3> start_displacement,
+      std::vector<double> start_gridpoint_displacement);
 
   /// How the initial equilibrium ended (as a trial at F = smallest_factor;
   /// unstable: no trial can be judged).
@@ -77,6 +88,7 @@ private:
   const BlockModel& model_;
   StrengthReductionTrial initial_;
   std::string state_; ///< the initial state (RigidSolver and zones' save_state)
+  std::function<void(const Scene&, BlockSystem&)> prepare_;
   unsigned long start_step_ = 0;
   double start_time_ = 0.0;
   std::vector<Vec3> start_displacement_;

@@ -97,6 +97,10 @@ struct StageSpec
   std::string section; ///< "Stage N"
   std::string name;    ///< its 'Name'
   bool dynamic = false;
+  /// 'Mode = factor of safety': the strength reduction search from the
+  /// state the stage starts in (its steps and target ratio per trial); the
+  /// model goes on unchanged.
+  bool factor_of_safety = false;
   unsigned long steps = 0;   ///< step limit of this stage
   double target_ratio = 0.0; ///< statics: stop below this ratio (0: never)
   double time_limit = 0.0;   ///< s of model time this stage may take (0: no limit)

@@ -1,0 +1,133 @@
+// A factor of safety as a stage ('Mode = factor of safety' in 'Stage N'):
+// the slider of tests/rigid/factor_of_safety_01 (1 x 2 x 0.2 m on a 30 deg
+// incline, phi = 35 deg, W = 10398.6 N, A = 2 m^2), run in stages:
+//  1. static equilibrium, dry;
+//  2. water of p = 500 Pa in its joint ('Water' with 'Joint pressures'):
+//     still stable, its effective normal force W cos a - p A = 8005.5 N;
+//  3. factor of safety from that state: F = (W cos a - p A) tan phi /
+//     (W sin a) = 1.0781, within 0.5 % (the search's bracket);
+//  4. static again: the model went on unchanged through stage 3 (the
+//     slider where stage 2 left it, to 1e-12 m).
+// The before figure: 'factor of safety' is not a stage's 'Mode' (refused).
+
+#include <talus/base/parallel_environment.h>
+
+#include <cmath>
+#include <cstdio>
+#include <fstream>
+#include <sstream>
+
+#include "../scenes/stage_history.h"
+#include "../tests.h"
+
+int main(int argc, char** argv)
+{
+  talus::ParallelEnvironment env(argc, argv);
+  const double deg = M_PI / 180.0, a = 30 * deg, g = 9.81, A = 2.0, p = 500,
+               W = 2650 * 0.4 * g;
+  const std::string file = "factor_of_safety_stage_01_scene.prm";
+  {
+    std::ofstream prm(file);
+    char text[4000];
+    std::snprintf(text, sizeof text, R"(
+subsection Model
+  set Brick min = -1, 0, 0
+  set Brick max = 10, 2, 1.2
+  set Default group = base
+end
+subsection Material
+  set Density = 2650
+end
+subsection Joint 1
+  set Dip = 0
+  set Origin = 0, 0, 1
+end
+subsection Excavation 1
+  set Shape = polyhedron
+  set Planes = 0, 0, 1, 0, 0, -1; 0, 0, 1, %.17g, 0, %.17g
+end
+subsection Excavation 2
+  set Shape = polyhedron
+  set Planes = 0, 0, 1, 0, 0, -1; 1, 0, 1, %.17g, 0, %.17g
+end
+subsection Group 1
+  set Name = slider
+  set Corner min = -1, 0, 1
+  set Corner max = 1, 2, 2
+end
+subsection Joint properties
+  set Normal stiffness = 1e11
+  set Shear stiffness  = 1e11
+  set Friction angle = 35
+end
+subsection Solver
+  set Gravity = %.17g, 0, %.17g
+  set Steps = 5000
+  set Fixed groups = base
+  set History blocks = 1
+end
+subsection Stage 1
+  set Name = dry
+end
+subsection Stage 2
+  set Name = water in the joint
+  subsection Water
+    set Joint pressures = 1, %g
+  end
+end
+subsection Stage 3
+  set Name = factor of safety
+  set Mode = factor of safety
+end
+subsection Stage 4
+  set Name = on, unchanged
+end
+subsection Output
+  set Directory = output_factor_of_safety_stage_01
+  set Write VTU = false
+end
+)",
+                  std::cos(a), std::sin(a), -std::cos(a), -std::sin(a), g * std::sin(a),
+                  -g * std::cos(a), p);
+    prm << text;
+  }
+  // Run with the summary kept, for its factor of safety.
+  std::fflush(stdout);
+  const int saved = dup(1);
+  std::freopen("factor_of_safety_stage_01_summary.txt", "w", stdout);
+  int code = -1;
+  try
+  {
+    code = Simulation(file, "", false).run();
+  }
+  catch (const std::exception& e)
+  {
+    std::fprintf(stderr, "%s\n", e.what());
+  }
+  std::fflush(stdout);
+  dup2(saved, 1);
+  close(saved);
+  std::printf("exit code %d\n", code);
+  double F = NAN;
+  std::ifstream summary("factor_of_safety_stage_01_summary.txt");
+  for (std::string line; std::getline(summary, line);)
+  {
+    std::fprintf(stderr, "| %s\n", line.c_str());
+    const std::size_t at = line.find("Factor of safety: ");
+    if (at != std::string::npos)
+      F = std::stod(line.substr(at + 18));
+  }
+  talus_test::check_within("stage 3: F = (W cos a - p A) tan phi / (W sin a)", F,
+                           (W * std::cos(a) - p * A) * std::tan(35 * deg) / (W * std::sin(a)),
+                           0.005);
+  std::vector<std::string> columns;
+  const auto rows =
+      read_history("output_factor_of_safety_stage_01/talus_history.csv", columns);
+  double moved = 0.0;
+  for (const char* q : {"block 1 ux (m)", "block 1 uy (m)", "block 1 uz (m)"})
+    moved = std::max(moved, std::abs(column(last_of_stage(rows, columns, 4), columns, q) -
+                                     column(last_of_stage(rows, columns, 2), columns, q)));
+  std::fprintf(stderr, "stage 4 moved the slider %.3g m from where stage 2 left it\n", moved);
+  std::printf("stage 4: the slider where stage 2 left it (stage 3 changed nothing): %s\n",
+              talus_test::verdict(moved < 1e-12));
+}
