@@ -279,7 +279,7 @@ DeformableSolver::DeformableSolver(const TetMesh& mesh, std::vector<ZoneMaterial
   {
     LocalArray v(petsc_->velocity);
     for (unsigned int i = 0; i < 3 * ng; ++i)
-      v[i] = held_velocity_[i];
+      v[i] = held_velocity_at(i, 0.0);
   }
   select_pressed_faces();
   if (s_.water.active())
@@ -304,7 +304,7 @@ DeformableSolver::DeformableSolver(const TetMesh& mesh, std::vector<ZoneMaterial
     // Held velocities are there from the start: energy at the start.
     LocalArray m(petsc_->inertial_mass);
     for (unsigned int i = 0; i < 3 * ng; ++i)
-      initial_elastic_ += 0.5 * m[i] * held_velocity_[i] * held_velocity_[i];
+      initial_elastic_ += 0.5 * m[i] * held_velocity_at(i, 0.0) * held_velocity_at(i, 0.0);
   }
   damper_ = damper_for(s_, dt_);
   if (!s_.dynamic && s_.damping == Damping::combined)
@@ -333,6 +333,8 @@ void DeformableSolver::apply_conditions()
   held_.assign(ng, 0);
   held_velocity_.assign(3 * ng, 0.0);
   held_until_.assign(3 * ng, std::numeric_limits<double>::infinity());
+  held_motion_.assign(3 * ng, -1);
+  motion_scale_.assign(conditions_.size(), 1.0);
   for (unsigned int g = 0; g < ng; ++g)
     for (const GridpointCondition& c : conditions_)
       if (inside(c.region, &mesh_.position[3 * g]))
@@ -345,6 +347,7 @@ void DeformableSolver::apply_conditions()
                                                                     mesh_.position[3 * g + 1],
                                                                     mesh_.position[3 * g + 2]));
             held_until_[3 * g + d] = c.velocity_until;
+            held_motion_[3 * g + d] = c.motion.varies() ? int(&c - conditions_.data()) : -1;
           }
   // A gridpoint of removed zones only stays where it is.
   if (!removed_zone_.empty())
@@ -353,6 +356,7 @@ void DeformableSolver::apply_conditions()
       {
         held_[g] = 7u;
         std::fill_n(&held_velocity_[3 * g], 3, 0.0);
+        std::fill_n(&held_motion_[3 * g], 3, -1);
       }
   set_gravity_and_loads();
 }
@@ -1070,6 +1074,10 @@ void DeformableSolver::move_gridpoints()
   // Rayleigh's stiffness-proportional forces (zones and contacts), which
   // act with f and whose work is dissipation.
   const double* fv = damping_force_.empty() ? nullptr : damping_force_.data();
+  // Held velocities in time: each condition's function once per motion, at
+  // its middle (velocities live at half steps).
+  for (unsigned int c = 0; c < conditions_.size(); ++c)
+    motion_scale_[c] = conditions_[c].motion.scale(time_ + 0.5 * dt_);
   for (unsigned int g = 0; g < ng; ++g)
   {
     double f2 = 0.0, size2 = 0.0;
@@ -1083,7 +1091,10 @@ void DeformableSolver::move_gridpoints()
         // This motion spans [time_, time_ + dt_]: moved while it ends by
         // the condition's end time (half a step of slack for round-off).
         const double v_before = v[i];
-        v[i] = time_ + 0.5 * dt_ < held_until_[i] ? held_velocity_[i] : 0.0;
+        const double held = held_motion_[i] < 0
+                                ? held_velocity_[i]
+                                : held_velocity_[i] * motion_scale_[held_motion_[i]];
+        v[i] = time_ + 0.5 * dt_ < held_until_[i] ? held : 0.0;
         // The support supplies minus the force on the component, and
         // whatever kinetic energy a change of the held velocity takes.
         const double reach = 0.5 * h * (v_before + v[i]);
@@ -1399,6 +1410,7 @@ void DeformableSolver::remove_zones(std::vector<char> gone)
         {
           v[3 * g + d] = held_velocity_[3 * g + d] = 0.0;
           held_until_[3 * g + d] = std::numeric_limits<double>::infinity();
+          held_motion_[3 * g + d] = -1;
         }
       }
   }
@@ -1533,6 +1545,7 @@ void DeformableSolver::hold_gridpoint(unsigned int g, const Vec3& v)
   {
     held_velocity_[3 * g + d] = v[d];
     held_until_[3 * g + d] = std::numeric_limits<double>::infinity();
+    held_motion_[3 * g + d] = -1;
   }
 }
 
