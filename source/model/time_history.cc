@@ -163,7 +163,11 @@ TimeFunction read_time_table(const std::string& path)
       {
         numeric = false;
         if (bad.empty())
+        {
           bad = fields[c];
+          bad.erase(0, bad.find_first_not_of(" \t"));
+          bad.erase(bad.find_last_not_of(" \t") + 1);
+        }
       }
     }
     if (!numeric && header_allowed && f.time.empty())
