@@ -541,7 +541,7 @@ void declare_boundary(ParameterFile& prm, const std::string& section)
               "components' goes to the history and the summary (N).");
   prm.declare("Pressure", "0", P::Double(), "a number (Pa; positive pushes into the block)",
               "Normal pressure on the boundary faces whose centroid lies in the region (Pa).");
-  declare_time_function(prm, "'Velocity'");
+  declare_time_function(prm, "'Velocity', 'Pressure', 'Traction' or 'Force'");
   prm.leave();
 }
 
@@ -571,23 +571,25 @@ void parse_boundary(ParameterFile& prm, const std::string& section, const std::s
   }
   const TimeFunction motion = parse_time_function(
       prm, scene.parameter_file, condition == "velocity", "value unless 'Condition = velocity'");
-  if (motion.varies() && condition != "velocity")
-    throw prm.error("Time function",
-                    "varies a held velocity, which 'Condition = " + condition + "' has not",
-                    "none, or a time function with 'Condition = velocity'");
+  if (motion.varies() && condition == "fixed")
+    throw prm.error("Time function", "varies nothing on a fixed boundary",
+                    "none with 'Condition = fixed'; a time function with velocity, pressure, "
+                    "traction or load");
   (condition == "pressure" || condition == "traction" ? into.face_pressure_sections
                                                       : into.gridpoint_condition_sections)
       .push_back(path);
   if (condition == "pressure")
-    into.face_pressures.push_back(FacePressure{region, prm.get_double("Pressure"), Vec3::Zero()});
+    into.face_pressures.push_back(
+        FacePressure{region, prm.get_double("Pressure"), Vec3::Zero(), motion});
   else if (condition == "traction")
-    into.face_pressures.push_back(FacePressure{region, 0.0, prm.get_vec3("Traction")});
+    into.face_pressures.push_back(FacePressure{region, 0.0, prm.get_vec3("Traction"), motion});
   else if (condition == "load")
   {
     GridpointCondition c;
     c.region = region;
     c.held[0] = c.held[1] = c.held[2] = false;
     c.force = prm.get_vec3("Force");
+    c.motion = motion;
     into.gridpoint_conditions.push_back(c);
   }
   else

@@ -238,6 +238,12 @@ int Simulation::run()
       columns.push_back(scene_.gridpoint_condition_sections[c] + " input");
       inputs.push_back(&scene_.gridpoint_conditions[c].motion);
     }
+  for (std::size_t p = 0; p < scene_.face_pressures.size(); ++p)
+    if (scene_.face_pressures[p].motion.varies())
+    {
+      columns.push_back(scene_.face_pressure_sections[p] + " input");
+      inputs.push_back(&scene_.face_pressures[p].motion);
+    }
   if (staged)
     columns.push_back("stage");
   Checkpoint checkpoint(scene_, model_, cycle->rigid(), cycle->zones(), restart_from_);

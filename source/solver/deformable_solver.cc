@@ -319,11 +319,20 @@ void DeformableSolver::set_gravity_and_loads()
   for (unsigned int g = 0; g < ng; ++g)
     for (int d = 0; d < 3; ++d)
       gravity_force_[3 * g + d] = true_mass_[g] * s_.gravity[d]; // eq. 56
+  timed_load_points_.clear();
   for (unsigned int g = 0; g < ng; ++g)
     for (const GridpointCondition& c : conditions_)
       if (inside(c.region, &mesh_.position[3 * g]))
-        for (int d = 0; d < 3; ++d)
-          gravity_force_[3 * g + d] += c.force[d];
+      {
+        if (c.motion.varies()) // added step by step (external_forces)
+          timed_load_points_.emplace_back(g, unsigned(&c - conditions_.data()));
+        else
+          for (int d = 0; d < 3; ++d)
+            gravity_force_[3 * g + d] += c.force[d];
+      }
+  steady_gravity_force_.clear();
+  if (!timed_load_points_.empty())
+    steady_gravity_force_ = gravity_force_;
 }
 
 void DeformableSolver::apply_conditions()
@@ -366,6 +375,8 @@ void DeformableSolver::select_pressed_faces()
   pressed_faces_.clear();
   face_pressure_.clear();
   face_traction_.clear();
+  face_function_.clear();
+  pressure_scale_.assign(pressures_.size(), 1.0);
   face_share_.clear();
   const unsigned int ng = mesh_.n_gridpoints();
   const std::vector<char> in_hex = zones_in_hexes(mesh_);
@@ -390,6 +401,7 @@ void DeformableSolver::select_pressed_faces()
         pressed_faces_.push_back(face);
         face_pressure_.push_back(p.pressure);
         face_traction_.push_back(p.traction);
+        face_function_.push_back(p.motion.varies() ? int(&p - pressures_.data()) : -1);
         // Share of the face's load on each of its gridpoints (times the
         // overlay weight of hexahedral zones). A 10-node
         // zone's face is four sub-triangles; the consistent load of a
@@ -558,6 +570,19 @@ unsigned int DeformableSolver::time_step_gridpoint() const
 void DeformableSolver::external_forces(const double* x, double* f)
 {
   const unsigned int ng = mesh_.n_gridpoints();
+  // Loads in time: each boundary's factor once per step, at its time.
+  for (std::size_t p = 0; p < pressures_.size(); ++p)
+    pressure_scale_[p] = pressures_[p].motion.scale(time_);
+  if (!timed_load_points_.empty())
+  {
+    gravity_force_ = steady_gravity_force_;
+    std::vector<double> scale(conditions_.size(), 1.0);
+    for (std::size_t c = 0; c < conditions_.size(); ++c)
+      scale[c] = conditions_[c].motion.scale(time_);
+    for (const auto& [g, c] : timed_load_points_)
+      for (int d = 0; d < 3; ++d)
+        gravity_force_[3 * g + d] += conditions_[c].force[d] * scale[c];
+  }
   for (unsigned int i = 0; i < 3 * ng; ++i)
   {
     f[i] = gravity_force_[i];
@@ -1571,7 +1596,8 @@ Vec3 DeformableSolver::face_load(std::size_t k, const double* x) const
   const Vec3 c(x[3 * t[2]], x[3 * t[2] + 1], x[3 * t[2] + 2]);
   const Vec3 area_normal = 0.5 * (b - a).cross(c - a); // outward, |.| = area
   // -p n A + t A, shared by the gridpoints as face_share_ says.
-  return -face_pressure_[k] * area_normal + face_traction_[k] * area_normal.norm();
+  const double scale = face_function_[k] < 0 ? 1.0 : pressure_scale_[face_function_[k]];
+  return scale * (-face_pressure_[k] * area_normal + face_traction_[k] * area_normal.norm());
 }
 
 ImplicitElasticProblem DeformableSolver::implicit_problem() const

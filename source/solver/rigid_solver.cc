@@ -873,7 +873,7 @@ void RigidSolver::step()
   else
     contact_forces();
   if (!face_loads_.empty())
-    face_loads_.add(m_, force, moment, velocity, spin);
+    face_loads_.add(m_, force, moment, velocity, spin, time_);
   if (!water_loads_.empty())
     water_loads_.add(m_, force, moment, velocity, spin);
   timing_.seconds_forces += seconds_since(t0);

@@ -330,6 +330,14 @@ private:
   std::vector<std::array<unsigned int, 3>> pressed_faces_; ///< gridpoints, normal outward
   std::vector<double> face_pressure_;                      ///< Pa, per pressed face
   std::vector<Vec3> face_traction_;                        ///< Pa, per pressed face
+  /// Loads in time: the pressures_ entry of each pressed face (-1: it is
+  /// constant) and each entry's factor at this step; the gridpoint loads
+  /// of conditions that vary (gridpoint, condition) and the gridpoint
+  /// forces without them (N, 3 per gridpoint).
+  std::vector<int> face_function_;
+  std::vector<double> pressure_scale_;
+  std::vector<std::pair<unsigned int, unsigned int>> timed_load_points_;
+  std::vector<double> steady_gravity_force_;
   /// Per pressed face, the fraction of its load on each of its gridpoints
   /// (a third each for 4-node zones, half that on each overlay's split of
   /// a hexahedral zone's face).
