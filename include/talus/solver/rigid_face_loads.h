@@ -94,8 +94,8 @@ private:
     int function; ///< its place in functions_ (-1: constant)
   };
   std::vector<Load> patch_;
-  std::vector<TimeFunction> functions_; ///< of the loads that vary in time
-  std::vector<double> scale_;           ///< each one's factor at this step
+  std::vector<TimeFunction> functions_;    ///< of the loads that vary in time
+  std::vector<double> scale_;              ///< each one's factor at this step
   std::vector<unsigned int> loaded_block_; ///< blocks with a load, each once
   /// Per loaded block, this step: force, moment, velocity and spin before.
   std::vector<Vec3> force_, moment_, velocity_before_, spin_before_;
