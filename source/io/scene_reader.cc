@@ -9,6 +9,7 @@
 #include "parameter_file.h"
 #include "region_reader.h"
 #include "stage_reader.h"
+#include "time_function_reader.h"
 #include "water_reader.h"
 
 #include <cerrno>
@@ -365,6 +366,7 @@ void declare_load(ParameterFile& prm, const std::string& section)
               "Velocity of the rigid blocks at the start (m/s; components not held).");
   prm.declare("Initial spin", "0, 0, 0", vec3_pattern(), vec3_allowed,
               "Angular velocity of the rigid blocks about their centroids at the start (rad/s).");
+  declare_time_function(prm, "'Force' and the prescribed 'Velocity'");
   prm.leave();
 }
 
@@ -396,6 +398,11 @@ void parse_load(ParameterFile& prm, const std::string& section, const std::strin
                         "and its blocks start from where the stages before left them)",
                         "0, 0, 0 in a stage; a force that changes: a stage with 'Time limit' for "
                         "each value");
+  load.motion = parse_time_function(prm, scene.parameter_file, load.prescribe_velocity,
+                                    "value unless 'Prescribe velocity = true'");
+  if (load.motion.acceleration && load.force != Vec3::Zero())
+    throw prm.error("Force", "is not taken with 'Input = acceleration' (which drives the velocity)",
+                    "0, 0, 0 with an acceleration input; a force in time: 'Input = value'");
   into.loads.push_back(load);
   into.load_groups.push_back(group);
   into.load_sections.push_back(path);
@@ -626,6 +633,7 @@ void declare_boundary(ParameterFile& prm, const std::string& section)
               "components' goes to the history and the summary (N).");
   prm.declare("Pressure", "0", P::Double(), "a number (Pa; positive pushes into the block)",
               "Normal pressure on the boundary faces whose centroid lies in the region (Pa).");
+  declare_time_function(prm, "'Velocity', 'Pressure', 'Traction' or 'Force'");
   prm.leave();
 }
 
@@ -653,6 +661,14 @@ void parse_boundary(ParameterFile& prm, const std::string& section, const std::s
                       "false in a stage; report it on a 'Boundary N' of the file's top level "
                       "with the same box");
   }
+  const TimeFunction motion = parse_time_function(
+      prm, scene.parameter_file, condition == "velocity", "value unless 'Condition = velocity'");
+  if (motion.varies() && (condition == "fixed" || condition == "quiet"))
+    throw prm.error("Time function",
+                    "varies nothing on a " + condition + " boundary" +
+                        (condition == "quiet" ? " (its 'Stress wave' puts a wave in)" : ""),
+                    "none with 'Condition = fixed' or quiet; a time function with velocity, "
+                    "pressure, traction or load");
   (condition == "pressure" || condition == "traction" || condition == "quiet"
        ? into.face_pressure_sections
        : into.gridpoint_condition_sections)
@@ -695,6 +711,7 @@ void parse_boundary(ParameterFile& prm, const std::string& section, const std::s
     FacePressure p;
     p.region = region;
     p.pressure = prm.get_double("Pressure");
+    p.motion = motion;
     into.face_pressures.push_back(p);
   }
   else if (condition == "traction")
@@ -702,6 +719,7 @@ void parse_boundary(ParameterFile& prm, const std::string& section, const std::s
     FacePressure p;
     p.region = region;
     p.traction = prm.get_vec3("Traction");
+    p.motion = motion;
     into.face_pressures.push_back(p);
   }
   else if (condition == "load")
@@ -710,6 +728,7 @@ void parse_boundary(ParameterFile& prm, const std::string& section, const std::s
     c.region = region;
     c.held[0] = c.held[1] = c.held[2] = false;
     c.force = prm.get_vec3("Force");
+    c.motion = motion;
     into.gridpoint_conditions.push_back(c);
   }
   else
@@ -724,6 +743,7 @@ void parse_boundary(ParameterFile& prm, const std::string& section, const std::s
       c.velocity = prm.get_vec3("Velocity");
       if (prm.get_double("Velocity until") > 0.0)
         c.velocity_until = prm.get_double("Velocity until");
+      c.motion = motion;
     }
     into.gridpoint_conditions.push_back(c);
     if (prm.get_bool("Report reaction"))
@@ -800,6 +820,8 @@ void declare_solver(ParameterFile& prm)
               "strengths divided by F, bisected on F.");
   prm.declare("Steps", "0", P::Integer(0), "an integer >= 0",
               "Step limit; 0 builds and writes the model only.");
+  prm.declare("End time", "0", P::Double(0.0), "a number >= 0 (s; 0: none)",
+              "The run stops at this model time, or at 'Steps', whichever comes first (s).");
   prm.declare("Target ratio", "1e-5", P::Double(0.0), "a number >= 0",
               "A static run stops when the unbalanced-force ratio falls below this (0: never).");
   prm.declare("Damping", "local", P::Selection("local|combined|global"),
@@ -916,6 +938,7 @@ void parse_solver(ParameterFile& prm, Scene& scene)
   s.dynamic = prm.get("Mode") == "dynamic";
   s.steps = static_cast<unsigned long>(prm.get_integer("Steps"));
   s.steps = std::min(s.steps, step_limit_from_environment());
+  s.end_time = prm.get_double("End time");
   s.target_ratio = prm.get_double("Target ratio");
   s.local_damping = prm.get_double("Local damping"); // used only when static
   const std::string damping = prm.get("Damping");

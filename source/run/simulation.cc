@@ -223,6 +223,27 @@ int Simulation::run()
   stages = this->stages();
   const bool staged = !scene_.stages.empty();
   std::vector<std::string> columns = cycle->history_columns();
+  // Input motions: the factor f(t) (or its integral) of each boundary and
+  // load of the file's top level that varies in time.
+  std::vector<const TimeFunction*> inputs;
+  for (std::size_t l = 0; l < scene_.solver.loads.size(); ++l)
+    if (scene_.solver.loads[l].motion.varies())
+    {
+      columns.push_back(scene_.load_sections[l] + " input");
+      inputs.push_back(&scene_.solver.loads[l].motion);
+    }
+  for (std::size_t c = 0; c < scene_.gridpoint_conditions.size(); ++c)
+    if (scene_.gridpoint_conditions[c].motion.varies())
+    {
+      columns.push_back(scene_.gridpoint_condition_sections[c] + " input");
+      inputs.push_back(&scene_.gridpoint_conditions[c].motion);
+    }
+  for (std::size_t p = 0; p < scene_.face_pressures.size(); ++p)
+    if (scene_.face_pressures[p].motion.varies())
+    {
+      columns.push_back(scene_.face_pressure_sections[p] + " input");
+      inputs.push_back(&scene_.face_pressures[p].motion);
+    }
   if (staged)
     columns.push_back("stage");
   Checkpoint checkpoint(scene_, model_, cycle->rigid(), cycle->zones(), restart_from_);
@@ -256,6 +277,8 @@ int Simulation::run()
   const auto record = [&]()
   {
     std::vector<double> row = cycle->history_row();
+    for (const TimeFunction* input : inputs)
+      row.push_back(input->scale(cycle->time()));
     if (staged)
       row.push_back(stage_index + 1);
     history.record(row);
@@ -267,7 +290,8 @@ int Simulation::run()
     last_output = cycle->steps_done();
   };
   int exit_code = 0;
-  for (; stage_index < stages.size(); ++stage_index)
+  bool end_time_reached = false;
+  for (; stage_index < stages.size() && !end_time_reached; ++stage_index)
   {
     if (stages_done > stage_index)
       continue; // done before the checkpoint this run restarted from
@@ -309,6 +333,13 @@ int Simulation::run()
         if (stage.time_limit > 0.0 &&
             cycle->time() - stage_start_time > stage.time_limit - 0.5 * cycle->dt())
           break;
+        // 'Solver / End time': the whole run's model time, likewise.
+        if (scene_.solver.end_time > 0.0 &&
+            cycle->time() > scene_.solver.end_time - 0.5 * cycle->dt())
+        {
+          end_time_reached = true;
+          break;
+        }
         checkpoint.after_step(n);
       }
     }
@@ -324,6 +355,8 @@ int Simulation::run()
     if (last_output != cycle->steps_done())
       output();
     progress.finish();
+    if (end_time_reached)
+      std::printf("End time:     %g s reached\n", scene_.solver.end_time);
     const RunEnd end{cycle->ratio(), cycle->unbalanced_where()};
     if (staged)
       std::printf("  Steps:      %lu (to step %lu, time %.6g s), unbalanced force ratio %.3g; "

@@ -279,7 +279,7 @@ DeformableSolver::DeformableSolver(const TetMesh& mesh, std::vector<ZoneMaterial
   {
     LocalArray v(petsc_->velocity);
     for (unsigned int i = 0; i < 3 * ng; ++i)
-      v[i] = held_velocity_[i];
+      v[i] = held_velocity_at(i, 0.0);
   }
   select_pressed_faces();
   select_water_faces();
@@ -291,7 +291,7 @@ DeformableSolver::DeformableSolver(const TetMesh& mesh, std::vector<ZoneMaterial
     // Held velocities are there from the start: energy at the start.
     LocalArray m(petsc_->inertial_mass);
     for (unsigned int i = 0; i < 3 * ng; ++i)
-      initial_elastic_ += 0.5 * m[i] * held_velocity_[i] * held_velocity_[i];
+      initial_elastic_ += 0.5 * m[i] * held_velocity_at(i, 0.0) * held_velocity_at(i, 0.0);
   }
   damper_ = damper_for(s_, dt_);
   if (!s_.dynamic && s_.damping == Damping::combined)
@@ -306,11 +306,20 @@ void DeformableSolver::set_gravity_and_loads()
   for (unsigned int g = 0; g < ng; ++g)
     for (int d = 0; d < 3; ++d)
       gravity_force_[3 * g + d] = true_mass_[g] * s_.gravity[d]; // eq. 56
+  timed_load_points_.clear();
   for (unsigned int g = 0; g < ng; ++g)
     for (const GridpointCondition& c : conditions_)
       if (inside(c.region, &mesh_.position[3 * g]))
-        for (int d = 0; d < 3; ++d)
-          gravity_force_[3 * g + d] += c.force[d];
+      {
+        if (c.motion.varies()) // added step by step (external_forces)
+          timed_load_points_.emplace_back(g, unsigned(&c - conditions_.data()));
+        else
+          for (int d = 0; d < 3; ++d)
+            gravity_force_[3 * g + d] += c.force[d];
+      }
+  steady_gravity_force_.clear();
+  if (!timed_load_points_.empty())
+    steady_gravity_force_ = gravity_force_;
 }
 
 void DeformableSolver::apply_conditions()
@@ -320,6 +329,8 @@ void DeformableSolver::apply_conditions()
   held_.assign(ng, 0);
   held_velocity_.assign(3 * ng, 0.0);
   held_until_.assign(3 * ng, std::numeric_limits<double>::infinity());
+  held_motion_.assign(3 * ng, -1);
+  motion_scale_.assign(conditions_.size(), 1.0);
   for (unsigned int g = 0; g < ng; ++g)
     for (const GridpointCondition& c : conditions_)
       if (inside(c.region, &mesh_.position[3 * g]))
@@ -332,6 +343,7 @@ void DeformableSolver::apply_conditions()
                                                                     mesh_.position[3 * g + 1],
                                                                     mesh_.position[3 * g + 2]));
             held_until_[3 * g + d] = c.velocity_until;
+            held_motion_[3 * g + d] = c.motion.varies() ? int(&c - conditions_.data()) : -1;
           }
   // A gridpoint of removed zones only stays where it is.
   if (!removed_zone_.empty())
@@ -340,6 +352,7 @@ void DeformableSolver::apply_conditions()
       {
         held_[g] = 7u;
         std::fill_n(&held_velocity_[3 * g], 3, 0.0);
+        std::fill_n(&held_motion_[3 * g], 3, -1);
       }
   set_gravity_and_loads();
 }
@@ -349,6 +362,8 @@ void DeformableSolver::select_pressed_faces()
   pressed_faces_.clear();
   face_pressure_.clear();
   face_traction_.clear();
+  face_function_.clear();
+  pressure_scale_.assign(pressures_.size(), 1.0);
   face_share_.clear();
   const unsigned int ng = mesh_.n_gridpoints();
   const std::vector<char> in_hex = zones_in_hexes(mesh_);
@@ -373,6 +388,7 @@ void DeformableSolver::select_pressed_faces()
         pressed_faces_.push_back(face);
         face_pressure_.push_back(p.pressure);
         face_traction_.push_back(p.traction);
+        face_function_.push_back(p.motion.varies() ? int(&p - pressures_.data()) : -1);
         // Share of the face's load on each of its gridpoints (times the
         // overlay weight of hexahedral zones). A 10-node
         // zone's face is four sub-triangles; the consistent load of a
@@ -700,6 +716,19 @@ unsigned int DeformableSolver::time_step_gridpoint() const
 void DeformableSolver::external_forces(const double* x, double* f)
 {
   const unsigned int ng = mesh_.n_gridpoints();
+  // Loads in time: each boundary's factor once per step, at its time.
+  for (std::size_t p = 0; p < pressures_.size(); ++p)
+    pressure_scale_[p] = pressures_[p].motion.scale(time_);
+  if (!timed_load_points_.empty())
+  {
+    gravity_force_ = steady_gravity_force_;
+    std::vector<double> scale(conditions_.size(), 1.0);
+    for (std::size_t c = 0; c < conditions_.size(); ++c)
+      scale[c] = conditions_[c].motion.scale(time_);
+    for (const auto& [g, c] : timed_load_points_)
+      for (int d = 0; d < 3; ++d)
+        gravity_force_[3 * g + d] += conditions_[c].force[d] * scale[c];
+  }
   for (unsigned int i = 0; i < 3 * ng; ++i)
   {
     f[i] = gravity_force_[i];
@@ -1268,6 +1297,10 @@ void DeformableSolver::move_gridpoints()
   // any c), the off-diagonal part of an inclined face on v-.
   const bool quiet = s_.dynamic && !quiet_c_.empty();
   double quiet_work = 0.0;
+  // Held velocities in time: each condition's function once per motion, at
+  // its middle (velocities live at half steps).
+  for (unsigned int c = 0; c < conditions_.size(); ++c)
+    motion_scale_[c] = conditions_[c].motion.scale(time_ + 0.5 * dt_);
   for (unsigned int g = 0; g < ng; ++g)
   {
     double f2 = 0.0, size2 = 0.0;
@@ -1284,7 +1317,10 @@ void DeformableSolver::move_gridpoints()
         // This motion spans [time_, time_ + dt_]: moved while it ends by
         // the condition's end time (half a step of slack for round-off).
         const double v_before = v[i];
-        v[i] = time_ + 0.5 * dt_ < held_until_[i] ? held_velocity_[i] : 0.0;
+        const double held = held_motion_[i] < 0
+                                ? held_velocity_[i]
+                                : held_velocity_[i] * motion_scale_[held_motion_[i]];
+        v[i] = time_ + 0.5 * dt_ < held_until_[i] ? held : 0.0;
         // The support supplies minus the force on the component, and
         // whatever kinetic energy a change of the held velocity takes.
         const double reach = 0.5 * h * (v_before + v[i]);
@@ -1615,6 +1651,7 @@ void DeformableSolver::remove_zones(std::vector<char> gone)
         {
           v[3 * g + d] = held_velocity_[3 * g + d] = 0.0;
           held_until_[3 * g + d] = std::numeric_limits<double>::infinity();
+          held_motion_[3 * g + d] = -1;
         }
       }
   }
@@ -1749,6 +1786,7 @@ void DeformableSolver::hold_gridpoint(unsigned int g, const Vec3& v)
   {
     held_velocity_[3 * g + d] = v[d];
     held_until_[3 * g + d] = std::numeric_limits<double>::infinity();
+    held_motion_[3 * g + d] = -1;
   }
 }
 
@@ -1774,7 +1812,8 @@ Vec3 DeformableSolver::face_load(std::size_t k, const double* x) const
   const Vec3 c(x[3 * t[2]], x[3 * t[2] + 1], x[3 * t[2] + 2]);
   const Vec3 area_normal = 0.5 * (b - a).cross(c - a); // outward, |.| = area
   // -p n A + t A, shared by the gridpoints as face_share_ says.
-  return -face_pressure_[k] * area_normal + face_traction_[k] * area_normal.norm();
+  const double scale = face_function_[k] < 0 ? 1.0 : pressure_scale_[face_function_[k]];
+  return scale * (-face_pressure_[k] * area_normal + face_traction_[k] * area_normal.norm());
 }
 
 ImplicitElasticProblem DeformableSolver::implicit_problem() const

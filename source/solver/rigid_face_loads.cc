@@ -116,6 +116,10 @@ RigidFaceLoads::RigidFaceLoads(const BlockModel& blocks, const std::vector<char>
 {
   std::vector<unsigned int> slot_of_block(blocks.n_blocks(), ~0u);
   for (const FacePressure& load : loads)
+  {
+    const int function = load.motion.varies() ? static_cast<int>(functions_.size()) : -1;
+    if (load.motion.varies())
+      functions_.push_back(load.motion);
     for (const FacePatch& patch :
          load.quiet ? std::vector<FacePatch>{} : face_patches_in(blocks, rigid, load.region))
     {
@@ -125,8 +129,10 @@ RigidFaceLoads::RigidFaceLoads(const BlockModel& blocks, const std::vector<char>
         slot = static_cast<unsigned int>(loaded_block_.size());
         loaded_block_.push_back(patch.block);
       }
-      patch_.push_back(Load{patch, slot, load.pressure, load.traction});
+      patch_.push_back(Load{patch, slot, load.pressure, load.traction, function});
     }
+  }
+  scale_.assign(functions_.size(), 1.0);
   force_.resize(loaded_block_.size());
   moment_.resize(loaded_block_.size());
   velocity_before_.resize(loaded_block_.size());
@@ -134,8 +140,11 @@ RigidFaceLoads::RigidFaceLoads(const BlockModel& blocks, const std::vector<char>
 }
 
 void RigidFaceLoads::add(const BlockModel& m, std::vector<Vec3>& force, std::vector<Vec3>& moment,
-                         const std::vector<Vec3>& velocity, const std::vector<Vec3>& spin)
+                         const std::vector<Vec3>& velocity, const std::vector<Vec3>& spin,
+                         double time)
 {
+  for (std::size_t i = 0; i < functions_.size(); ++i) // once per load and step
+    scale_[i] = functions_[i].scale(time);
   for (std::size_t k = 0; k < loaded_block_.size(); ++k)
   {
     const unsigned int b = loaded_block_[k];
@@ -152,7 +161,8 @@ void RigidFaceLoads::add(const BlockModel& m, std::vector<Vec3>& force, std::vec
     const Vec3 at =
         x0 + p.alpha * (m.vertex[p.corner[1]] - x0) + p.beta * (m.vertex[p.corner[2]] - x0);
     // Pressure pushes in, against the outward normal; traction in global axes.
-    const Vec3 f = (-l.pressure * m.face_normal[p.face] + l.traction) * p.area;
+    const double scale = l.function < 0 ? 1.0 : scale_[l.function];
+    const Vec3 f = (-l.pressure * m.face_normal[p.face] + l.traction) * (scale * p.area);
     force_[k] += f;
     moment_[k] += (at - m.centroid[p.block]).cross(f);
   }

@@ -123,14 +123,16 @@ RigidSolver::RigidSolver(BlockModel& blocks, double density, const SolverSetting
     for (const BlockLoad& load : s_.loads)
       if (m_.group[b] == load.group)
       {
-        applied_force[b] += load.force;
+        // A force in time is added step by step (update_timed_loads).
+        if (!load.motion.varies())
+          applied_force[b] += load.force;
         applied_force_rate[b] += load.force_rate;
         if (load.prescribe_velocity)
           for (int d = 0; d < 3; ++d)
             if (load.held[d])
             {
               prescribed[b] |= 1u << d;
-              velocity[b][d] = load.velocity[d];
+              velocity[b][d] = load.velocity[d] * load.motion.scale(0.0);
             }
         if (load.hold_rotation)
           prescribed[b] |= 8u;
@@ -144,6 +146,7 @@ RigidSolver::RigidSolver(BlockModel& blocks, double density, const SolverSetting
   true_inertia_ = inertia;
   if (s_.principal_inertia)
     true_principal_ = principal_moments;
+  find_timed_loads();
   set_masses_and_step();
 
   envelopes_.resize(nb);
@@ -298,6 +301,7 @@ void RigidSolver::set_fixed(unsigned int b, bool fix)
 void RigidSolver::set_loads(const std::vector<BlockLoad>& loads)
 {
   s_.loads = loads;
+  find_timed_loads();
   for (unsigned int b = 0; b < m_.n_blocks(); ++b)
   {
     if (removed_[b])
@@ -307,14 +311,15 @@ void RigidSolver::set_loads(const std::vector<BlockLoad>& loads)
     for (const BlockLoad& load : loads)
       if (m_.group[b] == load.group)
       {
-        force += load.force;
+        if (!load.motion.varies())
+          force += load.force;
         rate += load.force_rate;
         if (load.prescribe_velocity)
           for (int d = 0; d < 3; ++d)
             if (load.held[d])
             {
               bits |= 1u << d;
-              v[d] = load.velocity[d];
+              v[d] = load.velocity[d] * load.motion.scale(time_);
             }
         if (load.hold_rotation)
           bits |= 8u;
@@ -333,6 +338,44 @@ void RigidSolver::set_loads(const std::vector<BlockLoad>& loads)
       boundary_work_ -= 0.5 * inertia[b] * spin[b].squaredNorm();
       spin[b].setZero();
     }
+  }
+}
+
+void RigidSolver::find_timed_loads()
+{
+  timed_loads_.clear();
+  for (unsigned int l = 0; l < s_.loads.size(); ++l)
+    if (s_.loads[l].motion.varies())
+      timed_loads_.push_back(l);
+  const unsigned int nb = timed_loads_.empty() ? 0 : m_.n_blocks();
+  timed_force_.assign(nb, Vec3::Zero());
+  timed_velocity_.assign(nb, Vec3::Zero());
+  timed_held_.assign(nb, 0);
+}
+
+void RigidSolver::update_timed_loads()
+{
+  std::fill(timed_force_.begin(), timed_force_.end(), Vec3::Zero());
+  std::fill(timed_held_.begin(), timed_held_.end(), 0);
+  for (unsigned int l : timed_loads_)
+  {
+    // Once per load and step: forces live at whole steps, velocities at
+    // half steps (eq. 47).
+    const BlockLoad& load = s_.loads[l];
+    const Vec3 force = load.force * load.motion.scale(time_);
+    const Vec3 velocity = load.velocity * load.motion.scale(time_ + 0.5 * dt_);
+    for (unsigned int b = 0; b < m_.n_blocks(); ++b)
+      if (m_.group[b] == load.group && !removed_[b])
+      {
+        timed_force_[b] += force;
+        if (load.prescribe_velocity)
+          for (int d = 0; d < 3; ++d)
+            if (load.held[d])
+            {
+              timed_held_[b] |= 1u << d;
+              timed_velocity_[b][d] = velocity[d];
+            }
+      }
   }
 }
 
@@ -663,6 +706,9 @@ void RigidSolver::move_blocks()
   double max_unbalanced = 0.0, sum_weight = 0.0, kinetic = 0.0;
   unsigned int n_free = 0;
   too_fast_.clear();
+  const bool timed = !timed_loads_.empty();
+  if (timed)
+    update_timed_loads();
   for (unsigned int b = 0; b < m_.n_blocks(); ++b)
   {
     if (fixed[b] || is_deformable_[b])
@@ -673,7 +719,8 @@ void RigidSolver::move_blocks()
       damping_moment_[b].setZero();
       continue;
     }
-    const Vec3 applied = applied_force[b] + applied_force_rate[b] * time_;
+    const Vec3 applied =
+        applied_force[b] + applied_force_rate[b] * time_ + (timed ? timed_force_[b] : Vec3::Zero());
     // The sub-contacts' Rayleigh damping (zero without it) acts with the
     // other forces; the account takes its work apart.
     const Vec3 f = force[b] + mass[b] * s_.gravity + applied + damping_force_[b];
@@ -688,6 +735,16 @@ void RigidSolver::move_blocks()
     // Eq. 49 for translation, damped for statics.
     Vec3 damping_force = Vec3::Zero();
     const Vec3 velocity_before = velocity[b];
+    // A prescribed velocity in time: the support gives the kinetic energy
+    // of its change (and takes minus the force on it, below).
+    if (timed && timed_held_[b] != 0)
+      for (int d = 0; d < 3; ++d)
+        if ((timed_held_[b] & prescribed[b]) & (1u << d))
+        {
+          const double v = timed_velocity_[b][d];
+          boundary_work_ += 0.5 * inertial_mass[b] * (v * v - velocity[b][d] * velocity[b][d]);
+          velocity[b][d] = v;
+        }
     for (int d = 0; d < 3; ++d)
       if (!(prescribed[b] & (1u << d)))
         damping_force[d] = kick(velocity[b][d], f[d], last_force_[b][d], inertial_mass[b]);
@@ -830,7 +887,7 @@ void RigidSolver::step()
   else
     contact_forces();
   if (!face_loads_.empty())
-    face_loads_.add(m_, force, moment, velocity, spin);
+    face_loads_.add(m_, force, moment, velocity, spin, time_);
   if (!water_loads_.empty())
     water_loads_.add(m_, force, moment, velocity, spin);
   timing_.seconds_forces += seconds_since(t0);

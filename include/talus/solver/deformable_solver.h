@@ -39,6 +39,9 @@ struct GridpointCondition
   /// components stay where they are (a displacement applied, then held
   /// while the run settles to a static answer).
   double velocity_until = std::numeric_limits<double>::infinity();
+  /// A velocity that varies in model time t: the held velocity times
+  /// motion.scale(t); none: constant.
+  TimeFunction motion;
 };
 
 /// The explicit cycle of deformable blocks: zone forces from the stresses
@@ -329,9 +332,27 @@ private:
   std::vector<unsigned char> held_;     ///< per gridpoint, bit d: component d held
   std::vector<double> held_velocity_;   ///< 3 per gridpoint, m/s
   std::vector<double> held_until_;      ///< 3 per gridpoint: model time the velocity stops, s
+  /// 3 per gridpoint: the condition whose time function scales the held
+  /// velocity (-1: constant), and each condition's scale at this motion.
+  std::vector<int> held_motion_;
+  std::vector<double> motion_scale_;
+  /// The held velocity of component i at model time t (m/s).
+  double held_velocity_at(unsigned int i, double t) const
+  {
+    const int c = held_motion_[i];
+    return c < 0 ? held_velocity_[i] : held_velocity_[i] * conditions_[c].motion.scale(t);
+  }
   std::vector<std::array<unsigned int, 3>> pressed_faces_; ///< gridpoints, normal outward
   std::vector<double> face_pressure_;                      ///< Pa, per pressed face
   std::vector<Vec3> face_traction_;                        ///< Pa, per pressed face
+  /// Loads in time: the pressures_ entry of each pressed face (-1: it is
+  /// constant) and each entry's factor at this step; the gridpoint loads
+  /// of conditions that vary (gridpoint, condition) and the gridpoint
+  /// forces without them (N, 3 per gridpoint).
+  std::vector<int> face_function_;
+  std::vector<double> pressure_scale_;
+  std::vector<std::pair<unsigned int, unsigned int>> timed_load_points_;
+  std::vector<double> steady_gravity_force_;
   /// Per pressed face, the fraction of its load on each of its gridpoints
   /// (a third each for 4-node zones, half that on each overlay's split of
   /// a hexahedral zone's face).

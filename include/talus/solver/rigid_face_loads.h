@@ -4,6 +4,7 @@
 #include <talus/geometry/region.h>
 #include <talus/model/block_model.h>
 #include <talus/model/wave_signal.h>
+#include <talus/model/time_history.h>
 
 #include <array>
 #include <vector>
@@ -28,6 +29,8 @@ struct FacePressure
   /// traction are then zero. Rigid blocks take nothing of it.
   bool quiet = false;
   WaveSignal wave;
+  /// Both in model time t: times motion.scale(t); none: constant.
+  TimeFunction motion;
 };
 
 /// The part of a rigid block's face inside a region, tied to the face so
@@ -74,8 +77,9 @@ public:
   /// `moment` (N, N m about each block's centroid) and keeps them, with
   /// each loaded block's velocity and spin before its motion, for
   /// account().
+  /// `time`: the model time, for loads that vary in it.
   void add(const BlockModel& blocks, std::vector<Vec3>& force, std::vector<Vec3>& moment,
-           const std::vector<Vec3>& velocity, const std::vector<Vec3>& spin);
+           const std::vector<Vec3>& velocity, const std::vector<Vec3>& spin, double time = 0.0);
 
   /// After the motion of a step (`h`: the velocity update's time span,
   /// `dt` the step): adds the loads' work, F . reach + M . turn over the
@@ -94,8 +98,11 @@ private:
     unsigned int slot; ///< its block's place in loaded_block_
     double pressure;
     Vec3 traction;
+    int function; ///< its place in functions_ (-1: constant)
   };
   std::vector<Load> patch_;
+  std::vector<TimeFunction> functions_;    ///< of the loads that vary in time
+  std::vector<double> scale_;              ///< each one's factor at this step
   std::vector<unsigned int> loaded_block_; ///< blocks with a load, each once
   /// Per loaded block, this step: force, moment, velocity and spin before.
   std::vector<Vec3> force_, moment_, velocity_before_, spin_before_;

@@ -6,6 +6,7 @@
 #include <talus/joint/joint_properties.h>
 #include <talus/model/block_model.h>
 #include <talus/model/initial_stress.h>
+#include <talus/model/time_history.h>
 #include <talus/solver/damper.h>
 #include <talus/solver/energy_account.h>
 #include <talus/solver/rigid_face_loads.h>
@@ -37,12 +38,17 @@ struct BlockLoad
   bool hold_rotation = false;           ///< the blocks do not rotate (a stiff platen)
   Vec3 initial_velocity = Vec3::Zero(); ///< m/s at t = 0 (free components)
   Vec3 initial_spin = Vec3::Zero();     ///< rad/s at t = 0 about the centroid
+  /// A load that varies in model time t: the force is force motion.scale(t)
+  /// + force_rate t and the prescribed velocity velocity motion.scale(t);
+  /// none: constant.
+  TimeFunction motion;
 };
 
 struct SolverSettings
 {
   bool dynamic = false;             ///< false: static solution with damping
   unsigned long steps = 0;          ///< step limit (0: build the model only)
+  double end_time = 0.0;            ///< s of model time at which the run stops (0: none)
   double target_ratio = 1e-5;       ///< static runs stop below this unbalanced-force ratio (0: off)
   Damping damping = Damping::local; ///< statics
   double local_damping = 0.8;       ///< alpha of eqs. 79 and 83
@@ -256,6 +262,15 @@ public:
   void load_state(CheckpointReader& in);
 
 private:
+  /// The loads that vary in time (s_.loads indices), and their sum on each
+  /// block at this step: force (N, at time_) and the velocity of the held
+  /// components (m/s, at time_ + dt_ / 2; bits in timed_held_).
+  void find_timed_loads();
+  void update_timed_loads();
+  std::vector<unsigned int> timed_loads_;
+  std::vector<Vec3> timed_force_, timed_velocity_;
+  std::vector<unsigned char> timed_held_;
+
   void detect_contacts(bool everything);
   /// Eq. 87 block by block with the stiffness-proportional coefficient
   /// `beta` (s) of Rayleigh damping.
