@@ -168,6 +168,15 @@ void check_stages(const Scene& scene, const BlockModel& model, const BuildReport
     }
     for (const RockMaterialChange& c : stage.rock_materials)
       check_has_blocks(stage.section, "Rock materials", c.group);
+    for (const GroupContactChange& c : stage.group_contacts)
+    {
+      check_has_blocks(stage.section, "Group contacts", c.a);
+      check_has_blocks(stage.section, "Group contacts", c.b);
+    }
+    if (body && !stage.group_contacts.empty())
+      throw scene_error(scene, stage.section, "Group contacts",
+                        "the scene is one deformable body, without contacts",
+                        "no 'Group contacts' for a body alone");
     if (body && !stage.joint_materials.empty())
       throw scene_error(scene, stage.section, "Joint materials",
                         "the scene is one deformable body, without joints",

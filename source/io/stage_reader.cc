@@ -75,6 +75,10 @@ void declare_stage(ParameterFile& prm, const std::string& section,
               "'Joint set N = material' or 'Joint N = material' separated by ';'",
               "Joint sets and joints whose contacts take another joint material from the "
               "stage's start.");
+  prm.declare("Group contacts", "", P::Anything(),
+              "'group, group = material' separated by ';'",
+              "Contacts between blocks of the two groups that lie on no joint with a material "
+              "take this joint material from the stage's start (as 'Group contact N').");
   prm.declare("Rock materials", "", P::Anything(),
               "'group = material' separated by ';' (material: a 'Rock material N' name, or "
               "default)",
@@ -152,6 +156,32 @@ void parse_stage(ParameterFile& prm, const std::string& section,
                       allowed);
     change.material = static_cast<unsigned char>(m - scene.joint_material_names.begin());
     stage.joint_materials.push_back(change);
+  }
+  const std::string pair_allowed =
+      "'group, group = material' separated by ';', with groups of the scene and a material of "
+      "'Joint properties' (default) or a 'Joint material N'";
+  for (const std::string& item :
+       dealii::Utilities::split_string_list(prm.get("Group contacts"), ';'))
+  {
+    const auto parts = dealii::Utilities::split_string_list(item, '=');
+    const auto groups =
+        parts.size() == 2 ? dealii::Utilities::split_string_list(parts[0], ',')
+                          : std::vector<std::string>{};
+    if (groups.size() != 2)
+      throw prm.error("Group contacts", "'" + item + "' is not 'group, group = material'",
+                      pair_allowed);
+    GroupContactChange change;
+    change.a = groups[0];
+    change.b = groups[1];
+    check_group_name(prm, "Group contacts", scene, change.a);
+    check_group_name(prm, "Group contacts", scene, change.b);
+    const auto m =
+        std::find(scene.joint_material_names.begin(), scene.joint_material_names.end(), parts[1]);
+    if (m == scene.joint_material_names.end())
+      throw prm.error("Group contacts", "names the unknown joint material '" + parts[1] + "'",
+                      pair_allowed);
+    change.material = static_cast<unsigned char>(m - scene.joint_material_names.begin());
+    stage.group_contacts.push_back(change);
   }
   for (const std::string& e : excavations)
   {

@@ -381,6 +381,12 @@ void BlockCycle::begin_stage(const StageSpec& stage)
   if (!stage.joint_materials.empty())
     std::printf("  Joints:     %zu joint sets or joints change material\n",
                 stage.joint_materials.size());
+  for (const GroupContactChange& c : stage.group_contacts)
+    solver.change_group_pair_material(model_.group_index(c.a), model_.group_index(c.b),
+                                      c.material);
+  if (!stage.group_contacts.empty())
+    std::printf("  Joints:     %zu pairs of groups change contact material\n",
+                stage.group_contacts.size());
   change_rock_materials(scene_, model_, system_, stage, true);
   if (stage.dynamic != solver.dynamic())
   {

@@ -474,6 +474,38 @@ void RigidSolver::change_joint_material(int origin, unsigned char material)
     contacts_.sc_material[i] = contacts_.material[contacts_.sc_contact[i]];
 }
 
+void RigidSolver::change_group_pair_material(unsigned int a, unsigned int b,
+                                             unsigned char material)
+{
+  JointMaterialRule& rule = s_.joint_rule;
+  if (rule.n_groups < m_.group_names.size())
+  {
+    // Grow the table, keeping the rules it has.
+    const unsigned int n = static_cast<unsigned int>(m_.group_names.size());
+    std::vector<unsigned char> grown(std::size_t(n) * n, JointMaterialRule::none);
+    for (unsigned int i = 0; i < rule.n_groups; ++i)
+      for (unsigned int j = 0; j < rule.n_groups; ++j)
+        grown[std::size_t(i) * n + j] = rule.of_group_pair[std::size_t(i) * rule.n_groups + j];
+    rule.n_groups = n;
+    rule.of_group_pair = std::move(grown);
+  }
+  rule.of_group_pair[std::size_t(a) * rule.n_groups + b] = material;
+  rule.of_group_pair[std::size_t(b) * rule.n_groups + a] = material;
+  s_.contact.materials = &rule;
+  // The contacts of the pair take what the rule now gives them (a joint's
+  // own material still comes first).
+  for (unsigned int c = 0; c < contacts_.n_slots(); ++c)
+  {
+    if (!contacts_.alive[c])
+      continue;
+    const unsigned int ga = m_.group[contacts_.block_a[c]], gb = m_.group[contacts_.block_b[c]];
+    if ((ga == a && gb == b) || (ga == b && gb == a))
+      contacts_.material[c] = rule.material(m_, contacts_, c);
+  }
+  for (unsigned int i = 0; i < contacts_.n_subcontacts(); ++i)
+    contacts_.sc_material[i] = contacts_.material[contacts_.sc_contact[i]];
+}
+
 double RigidSolver::stiffest_joint() const
 {
   double k = 0.0;

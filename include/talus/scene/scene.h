@@ -68,6 +68,14 @@ struct JointMaterialChange
   unsigned char material = 0;
 };
 
+/// Contacts between blocks of groups `a` and `b` that lie on no joint with
+/// a material take `material` from a stage's start ("Group contacts").
+struct GroupContactChange
+{
+  std::string a, b;
+  unsigned char material = 0;
+};
+
 /// A group whose blocks take another rock material at a stage's start
 /// ("joints = grout").
 struct RockMaterialChange
@@ -114,6 +122,7 @@ struct StageSpec
   bool reset_displacements = false;
   std::vector<JointMaterialChange> joint_materials;
   std::vector<RockMaterialChange> rock_materials;
+  std::vector<GroupContactChange> group_contacts;
   /// Its 'Boundary M' and 'Load M' (each added, or replacing the one of
   /// that name) and its 'Release' list changed the boundaries and loads.
   bool changes_boundaries = false;

@@ -153,6 +153,11 @@ public:
   void change_rock(const std::vector<char>& blocks, double density, const ZoneMaterial& material,
                    bool account = true);
 
+  /// Stages: contacts between blocks of groups `a` and `b` (indices of the
+  /// model's groups) that lie on no joint with a material take joint
+  /// material `material` from now on, those there now and new ones.
+  void change_group_pair_material(unsigned int a, unsigned int b, unsigned char material);
+
   /// Stages: this water from now on (rigid blocks' faces and the zones).
   void set_water(const WaterSpec& water);
   const WaterSpec& water() const { return s_.water; }
