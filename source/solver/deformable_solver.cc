@@ -26,6 +26,18 @@ namespace talus
 
 namespace
 {
+/// 10-node zones: whether each gridpoint is a zone's vertex (not a
+/// midpoint); empty for 4-node zones.
+std::vector<char> zone_vertices(const TetMesh& mesh)
+{
+  std::vector<char> is_vertex(mesh.quadratic() ? mesh.n_gridpoints() : 0, 0);
+  if (mesh.quadratic())
+    for (const auto& t : mesh.zone_gridpoint)
+      for (unsigned int g : t)
+        is_vertex[g] = 1;
+  return is_vertex;
+}
+
 bool inside(const ConvexRegion& r, const double* p)
 {
   return r.holds(Vec3(p[0], p[1], p[2]));
@@ -365,17 +377,12 @@ void DeformableSolver::select_pressed_faces()
   face_function_.clear();
   pressure_scale_.assign(pressures_.size(), 1.0);
   face_share_.clear();
-  const unsigned int ng = mesh_.n_gridpoints();
   const std::vector<char> in_hex = zones_in_hexes(mesh_);
   // Loaded faces: the boundary triangles; those of hexahedral zones once
   // for each overlay's split of the boundary quadrilaterals, each half.
   // 10-node zones: a zone vertex (not a midpoint) is where a boundary
   // sub-triangle takes no load.
-  std::vector<bool> is_vertex(mesh_.quadratic() ? ng : 0, false);
-  if (mesh_.quadratic())
-    for (const auto& t : mesh_.zone_gridpoint)
-      for (unsigned int g : t)
-        is_vertex[g] = true;
+  const std::vector<char> is_vertex = zone_vertices(mesh_);
   const auto press = [&](const std::array<unsigned int, 3>& face, double weight)
   {
     double c[3] = {0, 0, 0};
@@ -417,7 +424,7 @@ void DeformableSolver::select_pressed_faces()
 }
 
 void DeformableSolver::select_quiet_faces(const std::vector<char>& in_hex,
-                                          const std::vector<bool>& is_vertex)
+                                          const std::vector<char>& is_vertex)
 {
   quiet_faces_.clear();
   quiet_share_.clear();
@@ -540,10 +547,7 @@ void DeformableSolver::select_water_faces()
   water_vertex_corner_.clear();
   if (mesh_.quadratic())
   {
-    std::vector<char> is_vertex(mesh_.n_gridpoints(), 0);
-    for (const auto& t : mesh_.zone_gridpoint)
-      for (unsigned int g : t)
-        is_vertex[g] = 1;
+    const std::vector<char> is_vertex = zone_vertices(mesh_);
     for (const auto& face : water_faces_)
     {
       int v = -1;

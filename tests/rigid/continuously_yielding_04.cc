@@ -16,6 +16,7 @@
 #include <string>
 
 #include "../tests.h"
+#include "slider_scene.h"
 
 int main()
 {
@@ -43,38 +44,10 @@ int main()
                 talus_test::verdict(reduced), talus_test::verdict(kept));
   }
 
-  const double a = 30 * deg, g = 9.81;
+  const double a = 30 * deg;
   const std::string file = "continuously_yielding_04_scene.prm";
-  {
-    std::ofstream prm(file);
-    char text[3000];
-    std::snprintf(text, sizeof text, R"(
-subsection Model
-  set Brick min = -1, 0, 0
-  set Brick max = 10, 2, 1.2
-  set Default group = base
-end
-subsection Material
-  set Density = 2650
-end
-subsection Joint 1
-  set Dip = 0
-  set Origin = 0, 0, 1
-end
-subsection Excavation 1
-  set Shape = polyhedron
-  set Planes = 0, 0, 1, 0, 0, -1; 0, 0, 1, %.17g, 0, %.17g
-end
-subsection Excavation 2
-  set Shape = polyhedron
-  set Planes = 0, 0, 1, 0, 0, -1; 1, 0, 1, %.17g, 0, %.17g
-end
-subsection Group 1
-  set Name = slider
-  set Corner min = -1, 0, 1
-  set Corner max = 1, 2, 2
-end
-subsection Joint properties
+  write_slider_scene(file, 30, "  set Mode = factor of safety\n  set Steps = 5000",
+                     R"(subsection Joint properties
   set Model = continuously yielding
   set Normal stiffness = 1e11
   set Shear stiffness  = 1e11
@@ -82,17 +55,7 @@ subsection Joint properties
   set Initial friction angle = 35
   set Roughness = 0.001
 end
-subsection Solver
-  set Mode = factor of safety
-  set Gravity = %.17g, 0, %.17g
-  set Steps = 5000
-  set Fixed groups = base
-end
-)",
-                  std::cos(a), std::sin(a), -std::cos(a), -std::sin(a), g * std::sin(a),
-                  -g * std::cos(a));
-    prm << text;
-  }
+)");
   talus::Scene scene = talus::read_scene(file, false);
   talus::BuildReport report;
   talus::BlockModel model = talus::build_blocks(scene, report);

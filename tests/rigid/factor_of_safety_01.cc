@@ -37,61 +37,19 @@
 #include <fstream>
 
 #include "../tests.h"
+#include "slider_scene.h"
 
 double factor_of_safety(double slope, double phi, double cohesion, double pressure = 0.0)
 {
-  const double deg = M_PI / 180.0, a = slope * deg, g = 9.81;
   const std::string file = "factor_of_safety_01_scene.prm";
-  {
-    std::ofstream prm(file);
-    char text[3000];
-    std::snprintf(text, sizeof text, R"(
-subsection Model
-  set Brick min = -1, 0, 0
-  set Brick max = 10, 2, 1.2
-  set Default group = base
-end
-subsection Material
-  set Density = 2650
-end
-subsection Joint 1
-  set Dip = 0
-  set Origin = 0, 0, 1
-end
-subsection Excavation 1
-  set Shape = polyhedron
-  set Planes = 0, 0, 1, 0, 0, -1; 0, 0, 1, %.17g, 0, %.17g
-end
-subsection Excavation 2
-  set Shape = polyhedron
-  set Planes = 0, 0, 1, 0, 0, -1; 1, 0, 1, %.17g, 0, %.17g
-end
-subsection Group 1
-  set Name = slider
-  set Corner min = -1, 0, 1
-  set Corner max = 1, 2, 2
-end
-subsection Joint properties
-  set Normal stiffness = 1e11
-  set Shear stiffness  = 1e11
-  set Friction angle = %.17g
-  set Cohesion = %.17g
-end
-subsection Solver
-  set Mode = factor of safety
-  set Gravity = %.17g, 0, %.17g
-  set Steps = 5000
-  set Fixed groups = base
-end
-subsection Water
-  set Joint pressures = %s
-end
-)",
-                  std::cos(a), std::sin(a), -std::cos(a), -std::sin(a), phi, cohesion,
-                  g * std::sin(a), -g * std::cos(a),
-                  pressure > 0.0 ? ("1, " + std::to_string(pressure)).c_str() : "");
-    prm << text;
-  }
+  write_slider_scene(file, slope, "  set Mode = factor of safety\n  set Steps = 5000",
+                     "subsection Joint properties\n"
+                     "  set Normal stiffness = 1e11\n"
+                     "  set Shear stiffness  = 1e11\n"
+                     "  set Friction angle = " +
+                         std::to_string(phi) + "\n  set Cohesion = " + std::to_string(cohesion) +
+                         "\nend\nsubsection Water\n  set Joint pressures = " +
+                         (pressure > 0.0 ? "1, " + std::to_string(pressure) : "") + "\nend\n");
   talus::Scene scene = talus::read_scene(file, false);
   talus::BuildReport report;
   talus::BlockModel model = talus::build_blocks(scene, report);

@@ -22,6 +22,7 @@
 
 #include "../scenes/stage_history.h"
 #include "../tests.h"
+#include "slider_scene.h"
 
 int main(int argc, char** argv)
 {
@@ -29,36 +30,8 @@ int main(int argc, char** argv)
   const double deg = M_PI / 180.0, a = 30 * deg, g = 9.81, A = 2.0, p = 500,
                W = 2650 * 0.4 * g;
   const std::string file = "factor_of_safety_stage_01_scene.prm";
-  {
-    std::ofstream prm(file);
-    char text[5000];
-    std::snprintf(text, sizeof text, R"(
-subsection Model
-  set Brick min = -1, 0, 0
-  set Brick max = 10, 2, 1.2
-  set Default group = base
-end
-subsection Material
-  set Density = 2650
-end
-subsection Joint 1
-  set Dip = 0
-  set Origin = 0, 0, 1
-end
-subsection Excavation 1
-  set Shape = polyhedron
-  set Planes = 0, 0, 1, 0, 0, -1; 0, 0, 1, %.17g, 0, %.17g
-end
-subsection Excavation 2
-  set Shape = polyhedron
-  set Planes = 0, 0, 1, 0, 0, -1; 1, 0, 1, %.17g, 0, %.17g
-end
-subsection Group 1
-  set Name = slider
-  set Corner min = -1, 0, 1
-  set Corner max = 1, 2, 2
-end
-subsection Joint properties
+  write_slider_scene(file, 30, "  set Steps = 5000\n  set History blocks = 1",
+                     R"(subsection Joint properties
   set Normal stiffness = 1e11
   set Shear stiffness  = 1e11
   set Friction angle = 35
@@ -69,19 +42,14 @@ subsection Joint material 1
   set Shear stiffness  = 1e11
   set Friction angle = 40
 end
-subsection Solver
-  set Gravity = %.17g, 0, %.17g
-  set Steps = 5000
-  set Fixed groups = base
-  set History blocks = 1
-end
 subsection Stage 1
   set Name = dry
 end
 subsection Stage 2
   set Name = water in the joint
   subsection Water
-    set Joint pressures = 1, %g
+    set Joint pressures = 1, )" + std::to_string(p) +
+                         R"(
   end
 end
 subsection Stage 3
@@ -96,11 +64,7 @@ subsection Output
   set Directory = output_factor_of_safety_stage_01
   set Write VTU = false
 end
-)",
-                  std::cos(a), std::sin(a), -std::cos(a), -std::sin(a), g * std::sin(a),
-                  -g * std::cos(a), p);
-    prm << text;
-  }
+)");
   // Run with the summary kept, for its factor of safety.
   std::fflush(stdout);
   const int saved = dup(1);

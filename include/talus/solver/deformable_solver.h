@@ -374,7 +374,7 @@ private:
   std::vector<std::array<double, 6>> quiet_c_;
   double quiet_work_ = 0.0; ///< J dissipated by the dashpots
   /// The quiet faces and dashpots from pressures_ (select_pressed_faces).
-  void select_quiet_faces(const std::vector<char>& in_hex, const std::vector<bool>& is_vertex);
+  void select_quiet_faces(const std::vector<char>& in_hex, const std::vector<char>& is_vertex);
   std::vector<double> force_size_; ///< 3 per gridpoint: sum of |zone force| (N), for the ratio
   Tet4Scratch scratch_;
   Tet10Scratch scratch10_;           ///< 10-node zones only
