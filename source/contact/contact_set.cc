@@ -211,6 +211,7 @@ void ContactSet::try_create(unsigned int a, unsigned int b, const BlockModel& m,
     material[c] = settings.materials->material(m, *this, c);
   slot_of_pair_[pair_key(a, b)] = c;
   ++n_alive_;
+  pair_order_stale_ = true;
 }
 
 void ContactSet::remove(unsigned int c)
@@ -219,6 +220,23 @@ void ContactSet::remove(unsigned int c)
   alive[c] = 0;
   free_.push_back(c);
   --n_alive_;
+  pair_order_stale_ = true;
+}
+
+void ContactSet::sort_by_pair()
+{
+  if (!pair_order_stale_)
+    return;
+  std::vector<std::pair<std::uint64_t, unsigned int>> keyed;
+  keyed.reserve(n_alive_);
+  for (unsigned int c = 0; c < n_slots(); ++c)
+    if (alive[c])
+      keyed.emplace_back(pair_key(block_a[c], block_b[c]), c);
+  std::sort(keyed.begin(), keyed.end());
+  pair_order_.clear();
+  for (const auto& [key, c] : keyed)
+    pair_order_.push_back(c);
+  pair_order_stale_ = false;
 }
 
 void ContactSet::remove_contacts_of(const std::vector<char>& gone)
@@ -275,7 +293,10 @@ void ContactSet::update(const BlockModel& m, const ContactSettings& settings,
 
   CommonPlaneSettings cps = settings.common_plane;
   cps.contact_tolerance = settings.tolerance;
-  for (unsigned int c = 0; c < n_slots(); ++c)
+  // In block-pair order (sort_by_pair); a removal below only marks the
+  // order stale, so the loop may read it.
+  sort_by_pair();
+  for (const unsigned int c : pair_order_)
   {
     if (!alive[c])
       continue;

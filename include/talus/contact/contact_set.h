@@ -51,9 +51,13 @@ struct ContactSettings
 
 /// Every contact between blocks (one common plane per pair) and their
 /// sub-contacts, in flat arrays. Contacts live in slots that are reused
-/// through a free list; sub-contacts are rebuilt in contact order at each
-/// update, each taking the shear stress of the nearest old sub-contact of
-/// its contact, so that neither the shear force nor its energy jumps.
+/// through a free list; sub-contacts are rebuilt at each update, each
+/// taking the shear stress of the nearest old sub-contact of its contact,
+/// so that neither the shear force nor its energy jumps. Sub-contacts lie
+/// in the order of their contacts' block pairs (a, b), whatever slots the
+/// contacts hold: every block then sums its contact forces in one order
+/// that does not depend on the history of contact detection, which is what
+/// lets a run split among ranks give the serial answer to the last bit.
 class ContactSet
 {
 public:
@@ -95,7 +99,7 @@ public:
   std::vector<ContactType> type;
   std::vector<char> alive;
   std::vector<unsigned char> material; ///< joint material (JointMaterialRule)
-  std::vector<double> path_at_update; ///< path[a] + path[b] when last updated
+  std::vector<double> path_at_update;  ///< path[a] + path[b] when last updated
 
   // Sub-contacts.
   std::vector<unsigned int> sc_contact; ///< contact slot
@@ -138,6 +142,11 @@ private:
 
   std::unordered_map<std::uint64_t, unsigned int> slot_of_pair_;
   std::vector<unsigned int> free_;
+  /// Live slots in the order of their block pairs, and whether a contact
+  /// was created or removed since it was sorted.
+  std::vector<unsigned int> pair_order_;
+  bool pair_order_stale_ = true;
+  void sort_by_pair();
   unsigned int n_alive_ = 0;
   // Sub-contacts of the previous update, indexed by contact slot, for carry-over.
   std::vector<unsigned int> old_start_, old_end_;
