@@ -13,6 +13,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <cstring>
 #include <filesystem>
 #include <iostream>
@@ -37,6 +38,20 @@ constexpr const char* usage =
     "  written every 'Checkpoint interval' steps and on SIGINT/SIGTERM) with the\n"
     "  parameter file it was written for (or SCENE.prm, the same file moved).\n";
 
+/// The number of ranks a launcher started this process among (Open MPI's
+/// mpirun, or a PMI launcher), and this one's rank, read from the
+/// environment: MPI itself starts only when deformable blocks need PETSc.
+int launched_ranks(int& rank)
+{
+  const auto number = [](const char* name)
+  {
+    const char* value = std::getenv(name);
+    return value != nullptr ? std::atoi(value) : -1;
+  };
+  rank = std::max({number("OMPI_COMM_WORLD_RANK"), number("PMI_RANK"), 0});
+  return std::max({number("OMPI_COMM_WORLD_SIZE"), number("PMI_SIZE"), 1});
+}
+
 } // namespace
 
 int main(int argc, char** argv)
@@ -58,6 +73,19 @@ int main(int argc, char** argv)
     return argc == 2 ? 0 : 1;
   }
   std::string scene_file = check ? argv[2] : argv[1];
+  // A model is not yet split among ranks: under 'mpirun -np N' each rank
+  // would run all of it and write the same files. One message (rank 0's).
+  int rank = 0;
+  if (const int ranks = launched_ranks(rank); ranks > 1)
+  {
+    if (rank == 0)
+      std::fprintf(stderr,
+                   "talus: error: started on %d MPI ranks (mpirun -np %d), but talus runs a model "
+                   "on one rank: each rank would run the whole model and write the same files; "
+                   "run talus without mpirun\n",
+                   ranks, ranks);
+    return 1;
+  }
   try
   {
     if (check)
