@@ -32,6 +32,8 @@ public:
                        std::vector<std::pair<unsigned int, unsigned int>>& pairs) const;
 
   const Box& bounds() const { return bounds_; }
+  /// m, per axis; the grid's corner is bounds().lo.
+  const Vec3& cell_size() const { return cell_size_; }
   unsigned int n_cells() const { return n_[0] * n_[1] * n_[2]; }
   unsigned int regrowths() const { return regrowths_; }
 
