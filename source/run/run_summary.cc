@@ -58,23 +58,30 @@ void print_added_mass(const SolverSettings& s, const AddedMass& added, const cha
 {
   if (!s.dynamic || !s.raises_mass())
     return;
-  // Two significant digits: the figures a test compares.
-  std::printf("%s%-*s%u gridpoints and %u blocks raised to the %.6g s step; %.2g %% of the "
-              "total mass, largest factor %.2g (partial density scaling)\n",
+  // Two significant digits (whole percents from 100 %): the figures a test
+  // compares.
+  const auto percent = [](double fraction)
+  {
+    char p[32];
+    std::snprintf(p, sizeof p, fraction < 1.0 ? "%.2g %%" : "%.0f %%", 100.0 * fraction);
+    return std::string(p);
+  };
+  std::printf("%s%-*s%u gridpoints and %u blocks raised to the %.6g s step; %s of the total "
+              "mass, largest factor %.2g (partial density scaling)\n",
               indent, int(14 - std::strlen(indent)), "Added mass:", added.gridpoints, added.blocks,
-              s.time_step, 100.0 * added.fraction(), added.largest_factor);
+              s.time_step, percent(added.fraction()).c_str(), added.largest_factor);
   if (added.fraction() <= s.added_mass_limit)
     return;
-  char text[160];
-  std::snprintf(text, sizeof text,
-                "partial density scaling to the 'Time step' %g s adds %.2g %% of the total "
-                "mass, above the limit of %.2g %%",
-                s.time_step, 100.0 * added.fraction(), 100.0 * s.added_mass_limit);
+  const std::string text = "partial density scaling to the 'Time step' " + number(s.time_step) +
+                           " s adds " + percent(added.fraction()) +
+                           " of the total mass, above the limit of " +
+                           percent(s.added_mass_limit);
   if (!s.added_mass_warn)
     throw InputError::at(s.source, 0, "Solver", "Added mass limit", text,
                          "a larger limit (at most 1), a smaller 'Time step', or 'Added mass over "
                          "limit = warn' to run anyway");
-  std::printf("%sWarning: %s (the motion of the scaled parts is slower than true)\n", indent, text);
+  std::printf("%sWarning: %s (the motion of the scaled parts is slower than true)\n", indent,
+              text.c_str());
 }
 
 /// The largest displacement of a gridpoint (m).
