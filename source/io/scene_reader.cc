@@ -1171,6 +1171,9 @@ void warn_about_ignored_entries(const ParameterFile& prm, Scene& scene,
   bool any_dynamic = scene.solver.dynamic;
   for (const StageSpec& stage : scene.stages)
     any_dynamic |= stage.dynamic;
+  if (!scene.solver.partial_density_scaling)
+    warn_ignored(prm, "Solver", {"Added mass limit", "Added mass over limit"},
+                 "'Partial density scaling' is false", scene.warnings);
   if (!any_dynamic)
     warn_ignored(prm, "Solver",
                  {"Rayleigh damping ratio", "Rayleigh frequency", "Rayleigh alpha", "Rayleigh beta",
