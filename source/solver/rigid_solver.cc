@@ -213,7 +213,7 @@ void RigidSolver::set_masses_and_step()
         principal_moments[b] *= scale;
     }
   added_mass_ = AddedMass();
-  if (s_.raises_mass())
+  if (s_.raises_mass() && s_.time_step_fraction > 0.0) // frac 0: no eq. 87 (tests)
   {
     // Partial density scaling (eq. 89): a free block whose own step of eq.
     // 87 (frac 2 sqrt(m / (k A)), lowered for Rayleigh's beta as in
