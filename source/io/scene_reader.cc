@@ -834,6 +834,16 @@ void declare_solver(ParameterFile& prm)
               "R of eq. 77: damping power over the rate of change of kinetic energy.");
   prm.declare("Density scaling", "true", P::Bool(), "true or false",
               "Static runs: raise inertial masses to the mean block mass (faster convergence).");
+  prm.declare("Partial density scaling", "false", P::Bool(), "true or false",
+              "Dynamic runs with a 'Time step': gridpoints and rigid blocks whose own stable step "
+              "(eqs. 84, 87) is smaller get inertial mass to reach it (eq. 89); others keep "
+              "their true mass.");
+  prm.declare("Added mass limit", "0.01", P::Double(0.0, 1.0), "a number from 0 to 1",
+              "Partial density scaling: the largest mass it may add, as a fraction of the total "
+              "mass of the free blocks and zones.");
+  prm.declare("Added mass over limit", "refuse", P::Selection("refuse|warn"), "refuse or warn",
+              "Partial density scaling above 'Added mass limit': refuse the run, or warn and go "
+              "on.");
   prm.declare("Rayleigh damping ratio", "0", P::Double(0.0, 1.0), "a number from 0 to 1",
               "Dynamic runs: xi_min, the least fraction of critical damping of Rayleigh damping, "
               "reached at 'Rayleigh frequency' (0: none).");
@@ -989,6 +999,12 @@ void parse_solver(ParameterFile& prm, Scene& scene)
   if (!(s.time_step_fraction > 0.0))
     throw prm.error("Time step fraction", "must be positive", "a number in (0, 1]");
   s.time_step = prm.get_double("Time step");
+  s.partial_density_scaling = prm.get_bool("Partial density scaling");
+  s.added_mass_limit = prm.get_double("Added mass limit");
+  s.added_mass_warn = prm.get("Added mass over limit") == "warn";
+  if (s.partial_density_scaling && !(s.time_step > 0.0))
+    throw prm.error("Partial density scaling", "needs the step it scales to: 'Time step' is 0",
+                    "false, or true with a 'Time step' > 0 (s)");
   s.source = scene.parameter_file;
   s.gravity = prm.get_vec3("Gravity");
   for (const std::string& g : dealii::Utilities::split_string_list(prm.get("Fixed groups")))
@@ -1155,6 +1171,9 @@ void warn_about_ignored_entries(const ParameterFile& prm, Scene& scene,
   bool any_dynamic = scene.solver.dynamic;
   for (const StageSpec& stage : scene.stages)
     any_dynamic |= stage.dynamic;
+  if (!scene.solver.partial_density_scaling)
+    warn_ignored(prm, "Solver", {"Added mass limit", "Added mass over limit"},
+                 "'Partial density scaling' is false", scene.warnings);
   if (!any_dynamic)
     warn_ignored(prm, "Solver",
                  {"Rayleigh damping ratio", "Rayleigh frequency", "Rayleigh alpha", "Rayleigh beta",

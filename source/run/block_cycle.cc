@@ -83,6 +83,7 @@ BlockCycle::BlockCycle(Scene& scene, BlockModel& model, const std::string& prefi
     std::printf("Time step:    %.6g s (eq. 87, fraction %g%s)\n", solver.dt(),
                 scene.solver.time_step_fraction, zones ? "; eq. 84 for the zones" : "");
   print_dynamic_damping(scene.solver, solver.dt(), solver.time_step_without_stiffness_damping());
+  print_added_mass(scene.solver, solver.added_mass());
   if (zones)
     zone_writer_ = std::make_unique<ZoneWriter>(system_.mesh, scene.output.vtu_encoding);
   points_ = std::make_unique<PointHistory>(system_.mesh, zones ? scene.solver.history_points
@@ -396,6 +397,7 @@ void BlockCycle::begin_stage(const StageSpec& stage)
     SolverSettings now = scene_.solver;
     now.dynamic = stage.dynamic;
     print_dynamic_damping(now, solver.dt(), solver.time_step_without_stiffness_damping(), "  ");
+    print_added_mass(now, solver.added_mass(), "  ");
   }
   if (stage.changes_boundaries)
   {

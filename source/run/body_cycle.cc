@@ -109,6 +109,7 @@ BodyCycle::BodyCycle(Scene& scene, BlockModel& model, const std::string& prefix)
   print_dynamic_damping(scene.solver, solver_->dt(),
                         scene.solver.time_step > 0.0 ? solver_->dt()
                                                      : solver_->stable_time_step({}, 0.0));
+  print_added_mass(scene.solver, solver_->added_mass());
   writer_ = std::make_unique<ZoneWriter>(mesh_, scene.output.vtu_encoding);
   points_ = std::make_unique<PointHistory>(mesh_, scene.solver.history_points);
   points_->water = has_water(scene);
@@ -240,6 +241,7 @@ void BodyCycle::begin_stage(const StageSpec& stage)
     print_dynamic_damping(now, solver_->dt(),
                           now.time_step > 0.0 ? solver_->dt() : solver_->stable_time_step({}, 0.0),
                           "  ");
+    print_added_mass(now, solver_->added_mass(), "  ");
   }
   if (stage.changes_boundaries)
   {

@@ -1,3 +1,4 @@
+#include <talus/base/exceptions.h>
 #include <talus/base/memory.h>
 #include <talus/io/scene_checks.h>
 #include <talus/run/run_summary.h>
@@ -6,6 +7,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <cstring>
 
 namespace talus
 {
@@ -50,6 +52,36 @@ void write_zone_frame(const Scene& scene, const TetMesh& mesh, const DeformableS
                {{"displacement", 3, solver.displacements()}, {"velocity", 3, solver.velocities()}},
                cells, solver.time());
   series.add(solver.time(), vtu);
+}
+
+void print_added_mass(const SolverSettings& s, const AddedMass& added, const char* indent)
+{
+  if (!s.dynamic || !s.raises_mass())
+    return;
+  // Two significant digits (whole percents from 100 %): the figures a test
+  // compares.
+  const auto percent = [](double fraction)
+  {
+    char p[32];
+    std::snprintf(p, sizeof p, fraction < 1.0 ? "%.2g %%" : "%.0f %%", 100.0 * fraction);
+    return std::string(p);
+  };
+  std::printf("%s%-*s%u gridpoints and %u blocks raised to the %.6g s step; %s of the total "
+              "mass, largest factor %.2g (partial density scaling)\n",
+              indent, int(14 - std::strlen(indent)), "Added mass:", added.gridpoints, added.blocks,
+              s.time_step, percent(added.fraction()).c_str(), added.largest_factor);
+  if (added.fraction() <= s.added_mass_limit)
+    return;
+  const std::string text = "partial density scaling to the 'Time step' " + number(s.time_step) +
+                           " s adds " + percent(added.fraction()) +
+                           " of the total mass, above the limit of " +
+                           percent(s.added_mass_limit);
+  if (!s.added_mass_warn)
+    throw InputError::at(s.source, 0, "Solver", "Added mass limit", text,
+                         "a larger limit (at most 1), a smaller 'Time step', or 'Added mass over "
+                         "limit = warn' to run anyway");
+  std::printf("%sWarning: %s (the motion of the scaled parts is slower than true)\n", indent,
+              text.c_str());
 }
 
 /// The largest displacement of a gridpoint (m).

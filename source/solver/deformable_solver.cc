@@ -262,12 +262,13 @@ DeformableSolver::DeformableSolver(const TetMesh& mesh, std::vector<ZoneMaterial
   if (s_.time_step > 0.0)
   {
     dt_ = s_.time_step;
-    if (!scaled && dt_ > stable_time_step_of(mass, stiffness, beta))
+    if (!scaled && !s_.raises_mass() && dt_ > stable_time_step_of(mass, stiffness, beta))
       throw InputError(s_.source + ": entry 'Time step' in subsection 'Solver': " + number(dt_) +
                        " s is larger than the stable step of the zones, " +
                        number(stable_time_step_of(mass, stiffness, beta)) + " s (eq. 84" +
                        (beta > 0.0 ? " with Rayleigh beta" : "") +
-                       "); allowed: at most that, or 0 for the automatic step");
+                       "); allowed: at most that, 0 for the automatic step, or 'Partial density "
+                       "scaling = true' to add mass where the step needs it");
   }
   else
     dt_ = scaled ? 1.0 : stable_time_step_of(mass, stiffness, beta);
@@ -286,6 +287,8 @@ DeformableSolver::DeformableSolver(const TetMesh& mesh, std::vector<ZoneMaterial
   true_mass_ = mass;
   nodal_stiffness_ = stiffness;
   reference_ = mesh_.position;
+  if (s_.raises_mass())
+    set_inertial_masses(); // partial density scaling (eq. 89)
 
   apply_conditions();
   {
@@ -1290,6 +1293,9 @@ void DeformableSolver::move_gridpoints()
   unsigned int n_free = 0;
   const unsigned int ng = mesh_.n_gridpoints();
   // Energy account (see EnergyAccount): each force works over h (v- + v+) / 2.
+  // The kinetic energy is that of the inertial masses m (with any mass of
+  // density scaling): the work of the forces changes exactly that, so the
+  // account balances; gravity works with the true mass.
   double gravity_work = 0.0, boundary_work = 0.0, damping_work = 0.0, kinetic = 0.0;
   const bool pressed = !pressure_force_.empty();
   // Rayleigh's stiffness-proportional forces (zones and contacts), which
@@ -1582,25 +1588,48 @@ void DeformableSolver::use_time_step(double dt, const std::vector<double>& joint
     k[g] += joint_stiffness[g];
   const bool scaled = !s_.dynamic && s_.density_scaling;
   const double beta = s_.stiffness_damping();
-  if (!scaled && dt > stable_time_step_of(true_mass_, k, beta) * (1.0 + 1e-12))
+  if (!scaled && !s_.raises_mass() &&
+      dt > stable_time_step_of(true_mass_, k, beta) * (1.0 + 1e-12))
     throw InputError("the time step " + number(dt) + " s exceeds the stable step of the zones, " +
                      number(stable_time_step_of(true_mass_, k, beta)) + " s (eq. 84" +
-                     (beta > 0.0 ? " with Rayleigh beta" : "") + ")");
+                     (beta > 0.0 ? " with Rayleigh beta" : "") +
+                     "); allowed: a smaller 'Time step', or 'Partial density scaling = true'");
   dt_ = dt;
   joint_stiffness_ = joint_stiffness;
   set_inertial_masses();
 }
 
+double DeformableSolver::inertial_mass_of(unsigned int g, double k) const
+{
+  double m = !s_.dynamic && s_.density_scaling ? std::max(true_mass_[g], k * dt_ * dt_ / 4.0)
+                                               : true_mass_[g];
+  // Partial density scaling: eq. 84 for this gridpoint alone (with the
+  // Rayleigh term of dynamics) solved for its mass at the given step.
+  if (s_.raises_mass() && true_mass_[g] > 0.0)
+    m = std::max(m, mass_for_step(k, dt_, s_.stiffness_damping()));
+  return m;
+}
+
 void DeformableSolver::set_inertial_masses()
 {
   const unsigned int ng = mesh_.n_gridpoints();
-  const bool scaled = !s_.dynamic && s_.density_scaling;
   LocalArray m(petsc_->inertial_mass);
+  added_mass_ = AddedMass();
   for (unsigned int g = 0; g < ng; ++g)
   {
     const double k = nodal_stiffness_[g] + (g < joint_stiffness_.size() ? joint_stiffness_[g] : 0.0);
+    const double inertial = inertial_mass_of(g, k);
     for (int d = 0; d < 3; ++d)
-      m[3 * g + d] = scaled ? std::max(true_mass_[g], k * dt_ * dt_ / 4.0) : true_mass_[g];
+      m[3 * g + d] = inertial;
+    if (!s_.dynamic)
+      continue; // static inertia is a device of the solution, not mass added
+    added_mass_.total += true_mass_[g];
+    if (inertial > true_mass_[g])
+    {
+      ++added_mass_.gridpoints;
+      added_mass_.added += inertial - true_mass_[g];
+      added_mass_.largest_factor = std::max(added_mass_.largest_factor, inertial / true_mass_[g]);
+    }
   }
   damper_ = damper_for(s_, dt_);
   if (!s_.dynamic && s_.damping == Damping::combined)

@@ -212,9 +212,42 @@ void RigidSolver::set_masses_and_step()
       if (s_.principal_inertia)
         principal_moments[b] *= scale;
     }
+  added_mass_ = AddedMass();
+  if (s_.raises_mass() && s_.time_step_fraction > 0.0) // frac 0: no eq. 87 (tests)
+  {
+    // Partial density scaling (eq. 89): a free block whose own step of eq.
+    // 87 (frac 2 sqrt(m / (k A)), lowered for Rayleigh's beta as in
+    // stable_time_step) is below the given one gets the mass that reaches
+    // it, m = k A (T^2 + 2 T beta) / 4 with T = dt / frac (mass_for_step),
+    // and its rotational inertia grows by the same factor. Fixed blocks
+    // too, as a stage may let them go; the summary counts the free ones.
+    const double k = stiffest_joint();
+    const double T = s_.time_step / s_.time_step_fraction;
+    for (unsigned int b = 0; b < nb; ++b)
+    {
+      if (is_deformable_[b] || removed_[b])
+        continue;
+      const double needed = mass_for_step(k * largest_face_area(m_, b), T, s_.stiffness_damping());
+      const double scale = needed > inertial_mass[b] ? needed / inertial_mass[b] : 1.0;
+      inertial_mass[b] *= scale;
+      inertia[b] *= scale;
+      if (s_.principal_inertia)
+        principal_moments[b] *= scale;
+      if (!s_.dynamic || fixed[b])
+        continue; // static inertia is a device of the solution, not mass added
+      added_mass_.total += mass[b];
+      if (scale > 1.0)
+      {
+        ++added_mass_.blocks;
+        added_mass_.added += inertial_mass[b] - mass[b];
+        added_mass_.largest_factor =
+            std::max(added_mass_.largest_factor, inertial_mass[b] / mass[b]);
+      }
+    }
+  }
   dt_ = s_.time_step > 0.0 ? s_.time_step : stable_time_step();
   dt_without_stiffness_damping_ = s_.time_step > 0.0 ? s_.time_step : stable_time_step(0.0);
-  if (s_.time_step > 0.0 && s_.time_step_fraction > 0.0)
+  if (s_.time_step > 0.0 && s_.time_step_fraction > 0.0 && !s_.raises_mass())
   {
     // A step beyond eq. 87 without its safety fraction cannot be stable.
     const double limit = stable_time_step() / s_.time_step_fraction;
@@ -222,7 +255,8 @@ void RigidSolver::set_masses_and_step()
       throw InputError(
           s_.source + ": entry 'Time step' in subsection 'Solver': " + number(s_.time_step) +
           " s is larger than the stable step of the blocks, " + number(limit) +
-          " s (eq. 87 with frac = 1); allowed: at most that, or 0 for the automatic step");
+          " s (eq. 87 with frac = 1); allowed: at most that, 0 for the automatic step, or "
+          "'Partial density scaling = true' to add mass where the step needs it");
   }
   if (zones_ != nullptr)
   {
@@ -845,6 +879,8 @@ void RigidSolver::move_blocks()
                      (damping_moment - damping_moment_[b]).dot(turn);
     // Kinetic energy at the half step less half the contact forces' work
     // over it: the term that makes the account exact for linear joints.
+    // With the inertial mass and inertia (any density scaling's included),
+    // which the forces accelerate: so the account balances.
     kinetic += 0.5 * inertial_mass[b] * velocity[b].squaredNorm() - 0.5 * force[b].dot(dx) -
                0.5 * moment[b].dot(dtheta);
     if (s_.principal_inertia)
@@ -1185,6 +1221,14 @@ std::string RigidSolver::likely_cause(unsigned int b) const
   return "likely cause: a contact that gives energy (a deep overlap, or a contact geometry that "
          "jumps between steps), since " +
          numbers + " is stable";
+}
+
+AddedMass RigidSolver::added_mass() const
+{
+  AddedMass a = added_mass_;
+  if (zones_ != nullptr)
+    a += zones_->added_mass();
+  return a;
 }
 
 SolverReport RigidSolver::report() const

@@ -35,6 +35,13 @@ void print_nodal_mixed(const DeformableSolver& solver);
 /// The summary's lines on the history blocks, with a warning for a fixed one.
 void print_history_blocks(const Scene& scene, const BlockModel& model);
 
+/// The summary's line on partial density scaling (eq. 89) in a dynamic run
+/// with it: gridpoints and blocks given mass, the mass added as a fraction
+/// of the total, the largest scaled over true mass. Above 'Added mass
+/// limit' throws InputError, or with 'Added mass over limit = warn' prints
+/// a warning. `indent` starts each line (a stage's lines).
+void print_added_mass(const SolverSettings& s, const AddedMass& added, const char* indent = "");
+
 /// The summary's line on the damping of a dynamic run (nothing when it has
 /// none, or is static): Rayleigh's coefficients and the time step `dt` (s)
 /// against `dt_without` (s), the step without the stiffness-proportional

@@ -114,6 +114,9 @@ public:
   unsigned long run_to_ratio(double ratio, unsigned long max_steps);
 
   double dt() const { return dt_; }
+  /// What partial density scaling added to the gridpoints (dynamics;
+  /// nothing in static stages).
+  const AddedMass& added_mass() const { return added_mass_; }
   /// Wall time spent so far in the zone stage (strain, model, nodal forces)
   /// and in the gridpoint stage (motion, damping), s.
   double seconds_zones() const { return seconds_zones_; }
@@ -304,6 +307,11 @@ private:
   std::vector<unsigned char> state_;    ///< per zone
   std::vector<double> gravity_force_;   ///< 3 per gridpoint, N: gravity and gridpoint loads
   std::vector<double> true_mass_;       ///< kg, per gridpoint
+  AddedMass added_mass_;                ///< by set_inertial_masses
+  /// Gridpoint g's inertial mass (kg) at the step dt_ for its stiffness k
+  /// (N/m, with the joints'): static density scaling, and partial density
+  /// scaling's mass for the given step (eq. 89).
+  double inertial_mass_of(unsigned int g, double k) const;
   /// Masses (kg) and the stiffness of eqs. 85-86 (N/m) per gridpoint from
   /// the zones that remain.
   void zone_masses(std::vector<double>& mass, std::vector<double>& stiffness) const;

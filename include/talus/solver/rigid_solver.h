@@ -7,6 +7,7 @@
 #include <talus/model/block_model.h>
 #include <talus/model/initial_stress.h>
 #include <talus/model/time_history.h>
+#include <talus/solver/added_mass.h>
 #include <talus/solver/damper.h>
 #include <talus/solver/energy_account.h>
 #include <talus/solver/rigid_face_loads.h>
@@ -67,6 +68,17 @@ struct SolverSettings
   /// Statics only: inertial masses raised to the mean block mass so that the
   /// time step follows the mean block, not the smallest (density scaling).
   bool density_scaling = true;
+  /// Dynamics with a given 'Time step': partial density scaling (eq. 89,
+  /// added_mass.h): the gridpoints and rigid blocks whose own stable step is
+  /// below the step get inertial mass (blocks also rotational inertia) to
+  /// reach it, the others keep their true mass. Static stages add it on top
+  /// of their own density scaling where that leaves a block too light for
+  /// the step.
+  bool partial_density_scaling = false;
+  double added_mass_limit = 0.01; ///< the largest added mass, a fraction of the total
+  bool added_mass_warn = false;   ///< over the limit: a warning (true) or refusal (false)
+  /// The inertial mass is raised for the given step (see above).
+  bool raises_mass() const { return partial_density_scaling && time_step > 0.0; }
   /// Rotation with the full principal inertia and Euler's equations (eqs.
   /// 45, 49) instead of the manual's isotropic approximation (eq. 46).
   bool principal_inertia = false;
@@ -258,6 +270,9 @@ public:
   double time() const { return time_; }
   unsigned long steps_done() const { return step_; }
   double dt() const { return dt_; }
+  /// What partial density scaling added to the free rigid blocks and the
+  /// zones (dynamics; nothing in static stages).
+  AddedMass added_mass() const;
   SolverReport report() const;
 
   /// Checkpoints (source/io/checkpoint.cc): the state of the cycle, its
@@ -332,6 +347,7 @@ private:
   std::vector<char> removed_;             ///< per block: excavated by a stage
   std::vector<double> true_inertia_;      ///< kg m^2, isotropic, before scaling
   std::vector<Vec3> true_principal_;      ///< kg m^2, before scaling (principal inertia)
+  AddedMass added_mass_;                  ///< of the rigid blocks, by set_masses_and_step
   /// The stiffest joint spring per unit area of any material, max(kn, ks) (Pa/m).
   double stiffest_joint() const;
   unsigned int ratio_block_ = 0;
