@@ -1,0 +1,46 @@
+#pragma once
+
+#include <talus/contact/cell_partition.h>
+#include <talus/model/block_model.h>
+
+#include <vector>
+
+namespace talus
+{
+
+/// The blocks one rank holds when a model is split by a CellPartition: the
+/// blocks it owns (their centroids lie in its region) and ghosts, copies of
+/// other ranks' blocks that its own blocks can touch. Every contact of an
+/// owned block then lies between two blocks the rank holds, so the rank
+/// computes that block's contact forces alone, in the serial order (the
+/// contacts sorted by block pair, ContactSet).
+struct RankBlocks
+{
+  unsigned int rank = 0;
+  /// Global block numbers, ascending: owned and ghost blocks together, so
+  /// that local order is global order.
+  std::vector<unsigned int> local;
+  /// Per local block: owned by this rank (1) or a ghost (0).
+  std::vector<char> owned;
+  /// Per neighbour rank: the local indices of this rank's owned blocks that
+  /// are ghosts there (sent after every move), ascending.
+  std::vector<std::pair<unsigned int, std::vector<unsigned int>>> send;
+  /// Per owner rank: the local indices of the ghosts it sends, ascending.
+  std::vector<std::pair<unsigned int, std::vector<unsigned int>>> receive;
+
+  unsigned int n_owned() const;
+};
+
+/// Rank `rank`'s blocks. A block is a ghost on this rank when it lies
+/// within `layers` steps of contact reach of a block this rank owns: two
+/// blocks are a step apart when their boxes, each grown by half of `reach`
+/// (m: the contact tolerance plus the motion allowed until the ghosts are
+/// chosen again), overlap. One layer holds every block an owned block can
+/// touch; two also hold every block those ghosts can touch, so that a
+/// ghost that becomes owned already has its contacts. Removed blocks
+/// (`removed[b]`, may be empty) are neither owned nor ghosts.
+RankBlocks decompose_blocks(const BlockModel& blocks, const CellPartition& partition,
+                            unsigned int rank, double reach, unsigned int layers,
+                            const std::vector<char>& removed = {});
+
+} // namespace talus

@@ -1,0 +1,142 @@
+#include <talus/contact/block_decomposition.h>
+#include <talus/contact/cell_space.h>
+
+#include <algorithm>
+#include <map>
+
+namespace talus
+{
+
+unsigned int RankBlocks::n_owned() const
+{
+  return static_cast<unsigned int>(std::count(owned.begin(), owned.end(), 1));
+}
+
+namespace
+{
+
+/// Blocks whose boxes grown by half the reach overlap: each block's
+/// neighbours (CSR: neighbours of b are neighbour[start[b] .. start[b+1])).
+void neighbours_within(const BlockModel& m, double reach, const std::vector<char>& removed,
+                       std::vector<unsigned int>& start, std::vector<unsigned int>& neighbour)
+{
+  const unsigned int n = m.n_blocks();
+  std::vector<Box> envelope(n);
+  Box bounds{m.vertex.empty() ? Vec3::Zero() : m.vertex[0],
+             m.vertex.empty() ? Vec3::Zero() : m.vertex[0]};
+  for (unsigned int b = 0; b < n; ++b)
+  {
+    Box e{m.vertex[m.vertex_start[b]], m.vertex[m.vertex_start[b]]};
+    for (unsigned int v = m.vertex_start[b]; v < m.vertex_start[b + 1]; ++v)
+    {
+      e.lo = e.lo.cwiseMin(m.vertex[v]);
+      e.hi = e.hi.cwiseMax(m.vertex[v]);
+    }
+    e.lo.array() -= 0.5 * reach;
+    e.hi.array() += 0.5 * reach;
+    envelope[b] = e;
+    bounds.lo = bounds.lo.cwiseMin(e.lo);
+    bounds.hi = bounds.hi.cwiseMax(e.hi);
+  }
+  CellSpace cells;
+  cells.define(bounds, n);
+  cells.map(envelope);
+  std::vector<std::pair<unsigned int, unsigned int>> pairs;
+  cells.candidate_pairs(envelope, {}, pairs);
+  std::vector<unsigned int> count(n + 1, 0);
+  const auto live = [&](unsigned int b) { return removed.empty() || !removed[b]; };
+  for (const auto& [a, b] : pairs)
+    if (live(a) && live(b))
+    {
+      ++count[a + 1];
+      ++count[b + 1];
+    }
+  start.assign(n + 1, 0);
+  for (unsigned int b = 0; b < n; ++b)
+    start[b + 1] = start[b] + count[b + 1];
+  neighbour.assign(start[n], 0);
+  std::vector<unsigned int> fill(start.begin(), start.end() - 1);
+  for (const auto& [a, b] : pairs)
+    if (live(a) && live(b))
+    {
+      neighbour[fill[a]++] = b;
+      neighbour[fill[b]++] = a;
+    }
+}
+
+/// Marks (1) the blocks within `layers` steps of the blocks already marked.
+void grow(std::vector<char>& mark, unsigned int layers, const std::vector<unsigned int>& start,
+          const std::vector<unsigned int>& neighbour)
+{
+  std::vector<unsigned int> front;
+  for (unsigned int b = 0; b < mark.size(); ++b)
+    if (mark[b])
+      front.push_back(b);
+  for (unsigned int layer = 0; layer < layers; ++layer)
+  {
+    std::vector<unsigned int> next;
+    for (unsigned int b : front)
+      for (unsigned int k = start[b]; k < start[b + 1]; ++k)
+        if (!mark[neighbour[k]])
+        {
+          mark[neighbour[k]] = 1;
+          next.push_back(neighbour[k]);
+        }
+    front.swap(next);
+  }
+}
+
+} // namespace
+
+RankBlocks decompose_blocks(const BlockModel& m, const CellPartition& partition, unsigned int rank,
+                            double reach, unsigned int layers, const std::vector<char>& removed)
+{
+  const unsigned int n = m.n_blocks();
+  std::vector<unsigned int> owner(n);
+  for (unsigned int b = 0; b < n; ++b)
+    owner[b] = partition.owner(m.centroid[b]);
+  const auto live = [&](unsigned int b) { return removed.empty() || !removed[b]; };
+  std::vector<unsigned int> start, neighbour;
+  neighbours_within(m, reach, removed, start, neighbour);
+
+  // Held by a rank: its own blocks and those within `layers` steps.
+  const auto held_by = [&](unsigned int r)
+  {
+    std::vector<char> mark(n, 0);
+    for (unsigned int b = 0; b < n; ++b)
+      mark[b] = owner[b] == r && live(b);
+    grow(mark, layers, start, neighbour);
+    return mark;
+  };
+  const std::vector<char> mine = held_by(rank);
+  RankBlocks out;
+  out.rank = rank;
+  std::vector<int> local_of(n, -1);
+  for (unsigned int b = 0; b < n; ++b)
+    if (mine[b])
+    {
+      local_of[b] = static_cast<int>(out.local.size());
+      out.local.push_back(b);
+      out.owned.push_back(owner[b] == rank);
+    }
+  // Ghosts come from their owners; this rank's blocks go to every rank
+  // that holds them, and only an owner of a ghost here can hold one (its
+  // own block is within reach of it).
+  std::map<unsigned int, std::vector<unsigned int>> receive, send;
+  for (unsigned int i = 0; i < out.local.size(); ++i)
+    if (!out.owned[i])
+      receive[owner[out.local[i]]].push_back(i);
+  for (const auto& [other, ghosts] : receive)
+  {
+    const std::vector<char> theirs = held_by(other);
+    for (unsigned int i = 0; i < out.local.size(); ++i)
+      if (out.owned[i] && theirs[out.local[i]])
+        send[other].push_back(i);
+  }
+  out.receive.assign(receive.begin(), receive.end());
+  for (const auto& [other, blocks] : send)
+    out.send.emplace_back(other, blocks);
+  return out;
+}
+
+} // namespace talus
