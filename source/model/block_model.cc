@@ -30,6 +30,34 @@ unsigned int BlockModel::add_block(const ConvexPolyhedron& shape, unsigned int g
   return n_blocks() - 1;
 }
 
+BlockModel BlockModel::subset(const std::vector<unsigned int>& blocks) const
+{
+  BlockModel out;
+  out.group_names = group_names;
+  for (unsigned int b : blocks)
+  {
+    const unsigned int v0 = vertex_start[b], first = out.n_vertices();
+    out.vertex.insert(out.vertex.end(), vertex.begin() + v0, vertex.begin() + vertex_start[b + 1]);
+    out.vertex_start.push_back(out.n_vertices());
+    for (unsigned int f = face_start[b]; f < face_start[b + 1]; ++f)
+    {
+      for (unsigned int k = face_loop_start[f]; k < face_loop_start[f + 1]; ++k)
+        out.face_vertex.push_back(face_vertex[k] - v0 + first);
+      out.face_loop_start.push_back(static_cast<unsigned int>(out.face_vertex.size()));
+      out.face_normal.push_back(face_normal[f]);
+      out.face_origin.push_back(face_origin[f]);
+      if (!face_corner_share.empty())
+        out.face_corner_share.push_back(face_corner_share[f]);
+    }
+    out.face_start.push_back(out.n_faces());
+    out.volume.push_back(volume[b]);
+    out.centroid.push_back(centroid[b]);
+    out.inertia.push_back(inertia[b]);
+    out.group.push_back(group[b]);
+  }
+  return out;
+}
+
 ConvexPolyhedron BlockModel::polyhedron(unsigned int b) const
 {
   const unsigned int v0 = vertex_start[b];

@@ -777,7 +777,7 @@ void RigidSolver::move_blocks()
     update_timed_loads();
   for (unsigned int b = 0; b < m_.n_blocks(); ++b)
   {
-    if (fixed[b] || is_deformable_[b])
+    if (fixed[b] || is_deformable_[b] || is_ghost(b))
     {
       force[b].setZero();
       moment[b].setZero();
@@ -920,6 +920,55 @@ void RigidSolver::move_blocks()
   kinetic_whole_step_ = kinetic;
 }
 
+std::size_t RigidSolver::packed_size(unsigned int b) const
+{
+  const std::size_t vertices = m_.vertex_start[b + 1] - m_.vertex_start[b];
+  const std::size_t faces = m_.face_start[b + 1] - m_.face_start[b];
+  return 3 * (vertices + faces) + 3 * 8 + 2 + (s_.principal_inertia ? 9 : 0);
+}
+
+void RigidSolver::pack_block(unsigned int b, std::vector<double>& out) const
+{
+  const auto put = [&](const Vec3& x) { out.insert(out.end(), x.data(), x.data() + 3); };
+  for (unsigned int v = m_.vertex_start[b]; v < m_.vertex_start[b + 1]; ++v)
+    put(m_.vertex[v]);
+  for (unsigned int f = m_.face_start[b]; f < m_.face_start[b + 1]; ++f)
+    put(m_.face_normal[f]);
+  for (const Vec3* x : std::initializer_list<const Vec3*>{&m_.centroid[b], &velocity[b], &spin[b], &displacement[b], &rotation[b],
+                        &last_force_[b], &last_moment_[b], &applied_force[b]})
+    put(*x);
+  out.push_back(moved[b]);
+  out.push_back(path[b]);
+  if (s_.principal_inertia)
+    out.insert(out.end(), axes[b].data(), axes[b].data() + 9);
+}
+
+const double* RigidSolver::unpack_block(unsigned int b, const double* in)
+{
+  const auto get = [&](Vec3& x)
+  {
+    x = Vec3(in[0], in[1], in[2]);
+    in += 3;
+  };
+  for (unsigned int v = m_.vertex_start[b]; v < m_.vertex_start[b + 1]; ++v)
+    get(m_.vertex[v]);
+  for (unsigned int f = m_.face_start[b]; f < m_.face_start[b + 1]; ++f)
+    get(m_.face_normal[f]);
+  for (Vec3* x : {&m_.centroid[b], &velocity[b], &spin[b], &displacement[b], &rotation[b],
+                  &last_force_[b], &last_moment_[b], &applied_force[b]})
+    get(*x);
+  moved[b] = *in++;
+  path[b] = *in++;
+  if (s_.principal_inertia)
+  {
+    std::copy(in, in + 9, axes[b].data());
+    in += 9;
+  }
+  // Eq. 1 for the ghost as its owner judged it.
+  moved_beyond_tolerance_ |= moved[b] > s_.contact.tolerance;
+  return in;
+}
+
 void RigidSolver::step()
 {
   if (zones_ != nullptr)
@@ -930,14 +979,16 @@ void RigidSolver::step()
   // it forms (else a fast block is deep in the other when its sub-contacts
   // come, and the overlap is energy from nowhere).
   const bool periodic = step_ > 0 && step_ % s_.contact.update_period == 0;
-  if (periodic || moved_beyond_tolerance_)
+  // Split among ranks, all search and update when one must, as one would.
+  const auto any = [&](bool mine) { return any_rank_ ? any_rank_(mine) : mine; };
+  if (any(periodic || moved_beyond_tolerance_))
   {
     const unsigned int before = contacts_.n_contacts();
     detect_contacts(false);
     moved_beyond_tolerance_ = false;
     timing_.seconds_detection += seconds_since(t0);
     t0 = std::chrono::steady_clock::now();
-    if (periodic || contacts_.n_contacts() > before)
+    if (any(periodic || contacts_.n_contacts() > before))
       contacts_.update(m_, s_.contact, &path);
     timing_.seconds_planes += seconds_since(t0);
     t0 = std::chrono::steady_clock::now();

@@ -25,6 +25,11 @@ public:
   unsigned int n_vertices() const { return static_cast<unsigned int>(vertex.size()); }
   unsigned int n_faces() const { return static_cast<unsigned int>(face_normal.size()); }
 
+  /// The blocks `blocks` (numbers of this model, in that order) as a model
+  /// of their own, with every value copied bit for bit: the blocks a rank
+  /// holds of a model split among ranks. Groups keep their numbers.
+  BlockModel subset(const std::vector<unsigned int>& blocks) const;
+
   /// Block b as a polyhedron object (for geometry work off the hot path).
   ConvexPolyhedron polyhedron(unsigned int b) const;
 

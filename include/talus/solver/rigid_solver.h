@@ -16,6 +16,7 @@
 
 #include <Eigen/Core>
 
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -228,6 +229,23 @@ public:
   /// One cycle.
   void step();
 
+  /// A model split among ranks (issue 24): the blocks marked are ghosts,
+  /// copies of blocks other ranks own. This solver computes their contacts
+  /// but does not move them; their state comes from their owners'
+  /// pack_block through unpack_block after every step.
+  void set_ghosts(std::vector<char> ghost) { ghost_ = std::move(ghost); }
+  bool is_ghost(unsigned int b) const { return !ghost_.empty() && ghost_[b] != 0; }
+  /// Appends block b's moving state (vertices, face normals, centroid,
+  /// velocities, displacements, eq. 1's measures, the last unbalanced
+  /// force and moment; principal axes) to `out`: packed_size(b) doubles.
+  void pack_block(unsigned int b, std::vector<double>& out) const;
+  std::size_t packed_size(unsigned int b) const;
+  /// Reads what pack_block wrote for block b; returns the end of it.
+  const double* unpack_block(unsigned int b, const double* in);
+  /// The decisions every rank must take alike (to search for contacts,
+  /// to update them): `any_rank(mine)` is whether any rank's is true.
+  void set_any_rank(std::function<bool(bool)> any_rank) { any_rank_ = std::move(any_rank); }
+
   /// Largest unbalanced force over the mean gravity force of free blocks.
   /// (with deformable blocks, the larger of that and the gridpoints' ratio).
   double unbalanced_ratio() const;
@@ -315,6 +333,8 @@ private:
 
   BlockModel& m_;
   SolverSettings s_;
+  std::vector<char> ghost_;                ///< per block; empty: no ghosts
+  std::function<bool(bool)> any_rank_;     ///< null: one rank
   CellSpace cells_;
   ContactSet contacts_;
   std::vector<Box> envelopes_;

@@ -1,0 +1,49 @@
+#include <talus/solver/ghost_exchange.h>
+#include <talus/solver/rigid_solver.h>
+
+#include <stdexcept>
+
+namespace talus
+{
+
+void GhostExchange::refresh(RigidSolver& solver)
+{
+  const int tag = 2401;
+  std::vector<MPI_Request> requests;
+  in_.resize(blocks_.receive.size());
+  out_.resize(blocks_.send.size());
+  for (std::size_t k = 0; k < blocks_.receive.size(); ++k)
+  {
+    const auto& [from, ghosts] = blocks_.receive[k];
+    std::size_t size = 0;
+    for (unsigned int i : ghosts)
+      size += solver.packed_size(i);
+    in_[k].resize(size);
+    requests.emplace_back();
+    MPI_Irecv(in_[k].data(), static_cast<int>(size), MPI_DOUBLE, static_cast<int>(from), tag,
+              comm_, &requests.back());
+  }
+  sent_ = 0;
+  for (std::size_t k = 0; k < blocks_.send.size(); ++k)
+  {
+    const auto& [to, mine] = blocks_.send[k];
+    out_[k].clear();
+    for (unsigned int i : mine)
+      solver.pack_block(i, out_[k]);
+    sent_ += out_[k].size();
+    requests.emplace_back();
+    MPI_Isend(out_[k].data(), static_cast<int>(out_[k].size()), MPI_DOUBLE, static_cast<int>(to),
+              tag, comm_, &requests.back());
+  }
+  if (MPI_Waitall(static_cast<int>(requests.size()), requests.data(), MPI_STATUSES_IGNORE) !=
+      MPI_SUCCESS)
+    throw std::runtime_error("GhostExchange: a message between ranks failed");
+  for (std::size_t k = 0; k < blocks_.receive.size(); ++k)
+  {
+    const double* at = in_[k].data();
+    for (unsigned int i : blocks_.receive[k].second)
+      at = solver.unpack_block(i, at);
+  }
+}
+
+} // namespace talus
