@@ -583,6 +583,11 @@ void RigidSolver::contact_forces()
   const double beta = s_.stiffness_damping(); // Rayleigh, s
   if (beta > 0.0)
     sc_velocity_.resize(3 * n);
+  // The velocities are those of the last motion (eq. 47's half steps), so
+  // each increment is what the blocks moved since the last pass. Before the
+  // first motion nothing has moved: an initial or prescribed velocity
+  // taken times dt there made a shear force ks A v dt from nothing.
+  const double moved_dt = step_ == 0 ? 0.0 : dt_;
   // Relative displacement increments (eqs. 15, 20-22).
   for (unsigned int i = 0; i < n; ++i)
   {
@@ -624,7 +629,7 @@ void RigidSolver::contact_forces()
     if (beta > 0.0)
       for (int d = 0; d < 3; ++d)
         sc_velocity_[3 * i + d] = vel[d];
-    const Vec3 du = vel * dt_;
+    const Vec3 du = vel * moved_dt;
     const Vec3& nrm = cs.plane[c].normal;
     const double dun = du.dot(nrm);
     // A sub-contact built at this step already has the last motion in its
@@ -637,7 +642,7 @@ void RigidSolver::contact_forces()
     du_s_[3 * i + 2] = dus[2];
     // The sub-contact point moves with the mean motion of both blocks (eq. 11).
     if (node == nullptr || (node[0] < 0 && node[3] < 0))
-      cs.sc_position[i] += 0.5 * dt_ *
+      cs.sc_position[i] += 0.5 * moved_dt *
                            (velocity[b] + spin[b].cross(p - m_.centroid[b]) + velocity[a] +
                             spin[a].cross(p - m_.centroid[a]));
   }
@@ -719,11 +724,12 @@ void RigidSolver::contact_forces()
       continue;
     const unsigned int a = cs.block_a[c], b = cs.block_b[c];
     Vec3& ref = cs.plane[c].reference;
-    const Vec3 dua = (velocity[a] + spin[a].cross(ref - m_.centroid[a])) * dt_;
-    const Vec3 dub = (velocity[b] + spin[b].cross(ref - m_.centroid[b])) * dt_;
+    const Vec3 dua = (velocity[a] + spin[a].cross(ref - m_.centroid[a])) * moved_dt;
+    const Vec3 dub = (velocity[b] + spin[b].cross(ref - m_.centroid[b])) * moved_dt;
     ref += 0.5 * (dua + dub);
     if (s_.contact.rotation_constant != 0.0)
-      ref += s_.contact.rotation_constant * cs.plane[c].normal.cross((spin[b] - spin[a]) * dt_);
+      ref +=
+          s_.contact.rotation_constant * cs.plane[c].normal.cross((spin[b] - spin[a]) * moved_dt);
   }
 }
 
