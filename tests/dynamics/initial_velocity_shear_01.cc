@@ -11,13 +11,16 @@
 //   stay 1/2 m v0^2 (nothing else works on it), within 1e-5, over two
 //   periods;
 // - frictionless joint (no cohesion, no tension, phi = 0): the cube slides
-//   at v0, and the sub-contacts' shear displacement must be its
-//   displacement x within 1e-6 of v0 dt.
+//   at v0 for 100 steps, then at -v0 (its velocity set between two steps,
+//   as a stage or a test may set it), and the sub-contacts' shear
+//   displacement must be its displacement x within 1e-6 of v0 dt.
 // Before: the first step took v0 dt as a shear increment although nothing
 // had moved: a shear force ks A v0 dt at the first step, every later force
 // off by that (1.3e-1 of the amplitude, omega dt), an energy error
 // 1/2 ks A (v0 dt)^2 (1.6e-2 of 1/2 m v0^2), and a shear displacement one
-// step ahead of the block (off by v0 dt).
+// step ahead of the block (off by v0 dt); and the step after the reversal
+// took -v0 dt for the +v0 dt the cube had last moved (2 v0 dt off, once
+// the first step was mended).
 
 #include <talus/solver/energy_account.h>
 
@@ -120,19 +123,22 @@ void frictionless()
   double worst = 0.0, worst_velocity = 0.0;
   while (solver.steps_done() < 200)
   {
+    if (solver.steps_done() == 100)
+      solver.velocity[cube].x() = -v0;
     const double x = solver.displacement[cube].x();
     solver.step();
     worst =
         std::max(worst, std::abs(cube_contact(solver, cube).displacement - x) / (v0 * solver.dt()));
-    worst_velocity = std::max(worst_velocity, std::abs(solver.velocity[cube].x() / v0 - 1.0));
+    worst_velocity =
+        std::max(worst_velocity, std::abs(std::abs(solver.velocity[cube].x()) / v0 - 1.0));
   }
   std::fprintf(stderr,
                "frictionless: %lu steps of %.4g s, %u sub-contacts; shear displacement off the "
                "cube's by at most %.2e of v0 dt; velocity off v0 by at most %.2e\n",
                solver.steps_done(), solver.dt(), solver.contacts().n_subcontacts(), worst,
                worst_velocity);
-  std::printf("frictionless joint: shear displacement that of the cube within 1e-6 of v0 dt: %s; "
-              "velocity v0 within 1e-12: %s\n",
+  std::printf("frictionless joint, v0 then -v0: shear displacement that of the cube within 1e-6 "
+              "of v0 dt: %s; speed v0 within 1e-12: %s\n",
               talus_test::verdict(worst <= 1e-6), talus_test::verdict(worst_velocity <= 1e-12));
 }
 } // namespace
