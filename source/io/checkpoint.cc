@@ -696,6 +696,12 @@ void RigidSolver::load_state(CheckpointReader& in)
   growth_watch_.load_state(in);
   in.get(step_);
   in.get(last_output_);
+  // A checkpoint follows a step, whose motion the velocities still are.
+  for (std::size_t b = 0; b < nb; ++b)
+  {
+    motion_dx_[b] = step_ > 0 ? Vec3(velocity[b] * dt_) : Vec3::Zero();
+    motion_dtheta_[b] = step_ > 0 ? Vec3(spin[b] * dt_) : Vec3::Zero();
+  }
   // The rotational inertia follows the density scaling of the masses.
   for (std::size_t b = 0; b < nb; ++b)
   {

@@ -268,7 +268,21 @@ void check_built_model(const Scene& scene, const BlockModel& model, const BuildR
     check_has_blocks("Solver", "Fixed groups", g);
   check_stages(scene, model, report, check_has_blocks);
   for (std::size_t l = 0; l < scene.load_groups.size(); ++l)
+  {
     check_has_blocks(scene.load_sections.at(l), "Group", scene.load_groups[l]);
+    // An initial motion is given to rigid blocks; a deformable block's
+    // gridpoints would start at rest whatever it says.
+    const BlockLoad& load = scene.solver.loads.at(l);
+    const std::vector<std::string>& d = scene.deformable.groups;
+    if (std::find(d.begin(), d.end(), scene.load_groups[l]) != d.end() &&
+        (load.initial_velocity != Vec3::Zero() || load.initial_spin != Vec3::Zero()))
+      throw scene_error(scene, scene.load_sections[l],
+                        load.initial_velocity != Vec3::Zero() ? "Initial velocity" : "Initial spin",
+                        "is given to rigid blocks only, and group '" + scene.load_groups[l] +
+                            "' is deformable (its gridpoints would start at rest)",
+                        "0, 0, 0 for a deformable group; an initial motion for groups of rigid "
+                        "blocks");
+  }
   for (const StageSpec& stage : scene.stages)
     for (std::size_t l = 0; l < stage.boundaries.load_groups.size(); ++l)
       check_has_blocks(stage.boundaries.load_sections.at(l), "Group",

@@ -618,6 +618,9 @@ void declare_boundary(ParameterFile& prm, const std::string& section)
               "quiet, harmonic wave: the model time it stops (s).");
   prm.declare("Wave duration", "0", P::Double(0.0), "a number > 0 (s)",
               "quiet, half-sine wave: the pulse's length (s).");
+  prm.declare("Wave direction", "0, 0, 0", vec3_pattern(), vec3_allowed + " (0, 0, 0: inward)",
+              "quiet: the direction of the incident wave's stress on the faces; along them, a "
+              "shear wave (0, 0, 0: their inward normal, a pressure wave).");
   prm.declare("Traction", "0, 0, 0", vec3_pattern(), vec3_allowed,
               "Force per unit area on the boundary faces whose centroid lies in the region (Pa).");
   prm.declare("Force", "0, 0, 0", vec3_pattern(), vec3_allowed,
@@ -684,6 +687,9 @@ void parse_boundary(ParameterFile& prm, const std::string& section, const std::s
     q.quiet = true;
     q.wave.amplitude = prm.get_double("Wave amplitude");
     q.wave.start = prm.get_double("Wave start");
+    q.wave_direction = prm.get_vec3("Wave direction");
+    if (q.wave_direction != Vec3::Zero())
+      q.wave_direction.normalize();
     if (wave == "harmonic")
     {
       q.wave.kind = WaveSignal::Kind::harmonic;

@@ -434,6 +434,7 @@ void DeformableSolver::select_quiet_faces(const std::vector<char>& in_hex,
   quiet_area_.clear();
   quiet_wave_.clear();
   quiet_waves_.clear();
+  quiet_wave_direction_.clear();
   quiet_slot_.clear();
   quiet_c_.clear();
   std::vector<unsigned int> wave_of_pressure(pressures_.size(), ~0u);
@@ -442,6 +443,7 @@ void DeformableSolver::select_quiet_faces(const std::vector<char>& in_hex,
     {
       wave_of_pressure[i] = static_cast<unsigned int>(quiet_waves_.size());
       quiet_waves_.push_back(pressures_[i].wave);
+      quiet_wave_direction_.push_back(pressures_[i].wave_direction);
     }
   // The second overlay's faces: the zone of the hexahedron holding all
   // three corners (one boundary quadrilateral has one hexahedron).
@@ -763,13 +765,18 @@ void DeformableSolver::external_forces(const double* x, double* f)
   // An incident wave through a quiet boundary (dynamics): the pressure
   // 2 sigma_in(t) on its faces, so that with the dashpot's rho cp v the
   // face carries sigma_in and the wave enters at v_in = sigma_in / (rho cp)
-  // (initial geometry, as the dashpots).
+  // (initial geometry, as the dashpots); along a direction of the faces,
+  // the traction 2 tau_in(t) with the dashpot rho cs: a shear wave.
   if (s_.dynamic)
     for (std::size_t k = 0; k < quiet_faces_.size(); ++k)
     {
       if (quiet_wave_[k] == ~0u)
         continue;
-      const Vec3 load = -2.0 * quiet_waves_[quiet_wave_[k]](time_) * quiet_area_[k];
+      const double stress = 2.0 * quiet_waves_[quiet_wave_[k]](time_);
+      const Vec3& direction = quiet_wave_direction_[quiet_wave_[k]];
+      const Vec3 load = direction == Vec3::Zero()
+                            ? Vec3(-stress * quiet_area_[k])
+                            : Vec3(stress * quiet_area_[k].norm() * direction);
       for (int a = 0; a < 3; ++a)
       {
         const unsigned int g = quiet_faces_[k][a];

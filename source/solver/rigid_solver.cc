@@ -80,6 +80,8 @@ RigidSolver::RigidSolver(BlockModel& blocks, double density, const SolverSetting
   path.assign(nb, 0.0);
   last_force_.assign(nb, Vec3::Zero());
   last_moment_.assign(nb, Vec3::Zero());
+  motion_dx_.assign(nb, Vec3::Zero());
+  motion_dtheta_.assign(nb, Vec3::Zero());
   damping_force_.assign(nb, Vec3::Zero());
   damping_moment_.assign(nb, Vec3::Zero());
   is_deformable_.assign(nb, 0);
@@ -617,6 +619,16 @@ void RigidSolver::contact_forces()
   const double beta = s_.stiffness_damping(); // Rayleigh, s
   if (beta > 0.0)
     sc_velocity_.resize(3 * n);
+  // Each increment is what the blocks moved since the last pass: their
+  // last motion, zero before the first one. The velocities times dt were
+  // wrong twice: at step 0 an initial or prescribed velocity made a shear
+  // force ks A v dt from nothing, and a velocity or step set between steps
+  // (a stage's load or mode, a block fixed) replaced the motion the
+  // contacts had not yet seen. Rayleigh's term below takes the velocities
+  // as they are; the gridpoints' velocities are those of their last
+  // motion, none before the first.
+  const std::vector<Vec3>&motion = motion_dx_, &turn = motion_dtheta_;
+  const double moved_dt = step_ == 0 ? 0.0 : dt_;
   // Relative displacement increments (eqs. 15, 20-22).
   for (unsigned int i = 0; i < n; ++i)
   {
@@ -643,22 +655,30 @@ void RigidSolver::contact_forces()
     const Vec3& p = cs.sc_position[i];
     // Velocity of each side at the sub-contact: the block's rigid motion,
     // or the gridpoint's, or the point of a deformable face (eqs. 15-19).
-    const auto side_velocity = [&](unsigned int blk, int side)
+    // With the blocks' velocities and spins (and scale 1), the velocity;
+    // with their last motions (and the gridpoints' over moved_dt), the
+    // displacement increment.
+    const auto side_motion = [&](unsigned int blk, int side, const std::vector<Vec3>& v,
+                                 const std::vector<Vec3>& w, double gridpoint_scale)
     {
       if (node == nullptr || node[3 * side] < 0)
-        return Vec3(velocity[blk] + spin[blk].cross(p - m_.centroid[blk]));
+        return Vec3(v[blk] + w[blk].cross(p - m_.centroid[blk]));
       Vec3 vel = Vec3::Zero();
       for (int j = 0; j < 3; ++j)
         if (node[3 * side + j] >= 0)
           for (int d = 0; d < 3; ++d)
             vel[d] += cs.sc_weight[6 * i + 3 * side + j] * gp_v_[3 * node[3 * side + j] + d];
-      return vel;
+      return Vec3(gridpoint_scale * vel);
     };
-    const Vec3 vel = side_velocity(b, 1) - side_velocity(a, 0);
     if (beta > 0.0)
+    {
+      const Vec3 vel =
+          side_motion(b, 1, velocity, spin, 1.0) - side_motion(a, 0, velocity, spin, 1.0);
       for (int d = 0; d < 3; ++d)
         sc_velocity_[3 * i + d] = vel[d];
-    const Vec3 du = vel * dt_;
+    }
+    const Vec3 du =
+        side_motion(b, 1, motion, turn, moved_dt) - side_motion(a, 0, motion, turn, moved_dt);
     const Vec3& nrm = cs.plane[c].normal;
     const double dun = du.dot(nrm);
     // A sub-contact built at this step already has the last motion in its
@@ -671,9 +691,8 @@ void RigidSolver::contact_forces()
     du_s_[3 * i + 2] = dus[2];
     // The sub-contact point moves with the mean motion of both blocks (eq. 11).
     if (node == nullptr || (node[0] < 0 && node[3] < 0))
-      cs.sc_position[i] += 0.5 * dt_ *
-                           (velocity[b] + spin[b].cross(p - m_.centroid[b]) + velocity[a] +
-                            spin[a].cross(p - m_.centroid[a]));
+      cs.sc_position[i] += 0.5 * (motion[b] + turn[b].cross(p - m_.centroid[b]) + motion[a] +
+                                  turn[a].cross(p - m_.centroid[a]));
   }
   // One joint model for the whole batch (dispatch once, not per sub-contact).
   SubContactBatch batch;
@@ -753,11 +772,11 @@ void RigidSolver::contact_forces()
       continue;
     const unsigned int a = cs.block_a[c], b = cs.block_b[c];
     Vec3& ref = cs.plane[c].reference;
-    const Vec3 dua = (velocity[a] + spin[a].cross(ref - m_.centroid[a])) * dt_;
-    const Vec3 dub = (velocity[b] + spin[b].cross(ref - m_.centroid[b])) * dt_;
+    const Vec3 dua = motion[a] + turn[a].cross(ref - m_.centroid[a]);
+    const Vec3 dub = motion[b] + turn[b].cross(ref - m_.centroid[b]);
     ref += 0.5 * (dua + dub);
     if (s_.contact.rotation_constant != 0.0)
-      ref += s_.contact.rotation_constant * cs.plane[c].normal.cross((spin[b] - spin[a]) * dt_);
+      ref += s_.contact.rotation_constant * cs.plane[c].normal.cross(turn[b] - turn[a]);
   }
 }
 
@@ -783,6 +802,8 @@ void RigidSolver::move_blocks()
       moment[b].setZero();
       damping_force_[b].setZero();
       damping_moment_[b].setZero();
+      if (fixed[b]) // a deformable block's motion is its gridpoints' (step)
+        motion_dx_[b] = motion_dtheta_[b] = Vec3::Zero();
       continue;
     }
     const Vec3 applied =
@@ -865,6 +886,8 @@ void RigidSolver::move_blocks()
     // their shape through any number of turns.
     const Vec3 dx = velocity[b] * dt_;
     const Vec3 dtheta = spin[b] * dt_;
+    motion_dx_[b] = dx;
+    motion_dtheta_[b] = dtheta;
     // Energy account (see EnergyAccount): each force works over the mean of
     // the half steps on either side of it, h (v- + v+) / 2; a held
     // component's support supplies minus the force on it.
@@ -1033,7 +1056,8 @@ void RigidSolver::step()
       // A deformable block's displacement: that of its surface's mean point.
       const unsigned int b = deformable_blocks_[k];
       displacement[b] += m_.centroid[b] - centre_before[k];
-      velocity[b] = (m_.centroid[b] - centre_before[k]) / dt_;
+      motion_dx_[b] = m_.centroid[b] - centre_before[k];
+      velocity[b] = motion_dx_[b] / dt_;
       moved[b] += moved_by[b]; // eq. 1
       path[b] += moved_by[b];
       moved_beyond_tolerance_ |= moved[b] > s_.contact.tolerance;

@@ -12,9 +12,6 @@
 // refused 'Time function' ('Time function' is not an entry of 'Boundary 1').
 
 #include <talus/base/parallel_environment.h>
-#include <talus/scene/block_system.h>
-#include <talus/scene/build_blocks.h>
-#include <talus/solver/deformable_solver.h>
 
 #include <algorithm>
 #include <cmath>
@@ -23,6 +20,7 @@
 #include <string>
 
 #include "../tests.h"
+#include "zone_scene.h"
 
 namespace
 {
@@ -31,31 +29,19 @@ constexpr double pi = 3.14159265358979323846;
 void run(const std::string& name, const std::string& motion,
          const std::function<double(double)>& base_displacement)
 {
-  const std::string file = "base_motion_column.prm";
-  {
-    std::FILE* f = std::fopen(file.c_str(), "w");
-    const std::string text =
-        "subsection Model\n  set Brick min = 0, 0, 0\n  set Brick max = 1, 1, 4\nend\n"
-        "subsection Material\n  set Density = 1000\nend\n"
-        "subsection Deformable\n  set Groups = rock\n  set Edge length = 1\n"
-        "  set Element = tet4\n  set Young's modulus = 1e9\n  set Poisson's ratio = 0.25\nend\n"
-        "subsection Boundary 1\n  set Corner min = -0.01, -0.01, -0.01\n"
-        "  set Corner max = 1.01, 1.01, 0.01\n  set Condition = velocity\n" +
-        motion +
-        "end\n"
-        "subsection Solver\n  set Mode = dynamic\n  set Gravity = 0, 0, 0\nend\n";
-    std::fputs(text.c_str(), f);
-    std::fclose(f);
-  }
-  talus::Scene sc = talus::read_scene(file, false);
-  talus::BuildReport built;
-  talus::BlockModel model = talus::build_blocks(sc, built);
-  talus::resolve_group_names(sc, model);
-  talus::MeshReport report;
-  const talus::TetMesh mesh = talus::mesh_deformable_blocks(sc, model, {0}, report);
-  talus::ZoneMaterials materials = talus::zone_materials(sc, model, mesh);
-  talus::DeformableSolver solver(mesh, std::move(materials.materials), std::move(materials.of_zone),
-                                 sc.solver, sc.gridpoint_conditions, sc.face_pressures);
+  ZoneScene s(
+      "base_motion_column.prm",
+      "subsection Model\n  set Brick min = 0, 0, 0\n  set Brick max = 1, 1, 4\nend\n"
+      "subsection Material\n  set Density = 1000\nend\n"
+      "subsection Deformable\n  set Groups = rock\n  set Edge length = 1\n"
+      "  set Element = tet4\n  set Young's modulus = 1e9\n  set Poisson's ratio = 0.25\nend\n"
+      "subsection Boundary 1\n  set Corner min = -0.01, -0.01, -0.01\n"
+      "  set Corner max = 1.01, 1.01, 0.01\n  set Condition = velocity\n" +
+          motion +
+          "end\n"
+          "subsection Solver\n  set Mode = dynamic\n  set Gravity = 0, 0, 0\nend\n");
+  talus::DeformableSolver& solver = *s.solver;
+  const talus::TetMesh& mesh = s.mesh;
   const unsigned int ng = mesh.n_gridpoints();
   double worst = 0.0, largest = 0.0, worst_error = 0.0;
   unsigned int n_base = 0;

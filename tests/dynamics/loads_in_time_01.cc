@@ -13,9 +13,6 @@
 // refused 'Time function'.
 
 #include <talus/base/parallel_environment.h>
-#include <talus/scene/block_system.h>
-#include <talus/scene/build_blocks.h>
-#include <talus/solver/deformable_solver.h>
 
 #include <algorithm>
 #include <cmath>
@@ -24,6 +21,7 @@
 
 #include "../stability/scene_text.h"
 #include "../tests.h"
+#include "zone_scene.h"
 
 namespace
 {
@@ -69,8 +67,8 @@ void rigid_cube()
 
 void column()
 {
-  const std::string file = "loads_in_time_column.prm";
-  write(file, "subsection Model\n  set Brick min = 0, 0, 0\n  set Brick max = 1, 1, 2\nend\n"
+  ZoneScene s("loads_in_time_column.prm",
+              "subsection Model\n  set Brick min = 0, 0, 0\n  set Brick max = 1, 1, 2\nend\n"
               "subsection Material\n  set Density = 1000\nend\n"
               "subsection Deformable\n  set Groups = rock\n  set Edge length = 0.5\n"
               "  set Element = tet4\n  set Young's modulus = 1e9\n  set Poisson's ratio = 0.25\n"
@@ -87,15 +85,8 @@ void column()
               "  set Time table = ramp_02s.csv\nend\n"
               "subsection Solver\n  set Mode = dynamic\n  set Gravity = 0, 0, 0\n"
               "  set Dynamic local damping = 0.8\nend\n");
-  talus::Scene sc = talus::read_scene(file, false);
-  talus::BuildReport built;
-  talus::BlockModel model = talus::build_blocks(sc, built);
-  talus::resolve_group_names(sc, model);
-  talus::MeshReport report;
-  const talus::TetMesh mesh = talus::mesh_deformable_blocks(sc, model, {0}, report);
-  talus::ZoneMaterials materials = talus::zone_materials(sc, model, mesh);
-  talus::DeformableSolver solver(mesh, std::move(materials.materials), std::move(materials.of_zone),
-                                 sc.solver, sc.gridpoint_conditions, sc.face_pressures);
+  talus::DeformableSolver& solver = *s.solver;
+  const talus::TetMesh& mesh = s.mesh;
   unsigned int n_top = 0;
   for (unsigned int g = 0; g < mesh.n_gridpoints(); ++g)
     n_top += mesh.position[3 * g + 2] > 1.99;
@@ -108,7 +99,7 @@ void column()
     worst_error = std::max(worst_error, std::abs(e.error()) / e.scale());
   }
   const bool held[3] = {true, true, true};
-  const talus::Vec3 reaction = solver.support_force(sc.gridpoint_conditions[0].region, held);
+  const talus::Vec3 reaction = solver.support_force(s.scene.gridpoint_conditions[0].region, held);
   const double expected = 100.0 * n_top + 1e4;
   std::fprintf(stderr,
                "column: %u top gridpoints, %lu steps; base reaction %.9g N (expected %.9g); "

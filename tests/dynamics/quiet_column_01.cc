@@ -22,9 +22,6 @@
 // Before: talus refused 'Condition = quiet'.
 
 #include <talus/base/parallel_environment.h>
-#include <talus/scene/block_system.h>
-#include <talus/scene/build_blocks.h>
-#include <talus/solver/deformable_solver.h>
 
 #include <algorithm>
 #include <cmath>
@@ -33,6 +30,7 @@
 #include <string>
 
 #include "../tests.h"
+#include "zone_scene.h"
 
 namespace
 {
@@ -64,21 +62,10 @@ std::string scene(const std::string& element, bool staged)
 
 void run(const std::string& element, bool staged = false)
 {
-  const std::string file = "quiet_column.prm";
-  {
-    std::FILE* f = std::fopen(file.c_str(), "w");
-    std::fputs(scene(element, staged).c_str(), f);
-    std::fclose(f);
-  }
-  talus::Scene sc = talus::read_scene(file, false);
-  talus::BuildReport built;
-  talus::BlockModel model = talus::build_blocks(sc, built);
-  talus::resolve_group_names(sc, model);
-  talus::MeshReport report;
-  const talus::TetMesh mesh = talus::mesh_deformable_blocks(sc, model, {0}, report);
-  talus::ZoneMaterials materials = talus::zone_materials(sc, model, mesh);
-  talus::DeformableSolver solver(mesh, std::move(materials.materials), std::move(materials.of_zone),
-                                 sc.solver, sc.gridpoint_conditions, sc.face_pressures);
+  ZoneScene s("quiet_column.prm", scene(element, staged));
+  talus::DeformableSolver& solver = *s.solver;
+  const talus::TetMesh& mesh = s.mesh;
+  const talus::Scene& sc = s.scene;
   if (staged)
   {
     // A static scene warns that its quiet boundaries do nothing; a stage

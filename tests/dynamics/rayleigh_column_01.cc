@@ -20,9 +20,6 @@
 // refused the entries ('Rayleigh alpha' is not an entry of 'Solver').
 
 #include <talus/base/parallel_environment.h>
-#include <talus/scene/block_system.h>
-#include <talus/scene/build_blocks.h>
-#include <talus/solver/deformable_solver.h>
 
 #include <cmath>
 #include <cstdio>
@@ -31,6 +28,7 @@
 
 #include "../tests.h"
 #include "decay.h"
+#include "zone_scene.h"
 
 namespace
 {
@@ -57,21 +55,9 @@ std::string scene(const std::string& element, double alpha, double beta)
 
 void run(const std::string& element, const std::string& name, double alpha, double beta)
 {
-  const std::string file = "rayleigh_column.prm";
-  {
-    std::FILE* f = std::fopen(file.c_str(), "w");
-    std::fputs(scene(element, alpha, beta).c_str(), f);
-    std::fclose(f);
-  }
-  talus::Scene sc = talus::read_scene(file, false);
-  talus::BuildReport built;
-  talus::BlockModel model = talus::build_blocks(sc, built);
-  talus::resolve_group_names(sc, model);
-  talus::MeshReport report;
-  const talus::TetMesh mesh = talus::mesh_deformable_blocks(sc, model, {0}, report);
-  talus::ZoneMaterials materials = talus::zone_materials(sc, model, mesh);
-  talus::DeformableSolver solver(mesh, std::move(materials.materials), std::move(materials.of_zone),
-                                 sc.solver, sc.gridpoint_conditions, sc.face_pressures);
+  ZoneScene s("rayleigh_column.prm", scene(element, alpha, beta));
+  talus::DeformableSolver& solver = *s.solver;
+  const talus::TetMesh& mesh = s.mesh;
   const unsigned int ng = mesh.n_gridpoints();
   std::vector<double> shape(ng);
   for (unsigned int g = 0; g < ng; ++g)

@@ -378,6 +378,7 @@ private:
   std::vector<Vec3> quiet_area_;
   std::vector<unsigned int> quiet_wave_;
   std::vector<WaveSignal> quiet_waves_;
+  std::vector<Vec3> quiet_wave_direction_; ///< of each wave; zero: the faces' inward normal
   std::vector<int> quiet_slot_;
   std::vector<std::array<double, 6>> quiet_c_;
   double quiet_work_ = 0.0; ///< J dissipated by the dashpots

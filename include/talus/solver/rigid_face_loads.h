@@ -25,10 +25,13 @@ struct FacePressure
   Vec3 traction = Vec3::Zero();
   /// 'Condition = quiet' (dynamic runs, zone faces only): viscous
   /// dashpots on the faces (Lysmer and Kuhlemeyer), and `wave`, the
-  /// normal stress of an incident wave put in through them; pressure and
+  /// stress of an incident wave put in through them; pressure and
   /// traction are then zero. Rigid blocks take nothing of it.
   bool quiet = false;
   WaveSignal wave;
+  /// The unit direction of the incident wave's traction on the faces (a
+  /// direction along them makes a shear wave); zero: their inward normal.
+  Vec3 wave_direction = Vec3::Zero();
   /// Both in model time t: times motion.scale(t); none: constant.
   TimeFunction motion;
 };

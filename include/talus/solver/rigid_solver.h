@@ -349,6 +349,11 @@ private:
   double* gp_damping_ = nullptr; ///< the zones' damping forces during the contact stage
   /// Unbalanced force and moment of the last step (combined damping, eq. 83).
   std::vector<Vec3> last_force_, last_moment_;
+  /// Each block's last motion, its centroid's displacement and its turn
+  /// (m, rad; zero before the first): the contacts' increments are that
+  /// motion, whatever a stage or a test set the velocities or the step to
+  /// since.
+  std::vector<Vec3> motion_dx_, motion_dtheta_;
   Damper damper_{Damping::none, 0.0, 0.5, 1.0};
   // Deformable blocks (none without a zone solver).
   DeformableSolver* zones_ = nullptr;
