@@ -20,8 +20,8 @@ void GhostExchange::refresh(RigidSolver& solver)
       size += solver.packed_size(i);
     in_[k].resize(size);
     requests.emplace_back();
-    MPI_Irecv(in_[k].data(), static_cast<int>(size), MPI_DOUBLE, static_cast<int>(from), tag,
-              comm_, &requests.back());
+    MPI_Irecv(in_[k].data(), static_cast<int>(size), MPI_DOUBLE, static_cast<int>(from), tag, comm_,
+              &requests.back());
   }
   sent_ = 0;
   for (std::size_t k = 0; k < blocks_.send.size(); ++k)

@@ -947,7 +947,7 @@ std::size_t RigidSolver::packed_size(unsigned int b) const
 {
   const std::size_t vertices = m_.vertex_start[b + 1] - m_.vertex_start[b];
   const std::size_t faces = m_.face_start[b + 1] - m_.face_start[b];
-  return 3 * (vertices + faces) + 3 * 8 + 2 + (s_.principal_inertia ? 9 : 0);
+  return 3 * (vertices + faces) + 3 * 10 + 2 + (s_.principal_inertia ? 9 : 0);
 }
 
 void RigidSolver::pack_block(unsigned int b, std::vector<double>& out) const
@@ -958,7 +958,8 @@ void RigidSolver::pack_block(unsigned int b, std::vector<double>& out) const
   for (unsigned int f = m_.face_start[b]; f < m_.face_start[b + 1]; ++f)
     put(m_.face_normal[f]);
   for (const Vec3* x : std::initializer_list<const Vec3*>{&m_.centroid[b], &velocity[b], &spin[b], &displacement[b], &rotation[b],
-                        &last_force_[b], &last_moment_[b], &applied_force[b]})
+                        &last_force_[b], &last_moment_[b], &applied_force[b],
+                        &motion_dx_[b], &motion_dtheta_[b]})
     put(*x);
   out.push_back(moved[b]);
   out.push_back(path[b]);
@@ -978,7 +979,8 @@ const double* RigidSolver::unpack_block(unsigned int b, const double* in)
   for (unsigned int f = m_.face_start[b]; f < m_.face_start[b + 1]; ++f)
     get(m_.face_normal[f]);
   for (Vec3* x : {&m_.centroid[b], &velocity[b], &spin[b], &displacement[b], &rotation[b],
-                  &last_force_[b], &last_moment_[b], &applied_force[b]})
+                  &last_force_[b], &last_moment_[b], &applied_force[b],
+                        &motion_dx_[b], &motion_dtheta_[b]})
     get(*x);
   moved[b] = *in++;
   path[b] = *in++;
