@@ -1,0 +1,146 @@
+// Strong scaling of the rigid engine split among ranks (issue 24): the
+// settling scene of rigid_settling.cc (n x n x n unit cubes on a fixed
+// floor layer, static with local damping), first whole on rank 0 alone
+// while the other ranks wait, then split among all ranks by a CellPartition
+// with two layers of ghosts refreshed after every step (GhostExchange).
+// Prints both rates, the speed-up measured in this one run, the blocks each
+// rank holds and the exchange volume per step.
+//   cmake --build build --target benchmark_rigid_ranks
+//   mpirun -np 2 build/contrib/benchmarks/benchmark_rigid_ranks [n] [steps]
+
+#include "benchmark_arguments.h"
+
+#include <talus/base/parallel_environment.h>
+#include <talus/contact/block_decomposition.h>
+#include <talus/geometry/block_generator.h>
+#include <talus/model/block_model.h>
+#include <talus/solver/ghost_exchange.h>
+#include <talus/solver/rigid_solver.h>
+
+#include <mpi.h>
+
+#include <chrono>
+#include <cstdio>
+#include <ctime>
+#include <fstream>
+#include <string>
+
+using namespace talus;
+
+namespace
+{
+
+std::string cpu_model()
+{
+  std::ifstream in("/proc/cpuinfo");
+  for (std::string line; std::getline(in, line);)
+    if (line.rfind("model name", 0) == 0)
+      return line.substr(line.find(':') + 2);
+  return "unknown CPU";
+}
+
+double seconds_since(std::chrono::steady_clock::time_point t)
+{
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t).count();
+}
+
+} // namespace
+
+int main(int argc, char** argv)
+{
+  ParallelEnvironment mpi(argc, argv);
+  const MPI_Comm comm = MPI_COMM_WORLD;
+  int rank = 0, ranks = 1;
+  MPI_Comm_rank(comm, &rank);
+  MPI_Comm_size(comm, &ranks);
+  const unsigned int n =
+      argc > 1 ? whole_argument(argv[0], argv[1], "the cubes per side (first argument)", 2, 100)
+               : 30;
+  const unsigned long steps =
+      argc > 2 ? whole_argument(argv[0], argv[2], "the step count (second argument)", 1, 1000000)
+               : 200;
+
+  BlockGenerator g(ConvexPolyhedron::box(Vec3::Zero(), Vec3(n, n, n + 1)), {});
+  g.cut_joint_set({0.0, 0.0, 1.0, Vec3::Zero(), 0, false, {}});
+  g.cut_joint_set({90.0, 0.0, 1.0, Vec3::Zero(), 0, false, {}});
+  g.cut_joint_set({90.0, 90.0, 1.0, Vec3::Zero(), 0, false, {}});
+  BlockModel model;
+  const unsigned int cubes = model.group_index("cubes"), floor = model.group_index("floor");
+  for (const ConvexPolyhedron& b : g.blocks())
+    model.add_block(b, b.vertex_mean()[2] < 1.0 ? floor : cubes);
+  SolverSettings s;
+  s.dynamic = false;
+  s.steps = steps;
+  s.target_ratio = 0.0;
+  s.contact.tolerance = 0.01;
+  s.joint.normal_stiffness = s.joint.shear_stiffness = 1e9;
+  s.fixed_groups = {floor};
+
+  // 1. Whole, on rank 0 alone.
+  double serial_seconds = 0.0;
+  if (rank == 0)
+  {
+    BlockModel whole = model;
+    RigidSolver solver(whole, 2650.0, s);
+    const auto start = std::chrono::steady_clock::now();
+    for (unsigned long k = 0; k < steps; ++k)
+      solver.step();
+    serial_seconds = seconds_since(start);
+  }
+  MPI_Barrier(comm);
+
+  // 2. Split among the ranks.
+  Box domain{Vec3::Zero(), Vec3(n, n, n + 1)};
+  const CellPartition partition(domain, domain.lo, Vec3::Ones(), model.centroid,
+                                std::vector<double>(model.n_blocks(), 1.0),
+                                static_cast<unsigned int>(ranks));
+  const RankBlocks mine = decompose_blocks(model, partition, static_cast<unsigned int>(rank),
+                                           4.0 * s.contact.tolerance, 2);
+  BlockModel local = model.subset(mine.local);
+  RigidSolver solver(local, 2650.0, s);
+  std::vector<char> ghost(mine.local.size());
+  for (std::size_t i = 0; i < ghost.size(); ++i)
+    ghost[i] = !mine.owned[i];
+  solver.set_ghosts(ghost);
+  solver.set_any_rank(
+      [comm](bool x)
+      {
+        int in = x ? 1 : 0, out = 0;
+        MPI_Allreduce(&in, &out, 1, MPI_INT, MPI_LOR, comm);
+        return out != 0;
+      });
+  GhostExchange exchange(mine, comm);
+  MPI_Barrier(comm);
+  const auto start = std::chrono::steady_clock::now();
+  for (unsigned long k = 0; k < steps; ++k)
+  {
+    solver.step();
+    exchange.refresh(solver);
+  }
+  const double mine_seconds = seconds_since(start);
+  double split_seconds = 0.0;
+  MPI_Reduce(&mine_seconds, &split_seconds, 1, MPI_DOUBLE, MPI_MAX, 0, comm);
+  std::fprintf(stderr, "rank %d: %u owned, %zu held, %.0f doubles sent per step, %.3f s\n", rank,
+               mine.n_owned(), mine.local.size(), double(exchange.sent()), mine_seconds);
+  long held = static_cast<long>(mine.local.size()), held_all = 0;
+  double sent = static_cast<double>(exchange.sent()) * 8.0, sent_all = 0.0;
+  MPI_Reduce(&held, &held_all, 1, MPI_LONG, MPI_SUM, 0, comm);
+  MPI_Reduce(&sent, &sent_all, 1, MPI_DOUBLE, MPI_SUM, 0, comm);
+  if (rank == 0)
+  {
+    const std::time_t now = std::time(nullptr);
+    char date[32];
+    std::strftime(date, sizeof date, "%Y-%m-%d %H:%M UTC", std::gmtime(&now));
+    std::printf("%s, %s; %d ranks\n", cpu_model().c_str(), date, ranks);
+    std::printf("n = %u: %u blocks, %lu steps\n", n, model.n_blocks(), steps);
+    std::printf("whole on one rank: %.3f s, %.0f block-cycles/s\n", serial_seconds,
+                double(model.n_blocks()) * steps / serial_seconds);
+    std::printf("split on %d ranks: %.3f s, %.0f block-cycles/s; speed-up %.2f\n", ranks,
+                split_seconds, double(model.n_blocks()) * steps / split_seconds,
+                serial_seconds / split_seconds);
+    std::printf("blocks held %.3f times the model (ghosts); exchange %.0f bytes per step in "
+                "all, %.0f bytes per block-step\n",
+                double(held_all) / model.n_blocks(), sent_all,
+                sent_all / model.n_blocks());
+  }
+}
