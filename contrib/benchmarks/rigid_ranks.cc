@@ -101,14 +101,7 @@ int main(int argc, char** argv)
   std::vector<char> ghost(mine.local.size());
   for (std::size_t i = 0; i < ghost.size(); ++i)
     ghost[i] = !mine.owned[i];
-  solver.set_ghosts(ghost);
-  solver.set_any_rank(
-      [comm](bool x)
-      {
-        int in = x ? 1 : 0, out = 0;
-        MPI_Allreduce(&in, &out, 1, MPI_INT, MPI_LOR, comm);
-        return out != 0;
-      });
+  solver.split_among_ranks(ghost, reductions_over(comm));
   GhostExchange exchange(mine, comm);
   MPI_Barrier(comm);
   const auto start = std::chrono::steady_clock::now();
@@ -140,7 +133,6 @@ int main(int argc, char** argv)
                 serial_seconds / split_seconds);
     std::printf("blocks held %.3f times the model (ghosts); exchange %.0f bytes per step in "
                 "all, %.0f bytes per block-step\n",
-                double(held_all) / model.n_blocks(), sent_all,
-                sent_all / model.n_blocks());
+                double(held_all) / model.n_blocks(), sent_all, sent_all / model.n_blocks());
   }
 }

@@ -6,6 +6,36 @@
 namespace talus
 {
 
+RankReductions reductions_over(MPI_Comm comm)
+{
+  RankReductions r;
+  r.any = [comm](bool x)
+  {
+    int in = x ? 1 : 0, out = 0;
+    MPI_Allreduce(&in, &out, 1, MPI_INT, MPI_LOR, comm);
+    return out != 0;
+  };
+  r.min = [comm](double x)
+  {
+    double out = x;
+    MPI_Allreduce(&x, &out, 1, MPI_DOUBLE, MPI_MIN, comm);
+    return out;
+  };
+  r.max = [comm](double x)
+  {
+    double out = x;
+    MPI_Allreduce(&x, &out, 1, MPI_DOUBLE, MPI_MAX, comm);
+    return out;
+  };
+  r.sum = [comm](ExactSum& s)
+  {
+    s.normalize();
+    MPI_Allreduce(MPI_IN_PLACE, s.words().data(), ExactSum::n_words, MPI_INT64_T, MPI_SUM, comm);
+    MPI_Allreduce(MPI_IN_PLACE, s.special().data(), 3, MPI_INT64_T, MPI_SUM, comm);
+  };
+  return r;
+}
+
 void GhostExchange::refresh(RigidSolver& solver)
 {
   const int tag = 2401;

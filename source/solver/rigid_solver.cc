@@ -192,15 +192,21 @@ RigidSolver::RigidSolver(BlockModel& blocks, double density, const SolverSetting
 void RigidSolver::set_masses_and_step()
 {
   // Density scaling for statics: no block lighter (in inertia) than the mean.
+  // Exact sums, so that a model split among ranks has the same mean.
   const unsigned int nb = m_.n_blocks();
-  double mass_sum = 0.0;
-  unsigned int n_rigid = 0;
+  ExactSum mass_sum, rigid_count;
   for (unsigned int b = 0; b < nb; ++b)
-    if (!is_deformable_[b] && !removed_[b])
+    if (!is_deformable_[b] && !removed_[b] && !is_ghost(b))
     {
       mass_sum += mass[b];
-      ++n_rigid;
+      rigid_count += 1.0;
     }
+  if (ranks_.sum)
+  {
+    ranks_.sum(mass_sum);
+    ranks_.sum(rigid_count);
+  }
+  const double n_rigid = rigid_count.value(), mean_mass = mass_sum.value() / n_rigid;
   inertial_mass = mass;
   inertia = true_inertia_;
   if (s_.principal_inertia)
@@ -208,7 +214,7 @@ void RigidSolver::set_masses_and_step()
   if (!s_.dynamic && s_.density_scaling && n_rigid > 0)
     for (unsigned int b = 0; b < nb; ++b)
     {
-      const double scale = std::max(1.0, mass_sum / n_rigid / mass[b]);
+      const double scale = std::max(1.0, mean_mass / mass[b]);
       inertial_mass[b] *= scale;
       inertia[b] *= scale;
       if (s_.principal_inertia)
@@ -249,6 +255,11 @@ void RigidSolver::set_masses_and_step()
   }
   dt_ = s_.time_step > 0.0 ? s_.time_step : stable_time_step();
   dt_without_stiffness_damping_ = s_.time_step > 0.0 ? s_.time_step : stable_time_step(0.0);
+  if (ranks_.min && s_.time_step <= 0.0)
+  {
+    dt_ = ranks_.min(dt_);
+    dt_without_stiffness_damping_ = ranks_.min(dt_without_stiffness_damping_);
+  }
   if (s_.time_step > 0.0 && s_.time_step_fraction > 0.0 && !s_.raises_mass())
   {
     // A step beyond eq. 87 without its safety fraction cannot be stable.
@@ -788,8 +799,8 @@ void RigidSolver::move_blocks()
   const double h = step_ == 0 ? 0.5 * dt_ : dt_;
   const auto kick = [&](double& v, double f, double f_before, double m)
   { return damper_.kick(v, f, f_before, m, h); };
-  double max_unbalanced = 0.0, sum_weight = 0.0, kinetic = 0.0;
-  unsigned int n_free = 0;
+  double max_unbalanced = 0.0, kinetic = 0.0;
+  ExactSum sum_weight, n_free; // exact: the same on any number of ranks
   too_fast_.clear();
   const bool timed = !timed_loads_.empty();
   if (timed)
@@ -818,7 +829,7 @@ void RigidSolver::move_blocks()
       ratio_block_ = b;
     }
     sum_weight += mass[b] * s_.gravity.norm();
-    ++n_free;
+    n_free += 1.0;
     // Eq. 49 for translation, damped for statics.
     Vec3 damping_force = Vec3::Zero();
     const Vec3 velocity_before = velocity[b];
@@ -939,8 +950,22 @@ void RigidSolver::move_blocks()
     damping_force_[b].setZero();
     damping_moment_[b].setZero();
   }
-  ratio_ = n_free > 0 && sum_weight > 0.0 ? max_unbalanced / (sum_weight / n_free) : 0.0;
+  if (ranks_.max)
+  {
+    max_unbalanced = ranks_.max(max_unbalanced);
+    ranks_.sum(sum_weight);
+    ranks_.sum(n_free);
+  }
+  const double weight = sum_weight.value(), free = n_free.value();
+  ratio_ = free > 0.0 && weight > 0.0 ? max_unbalanced / (weight / free) : 0.0;
   kinetic_whole_step_ = kinetic;
+}
+
+void RigidSolver::split_among_ranks(std::vector<char> ghost, RankReductions reductions)
+{
+  ghost_ = std::move(ghost);
+  ranks_ = std::move(reductions);
+  set_masses_and_step();
 }
 
 std::size_t RigidSolver::packed_size(unsigned int b) const
@@ -1005,7 +1030,7 @@ void RigidSolver::step()
   // come, and the overlap is energy from nowhere).
   const bool periodic = step_ > 0 && step_ % s_.contact.update_period == 0;
   // Split among ranks, all search and update when one must, as one would.
-  const auto any = [&](bool mine) { return any_rank_ ? any_rank_(mine) : mine; };
+  const auto any = [&](bool mine) { return ranks_.any ? ranks_.any(mine) : mine; };
   if (any(periodic || moved_beyond_tolerance_))
   {
     const unsigned int before = contacts_.n_contacts();

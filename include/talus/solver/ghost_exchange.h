@@ -10,6 +10,11 @@ namespace talus
 {
 
 class RigidSolver;
+struct RankReductions;
+
+/// What RigidSolver::split_among_ranks needs of all ranks, by MPI
+/// collectives over `comm` (every rank must call them alike).
+RankReductions reductions_over(MPI_Comm comm);
 
 /// The ghosts of a model split among ranks kept equal to their owners'
 /// blocks: after every step each rank sends the state of its blocks that

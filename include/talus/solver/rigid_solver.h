@@ -1,5 +1,6 @@
 #pragma once
 
+#include <talus/base/exact_sum.h>
 #include <talus/contact/cell_space.h>
 #include <talus/contact/contact_set.h>
 #include <talus/contact/joint_material_rule.h>
@@ -121,6 +122,15 @@ inline Damper damper_for(const SolverSettings& s, double dt)
   return Damper(s.damping, s.local_damping, s.global_damping_ratio, dt);
 }
 
+/// What a model split among ranks reduces across them; a member left null
+/// means one rank (the value stays as it is).
+struct RankReductions
+{
+  std::function<bool(bool)> any;          ///< whether any rank's is true
+  std::function<double(double)> min, max; ///< the least and the largest of all ranks'
+  std::function<void(ExactSum&)> sum;     ///< each rank's partial sum becomes the total
+};
+
 /// What a run did, for the summary.
 struct SolverReport
 {
@@ -229,22 +239,23 @@ public:
   /// One cycle.
   void step();
 
-  /// A model split among ranks (issue 24): the blocks marked are ghosts,
-  /// copies of blocks other ranks own. This solver computes their contacts
-  /// but does not move them; their state comes from their owners'
-  /// pack_block through unpack_block after every step.
-  void set_ghosts(std::vector<char> ghost) { ghost_ = std::move(ghost); }
+  /// A model split among ranks (issue 24): the blocks marked in `ghost`
+  /// are copies of blocks other ranks own. This solver computes their
+  /// contacts but does not move them; their state comes from their owners'
+  /// pack_block through unpack_block after every step. What the step needs
+  /// of the whole model (the mean mass of density scaling, the time step,
+  /// the unbalanced-force ratio, when to search for and update contacts)
+  /// comes through `reductions`. Masses and the time step are set again.
+  void split_among_ranks(std::vector<char> ghost, RankReductions reductions);
   bool is_ghost(unsigned int b) const { return !ghost_.empty() && ghost_[b] != 0; }
   /// Appends block b's moving state (vertices, face normals, centroid,
   /// velocities, displacements, eq. 1's measures, the last unbalanced
-  /// force and moment; principal axes) to `out`: packed_size(b) doubles.
+  /// force and moment, the last motion; principal axes) to `out`:
+  /// packed_size(b) doubles.
   void pack_block(unsigned int b, std::vector<double>& out) const;
   std::size_t packed_size(unsigned int b) const;
   /// Reads what pack_block wrote for block b; returns the end of it.
   const double* unpack_block(unsigned int b, const double* in);
-  /// The decisions every rank must take alike (to search for contacts,
-  /// to update them): `any_rank(mine)` is whether any rank's is true.
-  void set_any_rank(std::function<bool(bool)> any_rank) { any_rank_ = std::move(any_rank); }
 
   /// Largest unbalanced force over the mean gravity force of free blocks.
   /// (with deformable blocks, the larger of that and the gridpoints' ratio).
@@ -333,8 +344,8 @@ private:
 
   BlockModel& m_;
   SolverSettings s_;
-  std::vector<char> ghost_;                ///< per block; empty: no ghosts
-  std::function<bool(bool)> any_rank_;     ///< null: one rank
+  std::vector<char> ghost_; ///< per block; empty: no ghosts
+  RankReductions ranks_;     ///< members null: one rank
   CellSpace cells_;
   ContactSet contacts_;
   std::vector<Box> envelopes_;
