@@ -1116,6 +1116,7 @@ void DeformableSolver::nodal_mixed_zone_forces(const double* x, const double* v,
   for (const ZoneMaterial& m : materials_)
     plastic_pass |= m.nodal_mixed && m.model != ZoneModel::elastic;
   batch_volumetric_.resize(zone_batch + Tet4Scratch::max_lanes);
+  own_volumetric_.resize(zone_batch + Tet4Scratch::max_lanes);
   scratch_.resize(zone_batch);
   strain_sums_.assign(2 * std::size_t(ng), 0.0);
   const unsigned int ring = static_cast<unsigned int>(nmd_ring_.size());
@@ -1153,6 +1154,7 @@ void DeformableSolver::nodal_mixed_zone_forces(const double* x, const double* v,
     plastic_average_.assign(ng, 0.0);
     yielded_zone_.clear();
     yielded_volumetric_.clear();
+    yielded_taken_.clear();
   }
   // Eqs. 74-76 for batch j, once every gridpoint of it has its average
   // plastic pressure: each zone that yielded trades its own plastic
@@ -1174,8 +1176,11 @@ void DeformableSolver::nodal_mixed_zone_forces(const double* x, const double* v,
         stress_[6 * z + c] += shift;
       // Its share of the stress work, V shift tr(d eps) / 2: the zone's
       // volumetric increment is the mean of its gridpoints' (eq. 71).
-      plastic_stress_work_ += 0.5 * tet_volume(x, mesh_.zone_gridpoint[z]) * shift * 3.0 *
-                              corner_mean(mesh_, z, strain_sums_.data(), 2);
+      const double volume = tet_volume(x, mesh_.zone_gridpoint[z]);
+      plastic_stress_work_ +=
+          0.5 * volume * shift * 3.0 * corner_mean(mesh_, z, strain_sums_.data(), 2);
+      // And of the work of its forces beyond it (replaced_strain_work).
+      nodal_mixed_work_ += 0.5 * volume * shift * yielded_taken_[next];
     }
     tet4_geometry(mesh_, b.first, b.n, x, scratch_);
     if (materials_[material_of_zone_[b.first]].element == ZoneElement::hex_mixed)
@@ -1198,12 +1203,17 @@ void DeformableSolver::nodal_mixed_zone_forces(const double* x, const double* v,
     Tet4Scratch& scratch = b.kept ? nmd_ring_[j % ring] : scratch_;
     const ZoneMaterial& mat = materials_[material_of_zone_[first]];
     const bool hex = mat.element == ZoneElement::hex_mixed;
+    // Mixed zones keep their own volumetric increments for the account.
+    double* own = mat.nodal_mixed ? own_volumetric_.data() : nullptr;
     if (!b.kept) // the strain pass again, eqs. 70-71 in it
-      tet4_strain_increments(mesh_, first, n, x, v, strain_dt, stress_.data(), scratch, nullptr,
+      tet4_strain_increments(mesh_, first, n, x, v, strain_dt, stress_.data(), scratch, own,
                              mat.nodal_mixed ? strain_sums_.data() : nullptr);
     else if (mat.nodal_mixed) // on the kept strain increments
+    {
+      own_volumetric_strain(n, scratch.strain_increment.data(), own);
       replace_volumetric_strain(mesh_, first, n, strain_sums_.data(),
                                 scratch.strain_increment.data());
+    }
     if (hex) // eqs. 60-63
       hex_mixed_average_strain(n, scratch.strain_increment.data(), scratch.volume.data());
     StressBatch batch = tet4_batch(first, n, scratch);
@@ -1214,8 +1224,18 @@ void DeformableSolver::nodal_mixed_zone_forces(const double* x, const double* v,
       batch.plastic_volumetric = batch_volumetric_.data();
     }
     // The plastic pressure traded in the force stage adds its share of the
-    // stress work there.
+    // stress work there. The forces' work beyond the stress's: by the
+    // midpoint rule, as the stress work.
+    double* stress = stress_.data() + 6 * std::size_t(first);
+    const double taken_before =
+        own != nullptr
+            ? replaced_strain_work(n, own, batch.strain_increment, stress, scratch.volume.data())
+            : 0.0;
     update_tet4_stresses(mat, batch, scratch.volume.data());
+    if (own != nullptr)
+      nodal_mixed_work_ +=
+          0.5 * (taken_before + replaced_strain_work(n, own, batch.strain_increment, stress,
+                                                     scratch.volume.data()));
     if (collect)
     {
       // Eq. 73: the plastic pressure K e^p (e^p the trace of the plastic
@@ -1225,6 +1245,8 @@ void DeformableSolver::nodal_mixed_zone_forces(const double* x, const double* v,
         {
           yielded_zone_.push_back(first + k);
           yielded_volumetric_.push_back(batch_volumetric_[k]);
+          const double* de = batch.strain_increment + 6 * k;
+          yielded_taken_.push_back(3.0 * own[k] - (de[0] + de[1] + de[2]));
           batch_volumetric_[k] *= mat.bulk_modulus;
         }
       add_volume_weighted(mesh_, first, n, batch_volumetric_.data(), scratch.volume.data(),
@@ -1423,6 +1445,8 @@ void DeformableSolver::add_energy(EnergyAccount& e) const
   e.zone_elastic += elastic;
   // Plastic dissipation: the stress work of plastic zones less the change
   // of their elastic energy.
+  // Nodal mixed discretization stores more than its zones' stresses say.
+  e.zone_elastic += nodal_mixed_work_;
   e.plastic += plastic_stress_work_ - (plastic_elastic - initial_plastic_elastic_);
 }
 
@@ -1913,6 +1937,7 @@ void DeformableSolver::elastic_operator(const double* u, double* Ku)
   stress_.swap(stress);
   state_.swap(state);
   const double stress_work = plastic_stress_work_;
+  const double mixed_work = nodal_mixed_work_;
   const bool yielded = last_step_yielded_;
   std::vector<double> v(n), f(n);
   for (const double sign : {1.0, -1.0})
@@ -1930,6 +1955,7 @@ void DeformableSolver::elastic_operator(const double* u, double* Ku)
   materials_.swap(materials);
   force_size_.swap(force_size);
   plastic_stress_work_ = stress_work;
+  nodal_mixed_work_ = mixed_work;
   last_step_yielded_ = yielded;
 }
 
@@ -1963,6 +1989,7 @@ void DeformableSolver::save_state(CheckpointWriter& out) const
   out.put(damping_work_);
   out.put(kinetic_whole_step_);
   out.put(plastic_stress_work_);
+  out.put(nodal_mixed_work_);
   out.put(initial_elastic_);
   out.put(initial_plastic_elastic_);
   growth_watch_.save_state(out);
@@ -2007,6 +2034,7 @@ void DeformableSolver::load_state(CheckpointReader& in)
   in.get(damping_work_);
   in.get(kinetic_whole_step_);
   in.get(plastic_stress_work_);
+  in.get(nodal_mixed_work_);
   in.get(initial_elastic_);
   in.get(initial_plastic_elastic_);
   growth_watch_.load_state(in);

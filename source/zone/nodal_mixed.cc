@@ -78,4 +78,27 @@ void replace_volumetric_strain(const TetMesh& mesh, unsigned int first, unsigned
   }
 }
 
+void own_volumetric_strain(unsigned int n, const double* strain_increment, double* own)
+{
+  for (unsigned int k = 0; k < n; ++k)
+  {
+    const double* de = strain_increment + 6 * k;
+    own[k] = (de[0] + de[1] + de[2]) / 3.0;
+  }
+}
+
+double replaced_strain_work(unsigned int n, const double* own, const double* strain_increment,
+                            const double* stress, const double* volume)
+{
+  double work = 0.0;
+  for (unsigned int k = 0; k < n; ++k)
+  {
+    const double* de = strain_increment + 6 * k;
+    const double* s = stress + 6 * k;
+    const double taken = 3.0 * own[k] - (de[0] + de[1] + de[2]);
+    work += volume[k] * (s[0] + s[1] + s[2]) / 3.0 * taken;
+  }
+  return work;
+}
+
 } // namespace talus

@@ -387,6 +387,7 @@ private:
   std::vector<double> strain_sums_;
   std::vector<double> plastic_average_;  ///< per gridpoint: plastic pressure, Pa
   std::vector<double> batch_volumetric_; ///< per zone of a batch: e, or plastic e^p
+  std::vector<double> own_volumetric_;   ///< per zone of a batch: its own e (energy account)
   /// A batch of zones [first, first + n), of a mixed material or not; its
   /// model stage waits for the sums stage of batch `ready_after`, its force
   /// stage for the model stage at place `forces_after` of the model order.
@@ -425,6 +426,7 @@ private:
   /// step, in order, with their e^p.
   std::vector<unsigned int> yielded_zone_;
   std::vector<double> yielded_volumetric_;
+  std::vector<double> yielded_taken_; ///< and their tr d(eps) - tr d(eps~) (energy account)
   /// Whether a mixed zone yielded with a volumetric part at the last step
   /// (then the forces wait for the force stage; only speed depends on it).
   bool last_step_yielded_ = false;
@@ -443,6 +445,10 @@ private:
   double kinetic_whole_step_ = 0.0;
   std::vector<double> gauss_volume_; ///< m^3, a batch of 10-node zones' Gauss points (plastic)
   double plastic_stress_work_ = 0.0; ///< sum of V sigma : d(eps) over zones of plastic materials
+  /// Nodal mixed discretization: the work of its zones' forces that their
+  /// stresses do not hold, sum of V p (tr d(eps) - tr d(eps~)) (J, see
+  /// replaced_strain_work), stored energy of the averaged strains.
+  double nodal_mixed_work_ = 0.0;
   double initial_elastic_ = 0.0, initial_plastic_elastic_ = 0.0; ///< and held kinetic
   std::vector<double> pressure_force_; ///< 3 per gridpoint, N (face pressures, water)
   EnergyGrowthWatch growth_watch_;     ///< standalone runs (step())

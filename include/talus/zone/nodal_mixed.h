@@ -71,4 +71,24 @@ inline double corner_mean(const TetMesh& mesh, unsigned int z, const double* ave
 void replace_volumetric_strain(const TetMesh& mesh, unsigned int first, unsigned int n,
                                const double* average_pairs, double* strain_increment);
 
+/// Each zone's own volumetric strain increment tr(d eps) / 3 (6 per zone
+/// in `strain_increment`, before replace_volumetric_strain), into `own`.
+void own_volumetric_strain(unsigned int n, const double* strain_increment, double* own);
+
+/// The energy account of nodal mixed discretization. Its nodal forces act
+/// with each zone's own strain increment (eq. 55), while its stress follows
+/// the replaced one (eqs. 70-71), so the forces do V sigma : d(eps) of work
+/// where the zone's elastic energy gains V sigma : d(eps~); the difference,
+/// V p (tr d(eps) - tr d(eps~)) with p = tr(sigma) / 3, is stored all the
+/// same (the stiffness of eqs. 68-71 is symmetric: for linear elasticity it
+/// holds K / 2 sum_g (W_g / 4) e_g^2 over the gridpoints, W_g the zone
+/// volumes around g and e_g their average volumetric strain, at least the
+/// zones' own K / 2 sum_z V_z e~_z^2). This returns the sum of V p (3 own -
+/// tr d(eps~)) over the batch (J), from the replaced increments
+/// `strain_increment`, the zones' `own` volumetric parts, their stresses (6
+/// per zone) and volumes (m^3); taken before and after the zone model, the
+/// mean is the step's share (the midpoint rule of the stress work).
+double replaced_strain_work(unsigned int n, const double* own, const double* strain_increment,
+                            const double* stress, const double* volume);
+
 } // namespace talus
