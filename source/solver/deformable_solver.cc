@@ -697,11 +697,9 @@ double DeformableSolver::stable_time_step(const std::vector<double>& joint_stiff
   return stable_time_step_of(true_mass_, k, beta);
 }
 
-void DeformableSolver::viscous_stresses(const ZoneMaterial& mat, unsigned int first, unsigned int n,
-                                        const double* de, double strain_dt)
+ViscousModuli DeformableSolver::viscous_moduli(const ZoneMaterial& mat, double strain_dt) const
 {
-  viscous_stress(n, mat.bulk_modulus, mat.shear_modulus, s_.stiffness_damping() / strain_dt, de,
-                 viscous_stress_.data() + 6 * std::size_t(first));
+  return ViscousModuli(mat.bulk_modulus, mat.shear_modulus, s_.stiffness_damping() / strain_dt);
 }
 
 unsigned int DeformableSolver::time_step_gridpoint() const
@@ -859,15 +857,9 @@ void DeformableSolver::zone_forces()
   LocalArray x(petsc_->position), v(petsc_->velocity), f(petsc_->force);
   // Rayleigh's stiffness-proportional term (dynamics): its forces apart.
   if (s_.stiffness_damping() > 0.0)
-  {
     damping_force_.assign(3 * std::size_t(mesh_.n_gridpoints()), 0.0);
-    viscous_stress_.resize(stress_.size());
-  }
   else if (!damping_force_.empty())
-  {
     damping_force_.clear();
-    viscous_stress_.clear();
-  }
   external_forces(x.data(), f.data());
   // The velocities are those of the last motion (x - v dt -> x); before the
   // first motion there is none, so no strain.
@@ -916,13 +908,13 @@ void DeformableSolver::zone_forces(const double* x, const double* v, double* f, 
         if (plastic)
           plastic_stress_work_ +=
               0.5 * stress_power(4 * n, batch.strain_increment, batch.stress, gauss_volume_.data());
-        tet10_nodal_forces(mesh_, first, n, stress_.data(), scratch10_, f, force_size_.data());
+        // With Rayleigh's viscous stress, both forces in one pass.
         if (viscous)
-        {
-          viscous_stresses(mat, 4 * first, 4 * n, batch.strain_increment, strain_dt);
-          tet10_nodal_forces(mesh_, first, n, viscous_stress_.data(), scratch10_,
-                             damping_force_.data());
-        }
+          tet10_nodal_forces_viscous(mesh_, first, n, stress_.data(), scratch10_,
+                                     viscous_moduli(mat, strain_dt), f, force_size_.data(),
+                                     damping_force_.data());
+        else
+          tet10_nodal_forces(mesh_, first, n, stress_.data(), scratch10_, f, force_size_.data());
       }
     }
     return;
@@ -945,12 +937,13 @@ void DeformableSolver::zone_forces(const double* x, const double* v, double* f, 
       update_tet4_stresses(mat, batch, scratch_.volume.data());
       if (hex) // each overlay's forces weighted 1/2
         hex_mixed_overlay_weight(n, scratch_.volume.data());
-      tet4_nodal_forces(mesh_, first, n, stress_.data(), scratch_, f, force_size_.data());
+      // With Rayleigh's viscous stress, both forces in one pass.
       if (viscous)
-      {
-        viscous_stresses(mat, first, n, batch.strain_increment, strain_dt);
-        tet4_nodal_forces(mesh_, first, n, viscous_stress_.data(), scratch_, damping_force_.data());
-      }
+        tet4_nodal_forces_viscous(mesh_, first, n, stress_.data(), scratch_,
+                                  viscous_moduli(mat, strain_dt), f, force_size_.data(),
+                                  damping_force_.data());
+      else
+        tet4_nodal_forces(mesh_, first, n, stress_.data(), scratch_, f, force_size_.data());
     }
   }
 }
@@ -1252,19 +1245,16 @@ void DeformableSolver::nodal_mixed_zone_forces(const double* x, const double* v,
       add_volume_weighted(mesh_, first, n, batch_volumetric_.data(), scratch.volume.data(),
                           plastic_average_.data());
     }
-    if (forces_now)
-    {
-      if (hex) // each overlay's forces weighted 1/2
-        hex_mixed_overlay_weight(n, scratch.volume.data());
+    if (hex && (forces_now || viscous)) // each overlay's forces weighted 1/2
+      hex_mixed_overlay_weight(n, scratch.volume.data());
+    // Rayleigh's viscous stress from the strain increments as they are now,
+    // its forces in the pass of the stresses' if they are taken now.
+    if (viscous)
+      tet4_nodal_forces_viscous(mesh_, first, n, forces_now ? stress_.data() : nullptr, scratch,
+                                viscous_moduli(mat, strain_dt), f, force_size_.data(),
+                                damping_force_.data());
+    else if (forces_now)
       tet4_nodal_forces(mesh_, first, n, stress_.data(), scratch, f, force_size_.data());
-    }
-    if (viscous) // Rayleigh's viscous stress, from the strain increments as they are now
-    {
-      viscous_stresses(mat, first, n, batch.strain_increment, strain_dt);
-      if (hex && !forces_now)
-        hex_mixed_overlay_weight(n, scratch.volume.data());
-      tet4_nodal_forces(mesh_, first, n, viscous_stress_.data(), scratch, damping_force_.data());
-    }
     if (force_stage_follows)
     {
       divide_by_pair_volume(plastic_gridpoint_.data() + plastic_start_[p],

@@ -259,11 +259,10 @@ private:
   /// stiffness_damping_step_factor for Rayleigh's `beta` (s).
   static double stable_time_step_of(const std::vector<double>& mass,
                                     const std::vector<double>& stiffness, double beta = 0.0);
-  /// Dynamics with Rayleigh beta: the viscous stresses of stress points
-  /// [first, first + n) of material `mat` from their strain increments
-  /// `de` over strain_dt, into viscous_stress_.
-  void viscous_stresses(const ZoneMaterial& mat, unsigned int first, unsigned int n,
-                        const double* de, double strain_dt);
+  /// Dynamics with Rayleigh beta: the moduli of the viscous stress
+  /// (viscous_stress.h) of material `mat` over a motion of strain_dt, for
+  /// the kernels' passes that take it with the nodal forces.
+  ViscousModuli viscous_moduli(const ZoneMaterial& mat, double strain_dt) const;
   void zone_forces();
   /// The zone forces alone of positions x and velocities v (3 per
   /// gridpoint) over a motion of strain_dt, added to f.
@@ -432,10 +431,10 @@ private:
   bool last_step_yielded_ = false;
   Damper damper_{Damping::none, 0.0, 0.5, 1.0};
   std::vector<double> last_force_; ///< 3 per gridpoint, N (combined damping only)
-  /// Dynamics with Rayleigh beta only (empty otherwise): the viscous
-  /// stress of each stress point (6 each, Pa) and the forces of it and of
-  /// the contacts' damping on the gridpoints (3 each, N) of this step.
-  std::vector<double> viscous_stress_, damping_force_;
+  /// Dynamics with Rayleigh beta only (empty otherwise): the forces of the
+  /// zones' viscous stress and of the contacts' damping on the gridpoints
+  /// (3 each, N) of this step.
+  std::vector<double> damping_force_;
   unsigned int ratio_gridpoint_ = 0;
   double dt_ = 0.0, time_ = 0.0, ratio_ = 1.0;
   double seconds_zones_ = 0.0, seconds_gridpoints_ = 0.0;
