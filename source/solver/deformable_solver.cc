@@ -1202,11 +1202,8 @@ void DeformableSolver::nodal_mixed_zone_forces(const double* x, const double* v,
       tet4_strain_increments(mesh_, first, n, x, v, strain_dt, stress_.data(), scratch, own,
                              mat.nodal_mixed ? strain_sums_.data() : nullptr);
     else if (mat.nodal_mixed) // on the kept strain increments
-    {
-      own_volumetric_strain(n, scratch.strain_increment.data(), own);
       replace_volumetric_strain(mesh_, first, n, strain_sums_.data(),
-                                scratch.strain_increment.data());
-    }
+                                scratch.strain_increment.data(), own);
     if (hex) // eqs. 60-63
       hex_mixed_average_strain(n, scratch.strain_increment.data(), scratch.volume.data());
     StressBatch batch = tet4_batch(first, n, scratch);
@@ -1218,17 +1215,21 @@ void DeformableSolver::nodal_mixed_zone_forces(const double* x, const double* v,
     }
     // The plastic pressure traded in the force stage adds its share of the
     // stress work there. The forces' work beyond the stress's: by the
-    // midpoint rule, as the stress work.
-    double* stress = stress_.data() + 6 * std::size_t(first);
+    // midpoint rule, as the stress work (elastic zones in one pass).
+    const double* stress = stress_.data() + 6 * std::size_t(first);
+    const bool elastic = mat.model == ZoneModel::elastic;
     const double taken_before =
-        own != nullptr
+        own != nullptr && !elastic
             ? replaced_strain_work(n, own, batch.strain_increment, stress, scratch.volume.data())
             : 0.0;
     update_tet4_stresses(mat, batch, scratch.volume.data());
     if (own != nullptr)
-      nodal_mixed_work_ +=
-          0.5 * (taken_before + replaced_strain_work(n, own, batch.strain_increment, stress,
-                                                     scratch.volume.data()));
+    {
+      const double taken_after =
+          replaced_strain_work(n, own, batch.strain_increment, stress, scratch.volume.data(),
+                               elastic ? 0.5 * mat.bulk_modulus : 0.0);
+      nodal_mixed_work_ += elastic ? taken_after : 0.5 * (taken_before + taken_after);
+    }
     if (collect)
     {
       // Eq. 73: the plastic pressure K e^p (e^p the trace of the plastic
