@@ -73,8 +73,8 @@ int main(int argc, char** argv)
       tet4_nodal_forces(*mesh, 0, nz, turned.data(), s, f[0].data(), size[0].data());
       viscous_stress(nz, K, G, beta_over_dt, s.strain_increment.data(), viscous.data());
       tet4_nodal_forces(*mesh, 0, nz, viscous.data(), s, damping[0].data());
-      tet4_nodal_forces_viscous(*mesh, 0, nz, turned.data(), s, moduli, f[1].data(),
-                                size[1].data(), damping[1].data());
+      tet4_nodal_forces_viscous(*mesh, 0, nz, turned.data(), s, moduli, f[1].data(), size[1].data(),
+                                damping[1].data());
       tet4_nodal_forces_viscous(*mesh, 0, nz, nullptr, s, moduli, nullptr, nullptr,
                                 damping_alone.data());
     }
@@ -84,8 +84,9 @@ int main(int argc, char** argv)
     const char* name = tet10 ? "10-node" : "4-node";
     std::fprintf(stderr, "%s: %u zones, largest damping force %.3g N\n", name, nz, largest);
     std::printf("%s: damping forces not all zero: %s\n", name, talus_test::verdict(largest > 0.0));
-    std::printf("%s: fused pass bitwise as two passes (forces, sizes, damping): %s\n", name,
-                talus_test::verdict(f[1] == f[0] && size[1] == size[0] && damping[1] == damping[0]));
+    std::printf(
+        "%s: fused pass bitwise as two passes (forces, sizes, damping): %s\n", name,
+        talus_test::verdict(f[1] == f[0] && size[1] == size[0] && damping[1] == damping[0]));
     std::printf("%s: damping forces alone bitwise the same: %s\n", name,
                 talus_test::verdict(damping_alone == damping[0]));
   }
