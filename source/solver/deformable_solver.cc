@@ -702,11 +702,9 @@ double DeformableSolver::stable_time_step(const std::vector<double>& joint_stiff
   return stable_time_step_of(true_mass_, k, beta);
 }
 
-void DeformableSolver::viscous_stresses(const ZoneMaterial& mat, unsigned int first, unsigned int n,
-                                        const double* de, double strain_dt)
+ViscousModuli DeformableSolver::viscous_moduli(const ZoneMaterial& mat, double strain_dt) const
 {
-  viscous_stress(n, mat.bulk_modulus, mat.shear_modulus, s_.stiffness_damping() / strain_dt, de,
-                 viscous_stress_.data() + 6 * std::size_t(first));
+  return ViscousModuli(mat.bulk_modulus, mat.shear_modulus, s_.stiffness_damping() / strain_dt);
 }
 
 unsigned int DeformableSolver::time_step_gridpoint() const
@@ -869,15 +867,9 @@ void DeformableSolver::zone_forces()
   LocalArray x(petsc_->position), v(petsc_->velocity), f(petsc_->force);
   // Rayleigh's stiffness-proportional term (dynamics): its forces apart.
   if (s_.stiffness_damping() > 0.0)
-  {
     damping_force_.assign(3 * std::size_t(mesh_.n_gridpoints()), 0.0);
-    viscous_stress_.resize(stress_.size());
-  }
   else if (!damping_force_.empty())
-  {
     damping_force_.clear();
-    viscous_stress_.clear();
-  }
   external_forces(x.data(), f.data());
   // The velocities are those of the last motion (x - v dt -> x); before the
   // first motion there is none, so no strain.
@@ -926,13 +918,13 @@ void DeformableSolver::zone_forces(const double* x, const double* v, double* f, 
         if (plastic)
           plastic_stress_work_ +=
               0.5 * stress_power(4 * n, batch.strain_increment, batch.stress, gauss_volume_.data());
-        tet10_nodal_forces(mesh_, first, n, stress_.data(), scratch10_, f, force_size_.data());
+        // With Rayleigh's viscous stress, both forces in one pass.
         if (viscous)
-        {
-          viscous_stresses(mat, 4 * first, 4 * n, batch.strain_increment, strain_dt);
-          tet10_nodal_forces(mesh_, first, n, viscous_stress_.data(), scratch10_,
-                             damping_force_.data());
-        }
+          tet10_nodal_forces_viscous(mesh_, first, n, stress_.data(), scratch10_,
+                                     viscous_moduli(mat, strain_dt), f, force_size_.data(),
+                                     damping_force_.data());
+        else
+          tet10_nodal_forces(mesh_, first, n, stress_.data(), scratch10_, f, force_size_.data());
       }
     }
     return;
@@ -955,12 +947,13 @@ void DeformableSolver::zone_forces(const double* x, const double* v, double* f, 
       update_tet4_stresses(mat, batch, scratch_.volume.data());
       if (hex) // each overlay's forces weighted 1/2
         hex_mixed_overlay_weight(n, scratch_.volume.data());
-      tet4_nodal_forces(mesh_, first, n, stress_.data(), scratch_, f, force_size_.data());
+      // With Rayleigh's viscous stress, both forces in one pass.
       if (viscous)
-      {
-        viscous_stresses(mat, first, n, batch.strain_increment, strain_dt);
-        tet4_nodal_forces(mesh_, first, n, viscous_stress_.data(), scratch_, damping_force_.data());
-      }
+        tet4_nodal_forces_viscous(mesh_, first, n, stress_.data(), scratch_,
+                                  viscous_moduli(mat, strain_dt), f, force_size_.data(),
+                                  damping_force_.data());
+      else
+        tet4_nodal_forces(mesh_, first, n, stress_.data(), scratch_, f, force_size_.data());
     }
   }
 }
@@ -1126,6 +1119,7 @@ void DeformableSolver::nodal_mixed_zone_forces(const double* x, const double* v,
   for (const ZoneMaterial& m : materials_)
     plastic_pass |= m.nodal_mixed && m.model != ZoneModel::elastic;
   batch_volumetric_.resize(zone_batch + Tet4Scratch::max_lanes);
+  own_volumetric_.resize(zone_batch + Tet4Scratch::max_lanes);
   scratch_.resize(zone_batch);
   strain_sums_.assign(2 * std::size_t(ng), 0.0);
   const unsigned int ring = static_cast<unsigned int>(nmd_ring_.size());
@@ -1163,6 +1157,7 @@ void DeformableSolver::nodal_mixed_zone_forces(const double* x, const double* v,
     plastic_average_.assign(ng, 0.0);
     yielded_zone_.clear();
     yielded_volumetric_.clear();
+    yielded_taken_.clear();
   }
   // Eqs. 74-76 for batch j, once every gridpoint of it has its average
   // plastic pressure: each zone that yielded trades its own plastic
@@ -1184,8 +1179,11 @@ void DeformableSolver::nodal_mixed_zone_forces(const double* x, const double* v,
         stress_[6 * z + c] += shift;
       // Its share of the stress work, V shift tr(d eps) / 2: the zone's
       // volumetric increment is the mean of its gridpoints' (eq. 71).
-      plastic_stress_work_ += 0.5 * tet_volume(x, mesh_.zone_gridpoint[z]) * shift * 3.0 *
-                              corner_mean(mesh_, z, strain_sums_.data(), 2);
+      const double volume = tet_volume(x, mesh_.zone_gridpoint[z]);
+      plastic_stress_work_ +=
+          0.5 * volume * shift * 3.0 * corner_mean(mesh_, z, strain_sums_.data(), 2);
+      // And of the work of its forces beyond it (replaced_strain_work).
+      nodal_mixed_work_ += 0.5 * volume * shift * yielded_taken_[next];
     }
     tet4_geometry(mesh_, b.first, b.n, x, scratch_);
     if (materials_[material_of_zone_[b.first]].element == ZoneElement::hex_mixed)
@@ -1208,12 +1206,14 @@ void DeformableSolver::nodal_mixed_zone_forces(const double* x, const double* v,
     Tet4Scratch& scratch = b.kept ? nmd_ring_[j % ring] : scratch_;
     const ZoneMaterial& mat = materials_[material_of_zone_[first]];
     const bool hex = mat.element == ZoneElement::hex_mixed;
+    // Mixed zones keep their own volumetric increments for the account.
+    double* own = mat.nodal_mixed ? own_volumetric_.data() : nullptr;
     if (!b.kept) // the strain pass again, eqs. 70-71 in it
-      tet4_strain_increments(mesh_, first, n, x, v, strain_dt, stress_.data(), scratch, nullptr,
+      tet4_strain_increments(mesh_, first, n, x, v, strain_dt, stress_.data(), scratch, own,
                              mat.nodal_mixed ? strain_sums_.data() : nullptr);
     else if (mat.nodal_mixed) // on the kept strain increments
       replace_volumetric_strain(mesh_, first, n, strain_sums_.data(),
-                                scratch.strain_increment.data());
+                                scratch.strain_increment.data(), own);
     if (hex) // eqs. 60-63
       hex_mixed_average_strain(n, scratch.strain_increment.data(), scratch.volume.data());
     StressBatch batch = tet4_batch(first, n, scratch);
@@ -1224,8 +1224,22 @@ void DeformableSolver::nodal_mixed_zone_forces(const double* x, const double* v,
       batch.plastic_volumetric = batch_volumetric_.data();
     }
     // The plastic pressure traded in the force stage adds its share of the
-    // stress work there.
+    // stress work there. The forces' work beyond the stress's: by the
+    // midpoint rule, as the stress work (elastic zones in one pass).
+    const double* stress = stress_.data() + 6 * std::size_t(first);
+    const bool elastic = mat.model == ZoneModel::elastic;
+    const double taken_before =
+        own != nullptr && !elastic
+            ? replaced_strain_work(n, own, batch.strain_increment, stress, scratch.volume.data())
+            : 0.0;
     update_tet4_stresses(mat, batch, scratch.volume.data());
+    if (own != nullptr)
+    {
+      const double taken_after =
+          replaced_strain_work(n, own, batch.strain_increment, stress, scratch.volume.data(),
+                               elastic ? 0.5 * mat.bulk_modulus : 0.0);
+      nodal_mixed_work_ += elastic ? taken_after : 0.5 * (taken_before + taken_after);
+    }
     if (collect)
     {
       // Eq. 73: the plastic pressure K e^p (e^p the trace of the plastic
@@ -1235,24 +1249,23 @@ void DeformableSolver::nodal_mixed_zone_forces(const double* x, const double* v,
         {
           yielded_zone_.push_back(first + k);
           yielded_volumetric_.push_back(batch_volumetric_[k]);
+          const double* de = batch.strain_increment + 6 * k;
+          yielded_taken_.push_back(3.0 * own[k] - (de[0] + de[1] + de[2]));
           batch_volumetric_[k] *= mat.bulk_modulus;
         }
       add_volume_weighted(mesh_, first, n, batch_volumetric_.data(), scratch.volume.data(),
                           plastic_average_.data());
     }
-    if (forces_now)
-    {
-      if (hex) // each overlay's forces weighted 1/2
-        hex_mixed_overlay_weight(n, scratch.volume.data());
+    if (hex && (forces_now || viscous)) // each overlay's forces weighted 1/2
+      hex_mixed_overlay_weight(n, scratch.volume.data());
+    // Rayleigh's viscous stress from the strain increments as they are now,
+    // its forces in the pass of the stresses' if they are taken now.
+    if (viscous)
+      tet4_nodal_forces_viscous(mesh_, first, n, forces_now ? stress_.data() : nullptr, scratch,
+                                viscous_moduli(mat, strain_dt), f, force_size_.data(),
+                                damping_force_.data());
+    else if (forces_now)
       tet4_nodal_forces(mesh_, first, n, stress_.data(), scratch, f, force_size_.data());
-    }
-    if (viscous) // Rayleigh's viscous stress, from the strain increments as they are now
-    {
-      viscous_stresses(mat, first, n, batch.strain_increment, strain_dt);
-      if (hex && !forces_now)
-        hex_mixed_overlay_weight(n, scratch.volume.data());
-      tet4_nodal_forces(mesh_, first, n, viscous_stress_.data(), scratch, damping_force_.data());
-    }
     if (force_stage_follows)
     {
       divide_by_pair_volume(plastic_gridpoint_.data() + plastic_start_[p],
@@ -1436,6 +1449,8 @@ void DeformableSolver::add_energy(EnergyAccount& e) const
   e.zone_elastic += elastic;
   // Plastic dissipation: the stress work of plastic zones less the change
   // of their elastic energy.
+  // Nodal mixed discretization stores more than its zones' stresses say.
+  e.zone_elastic += nodal_mixed_work_;
   e.plastic += plastic_stress_work_ - (plastic_elastic - initial_plastic_elastic_);
 }
 
@@ -1949,6 +1964,7 @@ void DeformableSolver::elastic_operator(const double* u, double* Ku)
   stress_.swap(stress);
   state_.swap(state);
   const double stress_work = plastic_stress_work_;
+  const double mixed_work = nodal_mixed_work_;
   const bool yielded = last_step_yielded_;
   std::vector<double> v(n), f(n);
   for (const double sign : {1.0, -1.0})
@@ -1966,6 +1982,7 @@ void DeformableSolver::elastic_operator(const double* u, double* Ku)
   materials_.swap(materials);
   force_size_.swap(force_size);
   plastic_stress_work_ = stress_work;
+  nodal_mixed_work_ = mixed_work;
   last_step_yielded_ = yielded;
 }
 
@@ -1999,6 +2016,7 @@ void DeformableSolver::save_state(CheckpointWriter& out) const
   out.put(damping_work_);
   out.put(kinetic_whole_step_);
   out.put(plastic_stress_work_);
+  out.put(nodal_mixed_work_);
   out.put(initial_elastic_);
   out.put(initial_plastic_elastic_);
   growth_watch_.save_state(out);
@@ -2043,6 +2061,7 @@ void DeformableSolver::load_state(CheckpointReader& in)
   in.get(damping_work_);
   in.get(kinetic_whole_step_);
   in.get(plastic_stress_work_);
+  in.get(nodal_mixed_work_);
   in.get(initial_elastic_);
   in.get(initial_plastic_elastic_);
   growth_watch_.load_state(in);

@@ -66,16 +66,34 @@ void divide_by_pair_volume(const unsigned int* gridpoints, unsigned int count, d
 }
 
 void replace_volumetric_strain(const TetMesh& mesh, unsigned int first, unsigned int n,
-                               const double* average_pairs, double* strain_increment)
+                               const double* average_pairs, double* strain_increment, double* own)
 {
   for (unsigned int k = 0; k < n; ++k)
   {
     double* de = strain_increment + 6 * k;
-    const double shift =
-        corner_mean(mesh, first + k, average_pairs, 2) - (de[0] + de[1] + de[2]) / 3.0;
+    const double volumetric = (de[0] + de[1] + de[2]) / 3.0;
+    if (own != nullptr)
+      own[k] = volumetric;
+    const double shift = corner_mean(mesh, first + k, average_pairs, 2) - volumetric;
     for (int c = 0; c < 3; ++c)
       de[c] += shift;
   }
+}
+
+double replaced_strain_work(unsigned int n, const double* own, const double* strain_increment,
+                            const double* stress, const double* volume, double b)
+{
+  // Four sums side by side: one would wait for each add in turn.
+  double work[4] = {0.0, 0.0, 0.0, 0.0};
+  for (unsigned int k = 0; k < n; ++k)
+  {
+    const double* de = strain_increment + 6 * k;
+    const double* s = stress + 6 * k;
+    const double replaced = de[0] + de[1] + de[2];
+    const double p = (s[0] + s[1] + s[2]) / 3.0 - b * replaced;
+    work[k % 4] += volume[k] * p * (3.0 * own[k] - replaced);
+  }
+  return (work[0] + work[1]) + (work[2] + work[3]);
 }
 
 } // namespace talus

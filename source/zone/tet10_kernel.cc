@@ -227,6 +227,46 @@ void tet10_strain_increments(const TetMesh& mesh, unsigned int first, unsigned i
   }
 }
 
+namespace
+{
+/// Subtracts the node forces from `force` (3 per gridpoint) and, when
+/// `force_size` is not null, adds their magnitudes there, zone by zone.
+inline void scatter_node_forces(const Group& group, const Lanes (&fz)[10][3], double* force,
+                                double* force_size)
+{
+  for (unsigned int l = 0; l < group.count; ++l)
+    for (int a = 0; a < 10; ++a)
+    {
+      double* f = force + 3 * group.gridpoint[a][l];
+      for (int d = 0; d < 3; ++d)
+        f[d] -= fz[a][d][l];
+    }
+  if (force_size != nullptr)
+  {
+    Lanes size[10][3];
+    for (int a = 0; a < 10; ++a)
+      for (int d = 0; d < 3; ++d)
+        size[a][d] = lane_abs(fz[a][d]);
+    for (unsigned int l = 0; l < group.count; ++l)
+      for (int a = 0; a < 10; ++a)
+      {
+        double* fs = force_size + 3 * group.gridpoint[a][l];
+        for (int d = 0; d < 3; ++d)
+          fs[d] += size[a][d][l];
+      }
+  }
+}
+
+/// The node forces of the four Gauss points' stresses sg.
+inline void node_forces(const double* geometry, const Lanes (&sg)[4][6], Lanes (&fz)[10][3])
+{
+  forces_at<0>(geometry, sg[0], fz);
+  forces_at<1>(geometry, sg[1], fz);
+  forces_at<2>(geometry, sg[2], fz);
+  forces_at<3>(geometry, sg[3], fz);
+}
+} // namespace
+
 void tet10_nodal_forces(const TetMesh& mesh, unsigned int first, unsigned int n,
                         const double* stress, const Tet10Scratch& s, double* force,
                         double* force_size)
@@ -236,33 +276,41 @@ void tet10_nodal_forces(const TetMesh& mesh, unsigned int first, unsigned int n,
     const Group group(mesh, first, k0, n);
     Lanes sg[4][6];
     group.load_points(stress + 24 * std::size_t(first + k0), sg);
-    const double* geometry = s.geometry.data() + 40 * std::size_t(k0);
     Lanes fz[10][3] = {};
-    forces_at<0>(geometry, sg[0], fz);
-    forces_at<1>(geometry, sg[1], fz);
-    forces_at<2>(geometry, sg[2], fz);
-    forces_at<3>(geometry, sg[3], fz);
-    for (unsigned int l = 0; l < group.count; ++l)
-      for (int a = 0; a < 10; ++a)
-      {
-        double* f = force + 3 * group.gridpoint[a][l];
-        for (int d = 0; d < 3; ++d)
-          f[d] -= fz[a][d][l];
-      }
-    if (force_size != nullptr)
+    node_forces(s.geometry.data() + 40 * std::size_t(k0), sg, fz);
+    scatter_node_forces(group, fz, force, force_size);
+  }
+}
+
+void tet10_nodal_forces_viscous(const TetMesh& mesh, unsigned int first, unsigned int n,
+                                const double* stress, const Tet10Scratch& s,
+                                const ViscousModuli& viscous, double* force, double* force_size,
+                                double* damping_force)
+{
+  for (unsigned int k0 = 0; k0 < n; k0 += W)
+  {
+    const Group group(mesh, first, k0, n);
+    const double* geometry = s.geometry.data() + 40 * std::size_t(k0);
+    Lanes sg[4][6];
+    group.load_points(stress + 24 * std::size_t(first + k0), sg);
+    Lanes fz[10][3] = {};
+    node_forces(geometry, sg, fz);
+    scatter_node_forces(group, fz, force, force_size);
+    // The viscous stress of each Gauss point's strain increment
+    // (viscous_stress, operation for operation), its forces apart.
+    Lanes de[4][6];
+    group.load_points(s.strain_increment.data() + 24 * std::size_t(k0), de);
+    for (int q = 0; q < 4; ++q)
     {
-      Lanes size[10][3];
-      for (int a = 0; a < 10; ++a)
-        for (int d = 0; d < 3; ++d)
-          size[a][d] = lane_abs(fz[a][d]);
-      for (unsigned int l = 0; l < group.count; ++l)
-        for (int a = 0; a < 10; ++a)
-        {
-          double* fs = force_size + 3 * group.gridpoint[a][l];
-          for (int d = 0; d < 3; ++d)
-            fs[d] += size[a][d][l];
-        }
+      const Lanes volumetric = viscous.lambda * (de[q][0] + de[q][1] + de[q][2]);
+      for (int c = 0; c < 3; ++c)
+        sg[q][c] = volumetric + viscous.two_g * de[q][c];
+      for (int c = 3; c < 6; ++c)
+        sg[q][c] = viscous.two_g * de[q][c];
     }
+    Lanes fv[10][3] = {};
+    node_forces(geometry, sg, fv);
+    scatter_node_forces(group, fv, damping_force, nullptr);
   }
 }
 

@@ -424,6 +424,54 @@ void tet4_geometry(const TetMesh& mesh, unsigned int first, unsigned int n, cons
   }
 }
 
+namespace
+{
+/// Eq. 55 for the group's zones: the force of stress sg on each corner
+/// a, V sigma grad N_a (to be subtracted), gr the group's 12 gradient rows.
+inline void corner_forces(const Lanes (&sg)[6], const double* gr, const Lanes& V, Lanes (&fz)[4][3])
+{
+  for (int a = 0; a < 4; ++a)
+  {
+    const Lanes gx = load_lanes(gr + (3 * a) * W), gy = load_lanes(gr + (3 * a + 1) * W),
+                gz = load_lanes(gr + (3 * a + 2) * W);
+    fz[a][0] = V * (sg[0] * gx + sg[3] * gy + sg[5] * gz);
+    fz[a][1] = V * (sg[3] * gx + sg[1] * gy + sg[4] * gz);
+    fz[a][2] = V * (sg[5] * gx + sg[4] * gy + sg[2] * gz);
+  }
+}
+
+/// Subtracts the corner forces from `force` (3 per gridpoint, unless null) and, when
+/// `force_size` is not null, adds their magnitudes there: zone by zone,
+/// corner by corner, the same order of summation at each gridpoint as one
+/// zone at a time.
+inline void scatter_corner_forces(const Group& group, const Lanes (&fz)[4][3], double* force,
+                                  double* force_size)
+{
+  if (force != nullptr)
+    for (unsigned int l = 0; l < group.count; ++l)
+      for (int a = 0; a < 4; ++a)
+      {
+        double* f = force + 3 * group.gridpoint(a, l);
+        for (int d = 0; d < 3; ++d)
+          f[d] -= fz[a][d][l];
+      }
+  if (force_size != nullptr)
+  {
+    Lanes size[4][3];
+    for (int a = 0; a < 4; ++a)
+      for (int d = 0; d < 3; ++d)
+        size[a][d] = lane_abs(fz[a][d]);
+    for (unsigned int l = 0; l < group.count; ++l)
+      for (int a = 0; a < 4; ++a)
+      {
+        double* fs = force_size + 3 * group.gridpoint(a, l);
+        for (int d = 0; d < 3; ++d)
+          fs[d] += size[a][d][l];
+      }
+  }
+}
+} // namespace
+
 void tet4_nodal_forces(const TetMesh& mesh, unsigned int first, unsigned int n,
                        const double* stress, const Tet4Scratch& s, double* force,
                        double* force_size)
@@ -433,40 +481,56 @@ void tet4_nodal_forces(const TetMesh& mesh, unsigned int first, unsigned int n,
     const Group group(mesh, first, k0, n);
     Lanes sg[6];
     group.load_six(stress + 6 * (first + k0), sg);
+    Lanes fz[4][3];
+    corner_forces(sg, s.gradient.data() + 12 * k0, load_lanes(s.volume.data() + k0), fz);
+    scatter_corner_forces(group, fz, force, force_size);
+  }
+}
+
+void tet4_nodal_forces_viscous(const TetMesh& mesh, unsigned int first, unsigned int n,
+                               const double* stress, const Tet4Scratch& s,
+                               const ViscousModuli& viscous, double* force, double* force_size,
+                               double* damping_force)
+{
+  for (unsigned int k0 = 0; k0 < n; k0 += W)
+  {
+    const Group group(mesh, first, k0, n);
     const double* gr = s.gradient.data() + 12 * k0;
     const Lanes V = load_lanes(s.volume.data() + k0);
-    Lanes fz[4][3];
-    for (int a = 0; a < 4; ++a)
+    // The viscous stress of the zones' strain increments (viscous_stress,
+    // operation for operation), its forces apart.
+    Lanes de[6], sv[6];
+    group.load_six(s.strain_increment.data() + 6 * k0, de);
+    const Lanes volumetric = viscous.lambda * (de[0] + de[1] + de[2]);
+    for (int c = 0; c < 3; ++c)
+      sv[c] = volumetric + viscous.two_g * de[c];
+    for (int c = 3; c < 6; ++c)
+      sv[c] = viscous.two_g * de[c];
+    Lanes fv[4][3];
+    corner_forces(sv, gr, V, fv);
+    if (stress == nullptr)
     {
-      const Lanes gx = load_lanes(gr + (3 * a) * W), gy = load_lanes(gr + (3 * a + 1) * W),
-                  gz = load_lanes(gr + (3 * a + 2) * W);
-      fz[a][0] = V * (sg[0] * gx + sg[3] * gy + sg[5] * gz);
-      fz[a][1] = V * (sg[3] * gx + sg[1] * gy + sg[4] * gz);
-      fz[a][2] = V * (sg[5] * gx + sg[4] * gy + sg[2] * gz);
+      scatter_corner_forces(group, fv, damping_force, nullptr);
+      continue;
     }
-    // Zone by zone, corner by corner: the same order of summation at each
-    // gridpoint as one zone at a time.
+    Lanes sg[6];
+    group.load_six(stress + 6 * (first + k0), sg);
+    Lanes fz[4][3];
+    corner_forces(sg, gr, V, fz);
+    // Both forces of a corner at once (each array summed in the order of
+    // scatter_corner_forces).
     for (unsigned int l = 0; l < group.count; ++l)
       for (int a = 0; a < 4; ++a)
       {
-        double* f = force + 3 * group.gridpoint(a, l);
+        const std::size_t g = 3 * std::size_t(group.gridpoint(a, l));
         for (int d = 0; d < 3; ++d)
-          f[d] -= fz[a][d][l];
+        {
+          force[g + d] -= fz[a][d][l];
+          damping_force[g + d] -= fv[a][d][l];
+        }
       }
     if (force_size != nullptr)
-    {
-      Lanes size[4][3];
-      for (int a = 0; a < 4; ++a)
-        for (int d = 0; d < 3; ++d)
-          size[a][d] = lane_abs(fz[a][d]);
-      for (unsigned int l = 0; l < group.count; ++l)
-        for (int a = 0; a < 4; ++a)
-        {
-          double* fs = force_size + 3 * group.gridpoint(a, l);
-          for (int d = 0; d < 3; ++d)
-            fs[d] += size[a][d][l];
-        }
-    }
+      scatter_corner_forces(group, fz, nullptr, force_size);
   }
 }
 

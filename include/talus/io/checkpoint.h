@@ -38,8 +38,9 @@ struct Scene;
 /// 4: contacts keep their joint material; 5: stages (the loop's place,
 /// removed blocks and zones, fixed blocks, mode, joint material rules);
 /// 6: continuously yielding joints' state; 7: a fingerprint per stage and
-/// the stages begun (a stage may be appended to a finished run).
-constexpr std::uint32_t checkpoint_format_version = 7;
+/// the stages begun (a stage may be appended to a finished run); 8: the
+/// work of nodal mixed discretization in the zones' energy account.
+constexpr std::uint32_t checkpoint_format_version = 8;
 
 /// FNV-1a, 64 bits: a fingerprint, not a cryptographic hash.
 std::uint64_t fnv1a(const void* data, std::size_t size,

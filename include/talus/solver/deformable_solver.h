@@ -262,11 +262,10 @@ private:
   /// stiffness_damping_step_factor for Rayleigh's `beta` (s).
   static double stable_time_step_of(const std::vector<double>& mass,
                                     const std::vector<double>& stiffness, double beta = 0.0);
-  /// Dynamics with Rayleigh beta: the viscous stresses of stress points
-  /// [first, first + n) of material `mat` from their strain increments
-  /// `de` over strain_dt, into viscous_stress_.
-  void viscous_stresses(const ZoneMaterial& mat, unsigned int first, unsigned int n,
-                        const double* de, double strain_dt);
+  /// Dynamics with Rayleigh beta: the moduli of the viscous stress
+  /// (viscous_stress.h) of material `mat` over a motion of strain_dt, for
+  /// the kernels' passes that take it with the nodal forces.
+  ViscousModuli viscous_moduli(const ZoneMaterial& mat, double strain_dt) const;
   void zone_forces();
   /// The zone forces alone of positions x and velocities v (3 per
   /// gridpoint) over a motion of strain_dt, added to f.
@@ -396,6 +395,7 @@ private:
   std::vector<double> strain_sums_;
   std::vector<double> plastic_average_;  ///< per gridpoint: plastic pressure, Pa
   std::vector<double> batch_volumetric_; ///< per zone of a batch: e, or plastic e^p
+  std::vector<double> own_volumetric_;   ///< per zone of a batch: its own e (energy account)
   /// A batch of zones [first, first + n), of a mixed material or not; its
   /// model stage waits for the sums stage of batch `ready_after`, its force
   /// stage for the model stage at place `forces_after` of the model order.
@@ -434,15 +434,16 @@ private:
   /// step, in order, with their e^p.
   std::vector<unsigned int> yielded_zone_;
   std::vector<double> yielded_volumetric_;
+  std::vector<double> yielded_taken_; ///< and their tr d(eps) - tr d(eps~) (energy account)
   /// Whether a mixed zone yielded with a volumetric part at the last step
   /// (then the forces wait for the force stage; only speed depends on it).
   bool last_step_yielded_ = false;
   Damper damper_{Damping::none, 0.0, 0.5, 1.0};
   std::vector<double> last_force_; ///< 3 per gridpoint, N (combined damping only)
-  /// Dynamics with Rayleigh beta only (empty otherwise): the viscous
-  /// stress of each stress point (6 each, Pa) and the forces of it and of
-  /// the contacts' damping on the gridpoints (3 each, N) of this step.
-  std::vector<double> viscous_stress_, damping_force_;
+  /// Dynamics with Rayleigh beta only (empty otherwise): the forces of the
+  /// zones' viscous stress and of the contacts' damping on the gridpoints
+  /// (3 each, N) of this step.
+  std::vector<double> damping_force_;
   unsigned int ratio_gridpoint_ = 0;
   double dt_ = 0.0, time_ = 0.0, ratio_ = 1.0;
   double seconds_zones_ = 0.0, seconds_gridpoints_ = 0.0;
@@ -452,6 +453,10 @@ private:
   double kinetic_whole_step_ = 0.0;
   std::vector<double> gauss_volume_; ///< m^3, a batch of 10-node zones' Gauss points (plastic)
   double plastic_stress_work_ = 0.0; ///< sum of V sigma : d(eps) over zones of plastic materials
+  /// Nodal mixed discretization: the work of its zones' forces that their
+  /// stresses do not hold, sum of V p (tr d(eps) - tr d(eps~)) (J, see
+  /// replaced_strain_work), stored energy of the averaged strains.
+  double nodal_mixed_work_ = 0.0;
   double initial_elastic_ = 0.0, initial_plastic_elastic_ = 0.0; ///< and held kinetic
   std::vector<double> pressure_force_; ///< 3 per gridpoint, N (face pressures, water)
   EnergyGrowthWatch growth_watch_;     ///< standalone runs (step())

@@ -67,8 +67,28 @@ inline double corner_mean(const TetMesh& mesh, unsigned int z, const double* ave
 /// Eqs. 70-71: each zone of the batch keeps the deviatoric part of its
 /// strain increment (6 per zone, xx yy zz xy yz zx) and takes the mean of
 /// its gridpoints' averages of the volumetric increment as its volumetric
-/// part (the first number of each gridpoint's pair, see average_pairs).
+/// part (the first number of each gridpoint's pair, see average_pairs);
+/// with `own`, each zone's own volumetric part tr(d eps) / 3 there.
 void replace_volumetric_strain(const TetMesh& mesh, unsigned int first, unsigned int n,
-                               const double* average_pairs, double* strain_increment);
+                               const double* average_pairs, double* strain_increment,
+                               double* own = nullptr);
+
+/// The energy account of nodal mixed discretization. Its nodal forces act
+/// with each zone's own strain increment (eq. 55), while its stress follows
+/// the replaced one (eqs. 70-71), so the forces do V sigma : d(eps) of work
+/// where the zone's elastic energy gains V sigma : d(eps~); the difference,
+/// V p (tr d(eps) - tr d(eps~)) with p = tr(sigma) / 3, is stored all the
+/// same (the stiffness of eqs. 68-71 is symmetric: for linear elasticity it
+/// holds K / 2 sum_g (W_g / 4) e_g^2 over the gridpoints, W_g the zone
+/// volumes around g and e_g their average volumetric strain, at least the
+/// zones' own K / 2 sum_z V_z e~_z^2). This returns the sum of V (p - b
+/// tr d(eps~)) (3 own - tr d(eps~)) over the batch (J), from the replaced
+/// increments `strain_increment`, the zones' `own` volumetric parts, their
+/// stresses (6 per zone) and volumes (m^3). Taken before and after the
+/// zone model with b = 0, the mean is the step's share (the midpoint rule of
+/// the stress work); an elastic zone's mean stress rises by K tr d(eps~),
+/// so after its model b = K / 2 gives the same in one pass.
+double replaced_strain_work(unsigned int n, const double* own, const double* strain_increment,
+                            const double* stress, const double* volume, double b = 0.0);
 
 } // namespace talus

@@ -7,6 +7,7 @@
 // spin, stress and plastic state. Nodes as in tet10_mesh.h.
 
 #include <talus/zone/tet_mesh.h>
+#include <talus/zone/viscous_stress.h>
 
 #include <vector>
 
@@ -56,6 +57,17 @@ void tet10_strain_increments(const TetMesh& mesh, unsigned int first, unsigned i
 void tet10_nodal_forces(const TetMesh& mesh, unsigned int first, unsigned int n,
                         const double* stress, const Tet10Scratch& scratch, double* force,
                         double* force_size = nullptr);
+
+/// Pass 2 of dynamics with Rayleigh's stiffness-proportional term, in one
+/// pass over the zones: the nodal forces of the stresses as
+/// tet10_nodal_forces, and those of the viscous stress of each Gauss
+/// point's strain increment in scratch (`viscous`, viscous_stress.h) added
+/// to `damping_force` (3 per gridpoint, N), bitwise as viscous_stress and a
+/// second tet10_nodal_forces would add them.
+void tet10_nodal_forces_viscous(const TetMesh& mesh, unsigned int first, unsigned int n,
+                                const double* stress, const Tet10Scratch& scratch,
+                                const ViscousModuli& viscous, double* force, double* force_size,
+                                double* damping_force);
 
 /// Lumped mass (kg) of the ten nodes of zone z of density rho (kg/m^3), by
 /// HRZ diagonal scaling, and an upper bound of each node's stiffness (N/m)

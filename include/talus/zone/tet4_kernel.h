@@ -1,6 +1,7 @@
 #pragma once
 
 #include <talus/zone/tet_mesh.h>
+#include <talus/zone/viscous_stress.h>
 
 namespace talus
 {
@@ -66,5 +67,16 @@ void tet4_geometry(const TetMesh& mesh, unsigned int first, unsigned int n, cons
 void tet4_nodal_forces(const TetMesh& mesh, unsigned int first, unsigned int n,
                        const double* stress, const Tet4Scratch& scratch, double* force,
                        double* force_size = nullptr);
+
+/// Pass 2 of dynamics with Rayleigh's stiffness-proportional term, in one
+/// pass over the zones: the nodal forces of the stresses as
+/// tet4_nodal_forces (none when `stress` is null), and those of the
+/// viscous stress of each zone's strain increment in scratch (`viscous`,
+/// viscous_stress.h) added to `damping_force` (3 per gridpoint, N), bitwise
+/// as viscous_stress and a second tet4_nodal_forces would add them.
+void tet4_nodal_forces_viscous(const TetMesh& mesh, unsigned int first, unsigned int n,
+                               const double* stress, const Tet4Scratch& scratch,
+                               const ViscousModuli& viscous, double* force, double* force_size,
+                               double* damping_force);
 
 } // namespace talus
