@@ -13,6 +13,9 @@ namespace
 /// Bit 0 of the fixed-point number is 2^-1074, the least subnormal.
 constexpr int lowest_exponent = -1074;
 
+/// GCC's 128-bit integer: its conversion to double rounds once, to nearest.
+__extension__ using Wide = unsigned __int128;
+
 } // namespace
 
 void ExactSum::add(double x)
@@ -42,7 +45,7 @@ void ExactSum::add(double x)
   const bool negative = m < 0;
   const std::uint64_t magnitude = static_cast<std::uint64_t>(negative ? -m : m);
   // The 53 bits shifted span at most three words.
-  const unsigned __int128 shifted = static_cast<unsigned __int128>(magnitude) << shift;
+  const Wide shifted = static_cast<Wide>(magnitude) << shift;
   const std::int64_t digits[3] = {static_cast<std::int64_t>(shifted & 0xffffffffu),
                                   static_cast<std::int64_t>((shifted >> 32) & 0xffffffffu),
                                   static_cast<std::int64_t>(shifted >> 64)};
@@ -105,7 +108,7 @@ double ExactSum::value() const
   // a double and its rounding bit; any nonzero word below them sets the
   // lowest bit (a sticky bit), so that the one conversion below rounds as
   // the exact sum would.
-  unsigned __int128 lead = 0;
+  Wide lead = 0;
   for (int k = top; k > top - 3; --k)
     lead = (lead << 32) | static_cast<std::uint32_t>(k >= 0 ? s.word_[k] : 0);
   bool sticky = false;
