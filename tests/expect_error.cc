@@ -9,8 +9,10 @@
 //   # address space limit: N MB   run talus under that limit (ulimit -v)
 //   # mask after: PHRASE     the word after each PHRASE shows as <masked> (a
 //                            figure of the machine, such as its free memory)
+// Under mpirun (a test named FILE.mpirun=N) only rank 0 prints.
 
 #include <cstdio>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <set>
@@ -105,6 +107,12 @@ int main(int argc, char** argv)
         break;
       text.replace(begin, end - begin, "<masked>");
     }
+  // Under mpirun every rank runs this; rank 0 alone reports, so that the
+  // output does not depend on how the ranks' lines interleave. Every rank
+  // still judges its own talus's exit code.
+  const char* rank = std::getenv("OMPI_COMM_WORLD_RANK");
+  if (rank != nullptr && std::atoi(rank) != 0)
+    std::freopen("/dev/null", "w", stdout);
   std::fputs(text.c_str(), stdout);
   if (WIFSIGNALED(status))
   {

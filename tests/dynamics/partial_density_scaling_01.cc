@@ -16,8 +16,8 @@
 //   scaled against unscaled, within 1 %;
 // - the energy account of the scaled run (kinetic energy with the scaled
 //   masses, which the forces accelerate) within 1e-3 of its largest term,
-//   every tenth step, or no worse than the unscaled run's (nodal mixed
-//   discretization: its account is off by some 7e-3 here, scaled or not).
+//   every tenth step (nodal mixed discretization too, since its account
+//   takes the work of the nodal-averaged strain; 7e-3 off before).
 // Before: talus refused 'Partial density scaling' (an unknown entry), and a
 // 'Time step' above eq. 84 in dynamics.
 
@@ -169,11 +169,11 @@ int main(int argc, char** argv)
     std::printf(
         "%s: the scaled run takes 4 times the automatic step: %s; some gridpoints "
         "scaled, under 1 %% of the mass added: %s; arrival at the middle within 1 %% of "
-        "the unscaled run: %s; energy account within 1e-3 or as unscaled: %s\n",
+        "the unscaled run: %s; energy account within 1e-3: %s\n",
         element, talus_test::verdict(std::abs(scaled.dt / asked - 1.0) < 1e-12),
         talus_test::verdict(scaled.scaled > 0 && scaled.fraction < 0.01),
         talus_test::verdict(plain.arrival > 0.0 &&
                             std::abs(scaled.arrival / plain.arrival - 1.0) <= 0.01),
-        talus_test::verdict(scaled.worst_error <= std::max(1e-3, 1.05 * plain.worst_error)));
+        talus_test::verdict(scaled.worst_error <= 1e-3));
   }
 }
