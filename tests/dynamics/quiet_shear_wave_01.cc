@@ -70,27 +70,15 @@ void run(const std::string& element)
     if (std::abs(mesh.position[3 * g + 2] - 0.5 * length) < 1e-9)
       middle.push_back(g);
   const double end = duration + 1.5 * length / cs;
-  double sum_v = 0.0, sum_tv = 0.0, peak = 0.0, worst_error = 0.0;
+  PulseRecord pulse{middle, 0};
   while (solver.time() < end)
-  {
-    solver.step();
-    const std::vector<double> v = solver.velocities();
-    double mean = 0.0;
-    for (unsigned int g : middle)
-      mean += v[3 * g] / middle.size();
-    const double t = solver.time() - 0.5 * solver.dt(); // v of the last half step
-    sum_v += mean;
-    sum_tv += t * mean;
-    peak = std::max(peak, mean);
-    talus::EnergyAccount e;
-    solver.add_energy(e);
-    worst_error = std::max(worst_error, std::abs(e.error()) / e.scale());
-  }
+    pulse.step(solver);
+  const double peak = pulse.peak, worst_error = pulse.worst_error;
   talus::EnergyAccount e;
   solver.add_energy(e);
   const double input = width * width * tau0 * tau0 * duration / (2.0 * Z);
   const double left = (e.kinetic + e.zone_elastic) / input;
-  const double travel = sum_tv / sum_v - 0.5 * duration, expected = 0.5 * length / cs;
+  const double travel = pulse.centre() - 0.5 * duration, expected = 0.5 * length / cs;
   std::fprintf(stderr,
                "%s: %u zones, %u quiet faces, %lu steps of %.4g s; travel %.6g s (L / 2 cs "
                "%.6g), peak rho cs v / tau0 %.5f, energy left %.3e of the input %.5g J "

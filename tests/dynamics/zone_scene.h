@@ -8,10 +8,13 @@
 #include <talus/scene/build_blocks.h>
 #include <talus/solver/deformable_solver.h>
 
+#include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <functional>
 #include <memory>
 #include <string>
+#include <vector>
 
 struct ZoneScene
 {
@@ -46,4 +49,33 @@ struct ZoneScene
   // The solver keeps a reference to the mesh: the scene stays where it is.
   ZoneScene(const ZoneScene&) = delete;
   ZoneScene& operator=(const ZoneScene&) = delete;
+};
+
+/// A pulse followed through a column: each step() advances the solver one
+/// step and records the mean velocity component `d` of the gridpoints
+/// `middle` (its time centroid and peak) and the worst energy-account error
+/// over the largest term.
+struct PulseRecord
+{
+  std::vector<unsigned int> middle;
+  int d = 2;
+  double sum_v = 0.0, sum_tv = 0.0, peak = 0.0, worst_error = 0.0;
+
+  void step(talus::DeformableSolver& solver)
+  {
+    solver.step();
+    const std::vector<double> v = solver.velocities();
+    double mean = 0.0;
+    for (unsigned int g : middle)
+      mean += v[3 * g + d] / middle.size();
+    const double t = solver.time() - 0.5 * solver.dt(); // v of the last half step
+    sum_v += mean;
+    sum_tv += t * mean;
+    peak = std::max(peak, mean);
+    talus::EnergyAccount e;
+    solver.add_energy(e);
+    worst_error = std::max(worst_error, std::abs(e.error()) / e.scale());
+  }
+  /// The time centroid of the mean velocity (s).
+  double centre() const { return sum_tv / sum_v; }
 };
