@@ -9,6 +9,7 @@
 //   mpirun -np 2 build/contrib/benchmarks/benchmark_rigid_ranks [n] [steps]
 
 #include "benchmark_arguments.h"
+#include "settling_cubes.h"
 
 #include <talus/base/parallel_environment.h>
 #include <talus/contact/block_decomposition.h>
@@ -60,21 +61,8 @@ int main(int argc, char** argv)
       argc > 2 ? whole_argument(argv[0], argv[2], "the step count (second argument)", 1, 1000000)
                : 200;
 
-  BlockGenerator g(ConvexPolyhedron::box(Vec3::Zero(), Vec3(n, n, n + 1)), {});
-  g.cut_joint_set({0.0, 0.0, 1.0, Vec3::Zero(), 0, false, {}});
-  g.cut_joint_set({90.0, 0.0, 1.0, Vec3::Zero(), 0, false, {}});
-  g.cut_joint_set({90.0, 90.0, 1.0, Vec3::Zero(), 0, false, {}});
-  BlockModel model;
-  const unsigned int cubes = model.group_index("cubes"), floor = model.group_index("floor");
-  for (const ConvexPolyhedron& b : g.blocks())
-    model.add_block(b, b.vertex_mean()[2] < 1.0 ? floor : cubes);
   SolverSettings s;
-  s.dynamic = false;
-  s.steps = steps;
-  s.target_ratio = 0.0;
-  s.contact.tolerance = 0.01;
-  s.joint.normal_stiffness = s.joint.shear_stiffness = 1e9;
-  s.fixed_groups = {floor};
+  BlockModel model = settling_cubes(n, steps, s);
 
   // 1. Whole, on rank 0 alone.
   double serial_seconds = 0.0;

@@ -7,6 +7,7 @@
 //   build/contrib/benchmarks/benchmark_rigid_settling [steps]
 
 #include "benchmark_arguments.h"
+#include "settling_cubes.h"
 
 #include <talus/geometry/block_generator.h>
 #include <talus/model/block_model.h>
@@ -35,23 +36,8 @@ int main(int argc, char** argv)
   double cost_10 = 0.0;
   for (unsigned int n : {5u, 10u, 20u, 30u})
   {
-    // One floor layer (z in [0, 1]) under n layers of cubes.
-    BlockGenerator g(ConvexPolyhedron::box(Vec3::Zero(), Vec3(n, n, n + 1)), {});
-    g.cut_joint_set({0.0, 0.0, 1.0, Vec3::Zero(), 0, false, {}});
-    g.cut_joint_set({90.0, 0.0, 1.0, Vec3::Zero(), 0, false, {}});
-    g.cut_joint_set({90.0, 90.0, 1.0, Vec3::Zero(), 0, false, {}});
-    BlockModel model;
-    const unsigned int cubes = model.group_index("cubes"), floor = model.group_index("floor");
-    for (const ConvexPolyhedron& b : g.blocks())
-      model.add_block(b, b.vertex_mean()[2] < 1.0 ? floor : cubes);
-
     SolverSettings s;
-    s.dynamic = false;
-    s.steps = steps;
-    s.target_ratio = 0.0;
-    s.contact.tolerance = 0.01;
-    s.joint.normal_stiffness = s.joint.shear_stiffness = 1e9;
-    s.fixed_groups = {floor};
+    BlockModel model = settling_cubes(n, steps, s);
     RigidSolver solver(model, 2650.0, s);
     const auto start = std::chrono::steady_clock::now();
     for (unsigned long k = 0; k < steps; ++k)
