@@ -1,5 +1,6 @@
-// Meshing convex jointed blocks into tetrahedral zones: talus's mesher
-// (zone/convex_block_mesher, gmsh's C++ API) and, for comparison, CGAL's 3D
+// Meshing convex jointed blocks into tetrahedral zones: talus's meshers
+// (zone/convex_block_mesher, gmsh's C++ API; zone/lattice_block_mesher,
+// CGAL's Delaunay triangulation of lattice points) and, for comparison, CGAL's 3D
 // mesh generator Mesh_3 (cgal_block_mesher.cc, benchmark only) on the same
 // blocks. A brick is cut by three oblique joint sets 3 m apart into about 10,
 // 100 and 1,000 blocks (rock around an excavation), meshed at a target edge
@@ -23,13 +24,15 @@
 // Run:
 //   cmake --build build --target benchmark_meshing && build/contrib/benchmarks/benchmark_meshing
 // Arguments (all optional): rows (10, 100, 1000: h = 0.5 m; 1000c: the 1,000
-// blocks at h = 0.75 m; 100f: the 100 blocks at h = 0.25 m, eight times the
-// zones per block), meshers (gmsh, cgal), runs=N (each row and mesher N times,
-// taking turns; the fastest is shown, all on standard error), batch=N (blocks
-// per gmsh model; 1 as mesh_blocks), and gmsh options as Name=value (e.g. Mesh.Algorithm3D=1,
-// Mesh.Optimize=0), set once gmsh is started; cgal-scale=x (CGAL's sizes for
-// x h); detail (one line per block on standard error). Without rows or
-// meshers: gmsh on every row and CGAL on 10 and 100 (CGAL on 1000 takes
+// blocks at h = 0.75 m; 1000x: at h = 1.5 m; 100f: the 100 blocks at
+// h = 0.25 m, eight times the zones per block), meshers (gmsh, cgal,
+// lattice: zone/lattice_block_mesher, as mesh_blocks with Mesher = lattice),
+// runs=N (each row and mesher N times, taking turns; the fastest is shown,
+// all on standard error), batch=N (blocks per gmsh model; 1 as mesh_blocks),
+// and gmsh options as Name=value (e.g. Mesh.Algorithm3D=1, Mesh.Optimize=0),
+// set once gmsh is started; cgal-scale=x (CGAL's sizes for x h); detail (one
+// line per block on standard error). Without rows or meshers: gmsh and
+// lattice on every row and CGAL on 10 and 100 (CGAL on 1000 takes
 // about two CPU minutes: `benchmark_meshing 1000 cgal`).
 
 #include "benchmark_arguments.h"
@@ -38,6 +41,7 @@
 #include <talus/geometry/block_generator.h>
 #include <talus/model/block_model.h>
 #include <talus/zone/convex_block_mesher.h>
+#include <talus/zone/lattice_block_mesher.h>
 
 #include <gmsh.h>
 
@@ -72,6 +76,7 @@ const Row rows[] = {{"10", 3.7, 0.5},
                     {"100", 10.0, 0.5},
                     {"1000", 26.2, 0.5},
                     {"1000c", 26.2, 0.75},
+                    {"1000x", 26.2, 1.5},
                     {"100f", 10.0, 0.25}};
 
 BlockModel jointed_model(double side)
@@ -163,6 +168,7 @@ struct Result
   double below_01_thick = 0, q_min_thick = 1; // in blocks at least h thick
   double peak_rise = 0, start_up = 0, volume_error = 0;
   unsigned int volume_off = 0; // blocks whose zones miss its volume by more than 1e-9
+  unsigned int by_gmsh = 0;    // lattice rows: blocks the lattice mesher left to gmsh
   bool peak_reset = false;
 };
 
@@ -204,6 +210,21 @@ Result measure(const Row& row, const std::string& mesher, const Settings& settin
       cpu1 = cpu_seconds();
       wall1 = std::chrono::steady_clock::now();
       r.peak_rise = status_bytes("VmHWM") - rss_model - r.start_up;
+    }
+    else if (mesher == "lattice")
+    {
+      // As mesh_blocks does with Mesher = lattice: blocks the lattice mesher
+      // fails on go to gmsh (counted apart).
+      r.peak_reset = reset_peak_memory();
+      wall0 = std::chrono::steady_clock::now();
+      cpu0 = cpu_seconds();
+      unsigned int by_lattice = 0;
+      meshes = mesh_convex_blocks_with(
+          model, all, [h = row.h](const Vec3&) { return h; }, ConvexMesher::lattice, &by_lattice);
+      cpu1 = cpu_seconds();
+      wall1 = std::chrono::steady_clock::now();
+      r.peak_rise = status_bytes("VmHWM") - rss_model;
+      r.by_gmsh = model.n_blocks() - by_lattice;
     }
     else
     {
@@ -358,7 +379,7 @@ int main(int argc, char** argv)
         row = &r;
     if (row != nullptr)
       chosen_rows.push_back(row);
-    else if (a == "gmsh" || a == "cgal")
+    else if (a == "gmsh" || a == "cgal" || a == "lattice")
       meshers.push_back(a);
     else if (a == "detail")
       settings.detail = true;
@@ -391,10 +412,11 @@ int main(int argc, char** argv)
     }
     else
     {
-      std::fprintf(stderr,
-                   "%s: argument '%s': allowed are rows 10 100 1000 1000c 100f, meshers gmsh "
-                   "cgal, runs=N, batch=N, cgal-scale=x, detail and gmsh options Name=value\n",
-                   argv[0], argv[i]);
+      std::fprintf(
+          stderr,
+          "%s: argument '%s': allowed are rows 10 100 1000 1000c 1000x 100f, meshers "
+          "gmsh cgal lattice, runs=N, batch=N, cgal-scale=x, detail and gmsh options Name=value\n",
+          argv[0], argv[i]);
       return 2;
     }
   }
@@ -405,6 +427,8 @@ int main(int argc, char** argv)
   {
     for (const Row& r : rows)
       jobs.emplace_back(&r, "gmsh");
+    for (const Row& r : rows)
+      jobs.emplace_back(&r, "lattice");
     for (const char* name : {"10", "100"})
       for (const Row& r : rows)
         if (std::strcmp(r.name, name) == 0)
@@ -461,6 +485,8 @@ int main(int argc, char** argv)
     std::string blocks = thousands(r.blocks);
     if (r.failed_blocks > 0)
       blocks += " (" + std::to_string(r.failed_blocks) + " failed)";
+    if (r.by_gmsh > 0)
+      blocks += " (" + std::to_string(r.by_gmsh) + " by gmsh)";
     std::printf("| %s | %s | %.2f | %s | %s | %s | %.1f | %.2f | %u of %u / %u of %u | %.3f / %.3f "
                 "/ %.3f | "
                 "%.0f (%.0f, %.3f) | %.0f%s (%.0f) | %.0e (%u) |\n",
