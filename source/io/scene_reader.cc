@@ -431,6 +431,11 @@ void declare_deformable(ParameterFile& prm)
   prm.enter("Fine shape");
   declare_region(prm, "the fine region when 'Fine region' is shape");
   prm.leave();
+  prm.declare("Mesher", "automatic", P::Selection("automatic|gmsh|lattice"),
+              "automatic, gmsh or lattice",
+              "Mesher of convex blocks other than axis-aligned bricks: the lattice Delaunay mesher "
+              "(fast) where the edge length varies by at most 25 % over the block and gmsh's "
+              "Delaunay mesher elsewhere (automatic), or one of them for every such block.");
   prm.declare("Mesh file", "", P::Anything(), "a gmsh .msh file of linear tetrahedra (or empty)",
               "The deformable body's zones from a gmsh file instead of meshing the block (relative "
               "paths start at this parameter file's folder).");
@@ -472,6 +477,10 @@ void parse_deformable(ParameterFile& prm, Scene& scene)
   }
   d.edge_length = EdgeLengthField(prm.get_double("Edge length"));
   d.implicit_check = prm.get_bool("Implicit check");
+  const std::string mesher = prm.get("Mesher");
+  d.mesher = mesher == "gmsh"      ? ConvexMesher::gmsh
+             : mesher == "lattice" ? ConvexMesher::lattice
+                                   : ConvexMesher::automatic;
   d.material.nodal_mixed = prm.get_bool("Nodal mixed discretization");
   const std::string element = prm.get("Element");
   d.material.element = element == "hex-mixed" ? ZoneElement::hex_mixed

@@ -385,15 +385,16 @@ namespace
 /// The zones of mesh_blocks, in the mesher's order (then ordered by
 /// mesh_blocks).
 TetMesh mesh_in_generator_order(const BlockModel& m, const std::vector<unsigned int>& which,
-                                const EdgeLengthField& field, ZoneElement element)
+                                const EdgeLengthField& field, ZoneElement element,
+                                ConvexMesher mesher)
 {
   if (!(field.smallest() > 0.0))
     throw InputError("zone edge length must be positive");
   if (element == ZoneElement::tet10)
     throw InputError("internal: the mesher makes 4-node zones; 10-node zones are made from them "
                      "by make_quadratic");
-  // Blocks that are not bricks go to gmsh together (fewer calls); then every
-  // block is appended in the order asked.
+  // Blocks that are not bricks go to the convex mesher together (fewer gmsh
+  // calls); then every block is appended in the order asked.
   std::vector<unsigned int> general;
   std::vector<int> general_index(m.n_blocks(), -1);
   for (unsigned int b : which)
@@ -411,8 +412,8 @@ TetMesh mesh_in_generator_order(const BlockModel& m, const std::vector<unsigned 
       general.push_back(b);
     }
   }
-  std::vector<BlockTetrahedra> meshed =
-      mesh_convex_blocks(m, general, [&field](const Vec3& x) { return field.at(x); });
+  std::vector<BlockTetrahedra> meshed = mesh_convex_blocks_with(
+      m, general, [&field](const Vec3& x) { return field.at(x); }, mesher);
   TetMesh mesh;
   for (unsigned int b : which)
   {
@@ -443,9 +444,9 @@ TetMesh mesh_in_generator_order(const BlockModel& m, const std::vector<unsigned 
 template <typename Order>
 TetMesh mesh_and_order(const BlockModel& m, const std::vector<unsigned int>& which,
                        const EdgeLengthField& field, MeshReport& report, ZoneElement element,
-                       const Order& order)
+                       const Order& order, ConvexMesher mesher)
 {
-  TetMesh mesh = mesh_in_generator_order(m, which, field, element);
+  TetMesh mesh = mesh_in_generator_order(m, which, field, element, mesher);
   order_for_locality(mesh, order);
   report = measure_mesh(mesh);
   return mesh;
@@ -454,16 +455,16 @@ TetMesh mesh_and_order(const BlockModel& m, const std::vector<unsigned int>& whi
 
 TetMesh mesh_blocks(const BlockModel& m, const std::vector<unsigned int>& which,
                     const EdgeLengthField& field, MeshReport& report, ZoneElement element,
-                    MeshOrder order)
+                    MeshOrder order, ConvexMesher mesher)
 {
-  return mesh_and_order(m, which, field, report, element, order);
+  return mesh_and_order(m, which, field, report, element, order, mesher);
 }
 
 TetMesh mesh_blocks(const BlockModel& m, const std::vector<unsigned int>& which,
                     const EdgeLengthField& field, MeshReport& report, ZoneElement element,
-                    const BlockMeshOrder& order)
+                    const BlockMeshOrder& order, ConvexMesher mesher)
 {
-  return mesh_and_order(m, which, field, report, element, order);
+  return mesh_and_order(m, which, field, report, element, order, mesher);
 }
 
 double count_zones(const BlockModel& m, const std::vector<unsigned int>& which,

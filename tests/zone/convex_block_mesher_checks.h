@@ -264,10 +264,14 @@ inline BlockShape block_shape(const BlockModel& m, unsigned int b)
 
 /// Checks the meshes of blocks `which` of `m` at edge length h and prints
 /// the verdicts (standard output) and the figures per block (standard
-/// error). Returns the figures of each block.
+/// error). Blocks less than `roomless` h wide must have at most one
+/// interior gridpoint (2 for gmsh, which keeps gridpoints about h from the
+/// faces; the lattice mesher keeps them 0.6h from each face). Returns the
+/// figures of each block.
 inline std::vector<BlockMeshFigures> report_meshes(const std::string& name, const BlockModel& m,
                                                    const std::vector<BlockTetrahedra>& meshes,
-                                                   const std::vector<unsigned int>& which, double h)
+                                                   const std::vector<unsigned int>& which, double h,
+                                                   double roomless = 2.0)
 {
   std::vector<BlockMeshFigures> all;
   std::vector<double> quality; // of blocks at least h/2 thick
@@ -294,7 +298,7 @@ inline std::vector<BlockMeshFigures> report_meshes(const std::string& name, cons
       if (!(f.band >= 0.5 && f.band <= 2.0))
         ++out_of_band;
     }
-    else
+    if (f.width < roomless * h)
     {
       ++narrow;
       if (f.interior_gridpoints > 1)
@@ -336,9 +340,9 @@ inline std::vector<BlockMeshFigures> report_meshes(const std::string& name, cons
                 "count: %s\n",
                 wide, verdict(out_of_band == 0));
   if (narrow > 0)
-    std::printf("  %u blocks less than 2h wide: their faces' triangles and at most one interior "
-                "gridpoint: %s\n",
-                narrow, verdict(narrow_filled == 0));
+    std::printf("  %u blocks less than %gh wide: their faces' triangles and at most one "
+                "interior gridpoint: %s\n",
+                narrow, roomless, verdict(narrow_filled == 0));
   if (quality.empty())
     std::printf("  median radius ratio: not checked, every block is thinner than h/2\n");
   else

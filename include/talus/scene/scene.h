@@ -7,6 +7,7 @@
 #include <talus/solver/rigid_solver.h>
 #include <talus/solver/strength_reduction.h>
 #include <talus/zone/edge_length_field.h>
+#include <talus/zone/lattice_block_mesher.h>
 
 #include <algorithm>
 #include <map>
@@ -141,6 +142,7 @@ struct DeformableSpec
 {
   std::vector<std::string> groups;     ///< groups whose blocks are meshed into zones
   EdgeLengthField edge_length;         ///< m, target zone edge (uniform or graded)
+  ConvexMesher mesher = ConvexMesher::automatic; ///< for convex blocks other than bricks
   ZoneMaterial material;               ///< density taken from 'Material'
   std::string mesh_file;               ///< gmsh file of the body's zones (empty: mesh the block)
   std::shared_ptr<const TetMesh> mesh; ///< the zones read from mesh_file (block 0)
