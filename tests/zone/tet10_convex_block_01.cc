@@ -1,6 +1,6 @@
 // 10-node zones (tet10) on the meshes of jointed convex blocks: the largest
 // block of a unit cube cut by two oblique joints (not a brick, so meshed by
-// gmsh through mesh_blocks, convex_block_mesher.h) at h = 0.2 m, made
+// the lattice mesher through mesh_blocks, lattice_block_mesher.h) at h = 0.2 m, made
 // quadratic by make_quadratic (edge-midpoint gridpoints, straight zones).
 // Patch tests as tests/zone/tet10_patch_01 does on a brick:
 // 1. a linear velocity field: every Gauss point gets the closed-form stress
