@@ -142,7 +142,6 @@ struct DeformableSpec
 {
   std::vector<std::string> groups;     ///< groups whose blocks are meshed into zones
   EdgeLengthField edge_length;         ///< m, target zone edge (uniform or graded)
-  ConvexMesher mesher = ConvexMesher::automatic; ///< for convex blocks other than bricks
   ZoneMaterial material;               ///< density taken from 'Material'
   std::string mesh_file;               ///< gmsh file of the body's zones (empty: mesh the block)
   std::shared_ptr<const TetMesh> mesh; ///< the zones read from mesh_file (block 0)
@@ -150,6 +149,8 @@ struct DeformableSpec
   /// Blocks of these groups take nodal mixed discretization (eqs. 68-76)
   /// when `material.nodal_mixed` does not give it to every block.
   std::vector<std::string> nodal_mixed_groups;
+  /// Mesher of the convex blocks that are not axis-aligned bricks.
+  ConvexMesher mesher = ConvexMesher::automatic;
 
   /// Whether the zones of a block of group `group` have nodal mixed
   /// discretization.
