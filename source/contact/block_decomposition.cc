@@ -15,16 +15,11 @@ unsigned int RankBlocks::n_owned() const
 namespace
 {
 
-/// Blocks whose boxes grown by half the reach overlap: each block's
-/// neighbours (CSR: neighbours of b are neighbour[start[b] .. start[b+1])).
-void neighbours_within(const BlockModel& m, double reach, const std::vector<char>& removed,
-                       std::vector<unsigned int>& start, std::vector<unsigned int>& neighbour)
+/// Each block's box: the bounds of its vertices.
+std::vector<Box> vertex_boxes(const BlockModel& m)
 {
-  const unsigned int n = m.n_blocks();
-  std::vector<Box> envelope(n);
-  Box bounds{m.vertex.empty() ? Vec3::Zero() : m.vertex[0],
-             m.vertex.empty() ? Vec3::Zero() : m.vertex[0]};
-  for (unsigned int b = 0; b < n; ++b)
+  std::vector<Box> box(m.n_blocks());
+  for (unsigned int b = 0; b < m.n_blocks(); ++b)
   {
     Box e{m.vertex[m.vertex_start[b]], m.vertex[m.vertex_start[b]]};
     for (unsigned int v = m.vertex_start[b]; v < m.vertex_start[b + 1]; ++v)
@@ -32,12 +27,35 @@ void neighbours_within(const BlockModel& m, double reach, const std::vector<char
       e.lo = e.lo.cwiseMin(m.vertex[v]);
       e.hi = e.hi.cwiseMax(m.vertex[v]);
     }
+    box[b] = e;
+  }
+  return box;
+}
+
+/// Blocks whose boxes grown by half the reach overlap: each block's
+/// neighbours (CSR: neighbours of b are neighbour[start[b] .. start[b+1])).
+void neighbours_within(const std::vector<Box>& box, double reach, const std::vector<char>& removed,
+                       std::vector<unsigned int>& start, std::vector<unsigned int>& neighbour)
+{
+  const unsigned int n = static_cast<unsigned int>(box.size());
+  std::vector<Box> envelope(n);
+  Box bounds{Vec3::Zero(), Vec3::Zero()};
+  bool first = true;
+  for (unsigned int b = 0; b < n; ++b)
+  {
+    Box e = box[b];
     e.lo.array() -= 0.5 * reach;
     e.hi.array() += 0.5 * reach;
     envelope[b] = e;
-    bounds.lo = bounds.lo.cwiseMin(e.lo);
-    bounds.hi = bounds.hi.cwiseMax(e.hi);
+    if (!removed.empty() && removed[b])
+      continue; // a removed block's box may be unknown (BlockMigration)
+    bounds.lo = first ? e.lo : bounds.lo.cwiseMin(e.lo);
+    bounds.hi = first ? e.hi : bounds.hi.cwiseMax(e.hi);
+    first = false;
   }
+  for (unsigned int b = 0; b < n; ++b)
+    if (!removed.empty() && removed[b])
+      envelope[b] = Box{bounds.lo, bounds.lo}; // in the space; its pairs are dropped below
   CellSpace cells;
   cells.define(bounds, n);
   cells.map(envelope);
@@ -91,13 +109,20 @@ void grow(std::vector<char>& mark, unsigned int layers, const std::vector<unsign
 RankBlocks decompose_blocks(const BlockModel& m, const CellPartition& partition, unsigned int rank,
                             double reach, unsigned int layers, const std::vector<char>& removed)
 {
-  const unsigned int n = m.n_blocks();
-  std::vector<unsigned int> owner(n);
-  for (unsigned int b = 0; b < n; ++b)
+  std::vector<unsigned int> owner(m.n_blocks());
+  for (unsigned int b = 0; b < m.n_blocks(); ++b)
     owner[b] = partition.owner(m.centroid[b]);
+  return decompose_blocks(vertex_boxes(m), owner, rank, reach, layers, removed);
+}
+
+RankBlocks decompose_blocks(const std::vector<Box>& box, const std::vector<unsigned int>& owner,
+                            unsigned int rank, double reach, unsigned int layers,
+                            const std::vector<char>& removed)
+{
+  const unsigned int n = static_cast<unsigned int>(box.size());
   const auto live = [&](unsigned int b) { return removed.empty() || !removed[b]; };
   std::vector<unsigned int> start, neighbour;
-  neighbours_within(m, reach, removed, start, neighbour);
+  neighbours_within(box, reach, removed, start, neighbour);
 
   // Held by a rank: its own blocks and those within `layers` steps.
   const auto held_by = [&](unsigned int r)
