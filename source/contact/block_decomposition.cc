@@ -38,48 +38,49 @@ void neighbours_within(const std::vector<Box>& box, double reach, const std::vec
                        std::vector<unsigned int>& start, std::vector<unsigned int>& neighbour)
 {
   const unsigned int n = static_cast<unsigned int>(box.size());
-  std::vector<Box> envelope(n);
+  // The live blocks only enter the cell space: a removed block's box may
+  // be unknown (BlockMigration), and its pairs would be dropped anyway.
+  std::vector<unsigned int> live_block;
+  std::vector<Box> envelope;
   Box bounds{Vec3::Zero(), Vec3::Zero()};
-  bool first = true;
   for (unsigned int b = 0; b < n; ++b)
   {
+    if (!removed.empty() && removed[b])
+      continue;
     Box e = box[b];
     e.lo.array() -= 0.5 * reach;
     e.hi.array() += 0.5 * reach;
-    envelope[b] = e;
-    if (!removed.empty() && removed[b])
-      continue; // a removed block's box may be unknown (BlockMigration)
-    bounds.lo = first ? e.lo : bounds.lo.cwiseMin(e.lo);
-    bounds.hi = first ? e.hi : bounds.hi.cwiseMax(e.hi);
-    first = false;
+    bounds.lo = envelope.empty() ? e.lo : bounds.lo.cwiseMin(e.lo);
+    bounds.hi = envelope.empty() ? e.hi : bounds.hi.cwiseMax(e.hi);
+    envelope.push_back(e);
+    live_block.push_back(b);
   }
-  for (unsigned int b = 0; b < n; ++b)
-    if (!removed.empty() && removed[b])
-      envelope[b] = Box{bounds.lo, bounds.lo}; // in the space; its pairs are dropped below
   CellSpace cells;
-  cells.define(bounds, n);
+  cells.define(bounds, static_cast<unsigned int>(envelope.size()));
   cells.map(envelope);
   std::vector<std::pair<unsigned int, unsigned int>> pairs;
   cells.candidate_pairs(envelope, {}, pairs);
+  for (auto& [a, b] : pairs)
+  {
+    a = live_block[a];
+    b = live_block[b];
+  }
   std::vector<unsigned int> count(n + 1, 0);
-  const auto live = [&](unsigned int b) { return removed.empty() || !removed[b]; };
   for (const auto& [a, b] : pairs)
-    if (live(a) && live(b))
-    {
-      ++count[a + 1];
-      ++count[b + 1];
-    }
+  {
+    ++count[a + 1];
+    ++count[b + 1];
+  }
   start.assign(n + 1, 0);
   for (unsigned int b = 0; b < n; ++b)
     start[b + 1] = start[b] + count[b + 1];
   neighbour.assign(start[n], 0);
   std::vector<unsigned int> fill(start.begin(), start.end() - 1);
   for (const auto& [a, b] : pairs)
-    if (live(a) && live(b))
-    {
-      neighbour[fill[a]++] = b;
-      neighbour[fill[b]++] = a;
-    }
+  {
+    neighbour[fill[a]++] = b;
+    neighbour[fill[b]++] = a;
+  }
 }
 
 /// Marks (1) the blocks within `layers` steps of the blocks already marked.

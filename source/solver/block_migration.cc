@@ -207,9 +207,9 @@ void BlockMigration::visit_block_arrays(RigidSolver& s, Visit&& visit)
 }
 
 BlockMigration::BlockMigration(const RigidSolver& solver, const RankBlocks& blocks,
-                               const CellPartition& partition, unsigned int n_blocks, double reach,
-                               unsigned int layers, MPI_Comm comm)
-    : partition_(partition), n_blocks_(n_blocks), reach_(reach), layers_(layers), comm_(comm),
+                               const CellPartition& partition, double reach, unsigned int layers,
+                               MPI_Comm comm)
+    : partition_(partition), reach_(reach), layers_(layers), comm_(comm),
       allowance_(0.5 * (reach - 2.0 * solver.s_.contact.tolerance)), path_at_choice_(solver.path)
 {
   if (!(allowance_ > 0.0))
@@ -250,12 +250,19 @@ void BlockMigration::migrate(RigidSolver& s, RankBlocks& blocks)
   const std::vector<unsigned int>& old_local = blocks.local;
   const unsigned int n_old = static_cast<unsigned int>(old_local.size());
 
-  // 1. Every owned block's box and centroid to all ranks: then each knows
-  // the new owners and the blocks it must hold (the neighbour graph).
-  constexpr int per_block = 11; // global number, removed, box lo, box hi, centroid
-  std::vector<double> mine;
+  // 1. Each owned block's box and centroid to the ranks whose regions come
+  // within `span` of its box, point to point. A block whose centroid lies
+  // in a region has its box there; one within `layers` steps of it (a step:
+  // boxes within the reach) lies within layers (reach + s) of the region, s
+  // the longest side of any block's box; so does every block on a chain of
+  // `layers` steps from a block of this rank to one of another's, which
+  // decides what this rank sends that one. Every rank then chooses its
+  // blocks and lists as it would from the whole model. (s: the boxes as
+  // they are now; one step more of margin.)
+  double largest = 0.0;
+  std::vector<Box> own_box(n_old);
   for (unsigned int i = 0; i < n_old; ++i)
-    if (blocks.owned[i])
+    if (blocks.owned[i] && !s.removed_[i])
     {
       Box e{m.vertex[m.vertex_start[i]], m.vertex[m.vertex_start[i]]};
       for (unsigned int v = m.vertex_start[i]; v < m.vertex_start[i + 1]; ++v)
@@ -263,35 +270,70 @@ void BlockMigration::migrate(RigidSolver& s, RankBlocks& blocks)
         e.lo = e.lo.cwiseMin(m.vertex[v]);
         e.hi = e.hi.cwiseMax(m.vertex[v]);
       }
-      mine.push_back(old_local[i]);
-      mine.push_back(s.removed_[i] ? 1.0 : 0.0);
-      for (const Vec3* x : {&e.lo, &e.hi, &m.centroid[i]})
-        mine.insert(mine.end(), x->data(), x->data() + 3);
+      own_box[i] = e;
+      largest = std::max(largest, (e.hi - e.lo).maxCoeff());
     }
-  std::vector<int> count(n_ranks), offset(n_ranks + 1, 0);
-  const int my_count = static_cast<int>(mine.size());
-  MPI_Allgather(&my_count, 1, MPI_INT, count.data(), 1, MPI_INT, comm_);
-  for (int r = 0; r < n_ranks; ++r)
-    offset[r + 1] = offset[r] + count[r];
-  std::vector<double> all(offset[n_ranks]);
-  MPI_Allgatherv(mine.data(), my_count, MPI_DOUBLE, all.data(), count.data(), offset.data(),
-                 MPI_DOUBLE, comm_);
-  std::vector<Box> box(n_blocks_);
-  std::vector<unsigned int> old_owner(n_blocks_, 0), owner(n_blocks_, 0);
-  std::vector<char> removed(n_blocks_, 1); // blocks no rank holds any more: removed
-  for (int r = 0; r < n_ranks; ++r)
-    for (int k = offset[r]; k < offset[r + 1]; k += per_block)
+  MPI_Allreduce(MPI_IN_PLACE, &largest, 1, MPI_DOUBLE, MPI_MAX, comm_);
+  const double span = (layers_ + 1) * (reach_ + largest);
+  std::vector<std::vector<char>> boxes_out(n_ranks);
+  std::vector<unsigned int> near;
+  for (unsigned int i = 0; i < n_old; ++i)
+    if (blocks.owned[i] && !s.removed_[i]) // a removed block is held nowhere from now on
     {
-      const unsigned int g = static_cast<unsigned int>(all[k]);
-      const double* x = &all[k + 2];
-      old_owner[g] = static_cast<unsigned int>(r);
-      removed[g] = all[k + 1] != 0.0;
-      box[g] = Box{Vec3(x[0], x[1], x[2]), Vec3(x[3], x[4], x[5])};
-      owner[g] = removed[g] ? old_owner[g] : partition_.owner(Vec3(x[6], x[7], x[8]));
-      owner_changes_ += !removed[g] && owner[g] != old_owner[g];
+      partition_.ranks_near(own_box[i], span, near);
+      Bytes record;
+      record.put(old_local[i]);
+      record.put(own_box[i].lo);
+      record.put(own_box[i].hi);
+      record.put(m.centroid[i]);
+      for (unsigned int q : near)
+        boxes_out[q].insert(boxes_out[q].end(), record.data.begin(), record.data.end());
     }
-  RankBlocks next =
-      decompose_blocks(box, owner, static_cast<unsigned int>(rank), reach_, layers_, removed);
+  const std::vector<std::vector<char>> boxes_in = trade(boxes_out, comm_, 2411);
+  // The blocks this rank knows of, by global number: box, old and new owner.
+  struct Known
+  {
+    unsigned int block, old_owner, owner;
+    Box box;
+  };
+  std::vector<Known> known;
+  for (int r = 0; r < n_ranks; ++r)
+  {
+    Reader in{boxes_in[r].data()};
+    while (in.at != boxes_in[r].data() + boxes_in[r].size())
+    {
+      Known k;
+      k.block = in.get<unsigned int>();
+      k.old_owner = static_cast<unsigned int>(r);
+      k.box.lo = in.get<Vec3>();
+      k.box.hi = in.get<Vec3>();
+      k.owner = partition_.owner(in.get<Vec3>());
+      known.push_back(k);
+    }
+  }
+  std::sort(known.begin(), known.end(),
+            [](const Known& a, const Known& b) { return a.block < b.block; });
+  std::vector<Box> box(known.size());
+  std::vector<unsigned int> owner(known.size());
+  long taken_over = 0; // blocks this rank owns now that another owned
+  for (std::size_t k = 0; k < known.size(); ++k)
+  {
+    box[k] = known[k].box;
+    owner[k] = known[k].owner;
+    taken_over += known[k].owner == static_cast<unsigned int>(rank) &&
+                  known[k].old_owner != static_cast<unsigned int>(rank);
+  }
+  MPI_Allreduce(MPI_IN_PLACE, &taken_over, 1, MPI_LONG, MPI_SUM, comm_);
+  owner_changes_ += static_cast<unsigned long>(taken_over);
+  // Chosen among the known blocks, then numbered globally again (the
+  // lists hold positions in `local`, which stay).
+  RankBlocks next = decompose_blocks(box, owner, static_cast<unsigned int>(rank), reach_, layers_);
+  std::vector<unsigned int> old_owner(next.local.size());
+  for (std::size_t j = 0; j < next.local.size(); ++j)
+  {
+    old_owner[j] = known[next.local[j]].old_owner;
+    next.local[j] = known[next.local[j]].block;
+  }
   const unsigned int n_new = static_cast<unsigned int>(next.local.size());
 
   // 2. Requests: the blocks this rank newly holds, to their old owners.
@@ -304,14 +346,18 @@ void BlockMigration::migrate(RigidSolver& s, RankBlocks& blocks)
     {
       Bytes b;
       b.put(next.local[j]);
-      auto& to = request[old_owner[next.local[j]]];
+      auto& to = request[old_owner[j]];
       to.insert(to.end(), b.data.begin(), b.data.end());
       ++received_;
     }
   }
+  std::vector<int> new_of(n_old, -1); // per old local block: its new local index, or -1
+  for (unsigned int j = 0; j < n_new; ++j)
+    if (old_of[j] >= 0)
+      new_of[old_of[j]] = static_cast<int>(j);
   for (unsigned int i = 0; i < n_old; ++i)
-    dropped_ += local_of(next.local, old_local[i]) < 0;
-  const std::vector<std::vector<char>> asked = trade(request, comm_, 2402);
+    dropped_ += new_of[i] < 0;
+  const std::vector<std::vector<char>> asked = trade(request, comm_, 2412);
 
   // 3. Replies: each block asked for with its geometry, its state in the
   // solver and every contact it has (an owned block has all of its own).
@@ -383,19 +429,17 @@ void BlockMigration::migrate(RigidSolver& s, RankBlocks& blocks)
     }
     reply[r] = std::move(out.data);
   }
-  const std::vector<std::vector<char>> got = trade(reply, comm_, 2403);
+  const std::vector<std::vector<char>> got = trade(reply, comm_, 2413);
 
   // 4. The blocks received: geometry as one-block models, where their
-  // solver state starts, and their contacts.
+  // solver state starts, and their contacts (records of put_contact) with
+  // blocks held here from now on, each pair once (a contact between two
+  // blocks new here comes from both their owners). None of them is among
+  // the contacts kept, which join two blocks held before.
   std::vector<BlockModel> arrived(n_new);
   std::vector<const char*> arrays_of(n_new, nullptr);
-  std::vector<const char*> contact_records; // put_contact's, kept ones first
-  Bytes kept;                               // the contacts this rank keeps, as records
+  std::vector<std::pair<std::uint64_t, const char*>> received_contacts;
   std::unordered_set<std::uint64_t> have;
-  for (unsigned int c = 0; c < cs.n_slots(); ++c)
-    if (cs.alive[c] && local_of(next.local, old_local[cs.block_a[c]]) >= 0 &&
-        local_of(next.local, old_local[cs.block_b[c]]) >= 0)
-      put_contact(kept, c);
   const auto skip_contact = [&](Reader& in)
   {
     const char* start = in.at;
@@ -406,16 +450,10 @@ void BlockMigration::migrate(RigidSolver& s, RankBlocks& blocks)
     in.at += n_sc *
              (sizeof(Vec3) + 9 * sizeof(double) + 3 * sizeof(unsigned char) +
               (dilation ? sizeof(double) : 0) + (yielding ? yield_state_size * sizeof(double) : 0));
-    // Held here from now on, and not yet taken: this record.
     const int la = local_of(next.local, a), lb = local_of(next.local, b);
     if (la >= 0 && lb >= 0 && have.insert(pair_key(la, lb)).second)
-      contact_records.push_back(start);
+      received_contacts.emplace_back(pair_key(la, lb), start);
   };
-  {
-    Reader in{kept.data.data()};
-    while (in.at != kept.data.data() + kept.data.size())
-      skip_contact(in);
-  }
   std::size_t arrays_size = 0;
   visit_block_arrays(s, [&](auto& array) { arrays_size += sizeof(array[0]); });
   for (int r = 0; r < n_ranks; ++r)
@@ -457,85 +495,101 @@ void BlockMigration::migrate(RigidSolver& s, RankBlocks& blocks)
                        at += sizeof(T);
                        array.swap(next_array);
                      });
-  std::vector<int> new_of(n_old, -1);
-  for (unsigned int j = 0; j < n_new; ++j)
-    if (old_of[j] >= 0)
-      new_of[old_of[j]] = static_cast<int>(j);
   m = std::move(model);
 
-  // 6. The contacts again, in block-pair order, slots in that order; each
+  // 6. The contacts again, in block-pair order (those kept are in it
+  // already, the global order being kept), slots in that order, each
   // contact's sub-contacts after its predecessor's.
-  std::vector<std::pair<std::uint64_t, const char*>> order;
-  for (const char* record : contact_records)
+  cs.sort_by_pair();
+  std::vector<std::pair<std::uint64_t, unsigned int>> kept; // new pair, old slot
+  for (const unsigned int c : cs.pair_order_)
+    if (cs.alive[c] && new_of[cs.block_a[c]] >= 0 && new_of[cs.block_b[c]] >= 0)
+      kept.emplace_back(pair_key(new_of[cs.block_a[c]], new_of[cs.block_b[c]]), c);
+  std::sort(received_contacts.begin(), received_contacts.end());
+  ContactSet laid;
+  const auto add_contact = [&](std::uint64_t key)
   {
-    Reader in{record};
-    const int a = local_of(next.local, in.get<unsigned int>());
-    const int b = local_of(next.local, in.get<unsigned int>());
-    order.emplace_back(pair_key(a, b), record);
-  }
-  std::sort(order.begin(), order.end());
-  cs.sc_position.clear();
-  cs.block_a.clear();
-  cs.block_b.clear();
-  cs.plane.clear();
-  cs.gap.clear();
-  cs.type.clear();
-  cs.alive.clear();
-  cs.material.clear();
-  cs.path_at_update.clear();
-  cs.sc_contact.clear();
-  cs.sc_area.clear();
-  cs.sc_un.clear();
-  cs.sc_fn.clear();
-  cs.sc_fs.clear();
-  cs.sc_dilation.clear();
-  cs.sc_us.clear();
-  cs.sc_state.clear();
-  cs.sc_yield.clear();
-  cs.sc_material.clear();
-  cs.sc_fresh.clear();
-  cs.slot_of_pair_.clear();
-  cs.free_.clear();
-  cs.n_alive_ = 0;
-  cs.pair_order_stale_ = true;
-  for (const auto& [key, record] : order)
+    const unsigned int c = laid.n_slots();
+    laid.block_a.push_back(static_cast<unsigned int>(key >> 32));
+    laid.block_b.push_back(static_cast<unsigned int>(key & 0xffffffffu));
+    laid.alive.push_back(1);
+    laid.slot_of_pair_[key] = c;
+    ++laid.n_alive_;
+    return c;
+  };
+  const auto add_kept = [&](std::uint64_t key, unsigned int old)
   {
-    Reader in{record};
-    const unsigned int c = cs.n_slots();
-    in.get<unsigned int>();
-    in.get<unsigned int>();
-    cs.block_a.push_back(static_cast<unsigned int>(key >> 32));
-    cs.block_b.push_back(static_cast<unsigned int>(key & 0xffffffffu));
-    cs.plane.push_back(in.get<CommonPlane>());
-    cs.gap.push_back(in.get<double>());
-    cs.type.push_back(in.get<ContactType>());
-    cs.alive.push_back(1);
-    cs.material.push_back(in.get<unsigned char>());
-    cs.path_at_update.push_back(in.get<double>());
-    cs.slot_of_pair_[key] = c;
-    ++cs.n_alive_;
+    const unsigned int c = add_contact(key);
+    laid.plane.push_back(cs.plane[old]);
+    laid.gap.push_back(cs.gap[old]);
+    laid.type.push_back(cs.type[old]);
+    laid.material.push_back(cs.material[old]);
+    laid.path_at_update.push_back(cs.path_at_update[old]);
+    for (unsigned int k = sc_begin[old]; k < sc_end[old]; ++k)
+    {
+      laid.sc_contact.push_back(c);
+      laid.sc_position.push_back(cs.sc_position[k]);
+      laid.sc_area.push_back(cs.sc_area[k]);
+      laid.sc_un.push_back(cs.sc_un[k]);
+      laid.sc_fn.push_back(cs.sc_fn[k]);
+      laid.sc_fs.insert(laid.sc_fs.end(), &cs.sc_fs[3 * k], &cs.sc_fs[3 * k] + 3);
+      laid.sc_us.insert(laid.sc_us.end(), &cs.sc_us[3 * k], &cs.sc_us[3 * k] + 3);
+      laid.sc_state.push_back(cs.sc_state[k]);
+      laid.sc_material.push_back(cs.sc_material[k]);
+      laid.sc_fresh.push_back(cs.sc_fresh[k]);
+      if (dilation)
+        laid.sc_dilation.push_back(cs.sc_dilation[k]);
+      if (yielding)
+        laid.sc_yield.insert(laid.sc_yield.end(), &cs.sc_yield[yield_state_size * k],
+                             &cs.sc_yield[yield_state_size * k] + yield_state_size);
+    }
+  };
+  const auto add_received = [&](std::uint64_t key, const char* record)
+  {
+    Reader in{record + 2 * sizeof(unsigned int)};
+    const unsigned int c = add_contact(key);
+    laid.plane.push_back(in.get<CommonPlane>());
+    laid.gap.push_back(in.get<double>());
+    laid.type.push_back(in.get<ContactType>());
+    laid.material.push_back(in.get<unsigned char>());
+    laid.path_at_update.push_back(in.get<double>());
     const unsigned int n_sc = in.get<unsigned int>();
     for (unsigned int k = 0; k < n_sc; ++k)
     {
-      cs.sc_contact.push_back(c);
-      cs.sc_position.push_back(in.get<Vec3>());
-      cs.sc_area.push_back(in.get<double>());
-      cs.sc_un.push_back(in.get<double>());
-      cs.sc_fn.push_back(in.get<double>());
+      laid.sc_contact.push_back(c);
+      laid.sc_position.push_back(in.get<Vec3>());
+      laid.sc_area.push_back(in.get<double>());
+      laid.sc_un.push_back(in.get<double>());
+      laid.sc_fn.push_back(in.get<double>());
       for (int d = 0; d < 3; ++d)
-        cs.sc_fs.push_back(in.get<double>());
+        laid.sc_fs.push_back(in.get<double>());
       for (int d = 0; d < 3; ++d)
-        cs.sc_us.push_back(in.get<double>());
-      cs.sc_state.push_back(in.get<unsigned char>());
-      cs.sc_material.push_back(in.get<unsigned char>());
-      cs.sc_fresh.push_back(in.get<unsigned char>());
+        laid.sc_us.push_back(in.get<double>());
+      laid.sc_state.push_back(in.get<unsigned char>());
+      laid.sc_material.push_back(in.get<unsigned char>());
+      laid.sc_fresh.push_back(in.get<unsigned char>());
       if (dilation)
-        cs.sc_dilation.push_back(in.get<double>());
+        laid.sc_dilation.push_back(in.get<double>());
       if (yielding)
         for (unsigned int y = 0; y < yield_state_size; ++y)
-          cs.sc_yield.push_back(in.get<double>());
+          laid.sc_yield.push_back(in.get<double>());
     }
-  }
+  };
+  for (std::size_t k = 0, r = 0; k < kept.size() || r < received_contacts.size();)
+    if (r == received_contacts.size() ||
+        (k < kept.size() && kept[k].first < received_contacts[r].first))
+    {
+      add_kept(kept[k].first, kept[k].second);
+      ++k;
+    }
+    else
+    {
+      add_received(received_contacts[r].first, received_contacts[r].second);
+      ++r;
+    }
+  laid.is_deformable_ = cs.is_deformable_; // rigid only: none
+  laid.vertex_gridpoint_ = cs.vertex_gridpoint_;
+  cs = std::move(laid);
 
   // 7. The rest of the solver: ghosts, the cell space on the blocks held
   // now, eq. 1's flag for the blocks received, the block of the ratio.

@@ -26,9 +26,11 @@
 // m, some across the boundaries. Run with Coulomb slip, then with
 // principal inertia and dilating joints (state that only such runs keep).
 // Checked at the end: each block owned once, the slider owned by every
-// rank in turn, every owned block's vertices, velocity and spin, and every
-// contact of the serial run (held by the owner of its first block) with
-// each sub-contact's normal and shear force, bit for bit.
+// rank in turn, a last event (forced) choosing the blocks and lists that
+// the whole model gives (each rank knows only the boxes its neighbours
+// sent), every owned block's vertices, velocity and spin, and every contact
+// of the serial run (held by the owner of its first block) with each
+// sub-contact's normal and shear force, bit for bit.
 
 #include <talus/base/parallel_environment.h>
 #include <talus/contact/block_decomposition.h>
@@ -140,7 +142,7 @@ void run_case(const BlockModel& model, unsigned int slider, const SolverSettings
     ghost[i] = !mine.owned[i];
   solver.split_among_ranks(ghost, reductions_over(comm));
   GhostExchange exchange(mine, comm);
-  BlockMigration migration(solver, mine, partition, model.n_blocks(), reach, 2, comm);
+  BlockMigration migration(solver, mine, partition, reach, 2, comm);
 
   int owned_slider = 0; // whether this rank owned the slider at some step
   for (unsigned long s = 0; s < settings.steps; ++s)
@@ -203,6 +205,16 @@ void run_case(const BlockModel& model, unsigned int slider, const SolverSettings
     }
     counts[3] += !same;
   }
+  // One event more, forced: each rank chose its blocks and lists from the
+  // boxes its neighbours sent; they must be those chosen from the whole
+  // model (serial, whose blocks are where the split run's are).
+  migration.migrate(solver, mine);
+  const RankBlocks from_whole =
+      decompose_blocks(whole, partition, static_cast<unsigned int>(rank), reach, 2);
+  const int same_choice = from_whole.local == mine.local && from_whole.owned == mine.owned &&
+                          from_whole.send == mine.send && from_whole.receive == mine.receive;
+  int same_everywhere = 0;
+  MPI_Allreduce(&same_choice, &same_everywhere, 1, MPI_INT, MPI_LAND, comm);
   long total[5];
   MPI_Allreduce(counts, total, 5, MPI_LONG, MPI_SUM, comm);
   std::fprintf(stderr, "rank %d: %ld owned, %ld held; received %lu, dropped %lu blocks\n", rank,
@@ -216,6 +228,8 @@ void run_case(const BlockModel& model, unsigned int slider, const SolverSettings
                 talus_test::verdict(slid > 20.0));
     std::printf("  the slider was owned by every rank in turn %s\n",
                 talus_test::verdict(slider_owners == ranks && migration.owner_changes() > 0));
+    std::printf("  a last event chose the blocks and lists the whole model gives %s\n",
+                talus_test::verdict(same_everywhere != 0));
     std::printf("  each rank held part of the model %s\n",
                 talus_test::verdict(total[2] < static_cast<long>(ranks) * model.n_blocks()));
     std::printf(

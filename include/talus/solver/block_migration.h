@@ -31,15 +31,14 @@ class RigidSolver;
 /// one.
 ///
 /// Communication at a migration event (rare: the margin of `reach` is worth
-/// many steps of motion): each owner's block boxes and centroids to all
-/// ranks (MPI_Allgatherv, 11 doubles per block: every rank then knows the
-/// new owners and the ghosts it needs), the counts of the requests and
-/// replies by MPI_Alltoall (one integer per pair of ranks), and the blocks
-/// themselves point to point, from their old owners to the ranks that newly
-/// hold them (neighbours). The gathering of the boxes is a first step: it
-/// costs every rank O(blocks) at each event, well for tens of ranks; a
-/// version for thousands of ranks would gather from the neighbours' regions
-/// only.
+/// many steps of motion), all of it between ranks whose regions are near,
+/// point to point, with the sizes by MPI_Alltoall (one integer per pair of
+/// ranks): each owner sends its blocks' boxes and centroids (10 numbers a
+/// block) to the ranks whose regions come within (layers + 1) (reach + s)
+/// of them (s: the longest side of any block's box), enough for each to
+/// choose its blocks and lists as from the whole model; each rank asks the
+/// old owners for the blocks it newly holds, and they send them. Besides,
+/// one MPI_Allreduce for s and one for the count of owner changes.
 ///
 /// Rigid blocks only: a solver with zones, face loads or water is refused
 /// (std::logic_error) at the first event.
@@ -47,13 +46,11 @@ class BlockMigration
 {
 public:
   /// For `solver`, which holds `blocks` (decompose_blocks with `reach` and
-  /// `layers`) of a model of `n_blocks` blocks split by `partition` among
-  /// the ranks of `comm`. `reach` must exceed twice the contact tolerance;
-  /// the rest, twice the motion a block may make between two choices of
-  /// the ghosts. `partition` must outlive this object.
+  /// `layers`) of a model split by `partition` among the ranks of `comm`. `reach` must exceed twice
+  /// the contact tolerance; the rest, twice the motion a block may make between two choices of the
+  /// ghosts. `partition` must outlive this object.
   BlockMigration(const RigidSolver& solver, const RankBlocks& blocks,
-                 const CellPartition& partition, unsigned int n_blocks, double reach,
-                 unsigned int layers, MPI_Comm comm);
+                 const CellPartition& partition, double reach, unsigned int layers, MPI_Comm comm);
 
   /// Call after every step once the ghosts were refreshed
   /// (GhostExchange::refresh), on every rank alike. Migrates when due();
@@ -95,7 +92,6 @@ private:
   static void visit_block_arrays(RigidSolver& solver, Visit&& visit);
 
   const CellPartition& partition_;
-  unsigned int n_blocks_;
   double reach_;
   unsigned int layers_;
   MPI_Comm comm_;
