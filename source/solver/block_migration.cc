@@ -226,7 +226,11 @@ bool BlockMigration::due(const RigidSolver& solver, const RankBlocks& blocks) co
     if (blocks.owned[i] && !solver.removed_[i])
       mine = solver.path[i] - path_at_choice_[i] > allowance_ ||
              partition_.owner(solver.m_.centroid[i]) != blocks.rank;
-  return solver.ranks_.any ? solver.ranks_.any(mine) : mine;
+  if (solver.ranks_.any)
+    return solver.ranks_.any(mine);
+  int in = mine, out = 0; // a solver not split_among_ranks: decided here all the same
+  MPI_Allreduce(&in, &out, 1, MPI_INT, MPI_LOR, comm_);
+  return out != 0;
 }
 
 bool BlockMigration::update(RigidSolver& solver, RankBlocks& blocks)

@@ -46,9 +46,10 @@ class BlockMigration
 {
 public:
   /// For `solver`, which holds `blocks` (decompose_blocks with `reach` and
-  /// `layers`) of a model split by `partition` among the ranks of `comm`. `reach` must exceed twice
-  /// the contact tolerance; the rest, twice the motion a block may make between two choices of the
-  /// ghosts. `partition` must outlive this object.
+  /// `layers`) of a model split by `partition` among the ranks of `comm`.
+  /// `reach` must exceed twice the contact tolerance; the rest is twice the
+  /// motion a block may make between two choices of the ghosts.
+  /// `partition` must outlive this object.
   BlockMigration(const RigidSolver& solver, const RankBlocks& blocks,
                  const CellPartition& partition, double reach, unsigned int layers, MPI_Comm comm);
 
