@@ -26,11 +26,12 @@
 // m, some across the boundaries. Run with Coulomb slip, then with
 // principal inertia and dilating joints (state that only such runs keep).
 // Checked at the end: each block owned once, the slider owned by every
-// rank in turn, a last event (forced) choosing the blocks and lists that
-// the whole model gives (each rank knows only the boxes its neighbours
-// sent), every owned block's vertices, velocity and spin, and every contact
-// of the serial run (held by the owner of its first block) with each
-// sub-contact's normal and shear force, bit for bit.
+// rank in turn, blocks of different ranks in contact during the run, a
+// last event (forced) choosing the blocks and lists that the whole model
+// gives (each rank knows only the boxes its neighbours sent), every owned
+// block's vertices, velocity and spin, and every contact of the serial run
+// (held by the owner of its first block) with each sub-contact's normal
+// and shear force, bit for bit.
 
 #include <talus/base/parallel_environment.h>
 #include <talus/contact/block_decomposition.h>
@@ -145,6 +146,7 @@ void run_case(const BlockModel& model, unsigned int slider, const SolverSettings
   BlockMigration migration(solver, mine, partition, reach, 2, comm);
 
   int owned_slider = 0; // whether this rank owned the slider at some step
+  long across = 0;      // contacts of an owned block with another rank's, summed over steps
   for (unsigned long s = 0; s < settings.steps; ++s)
   {
     serial.step();
@@ -153,9 +155,14 @@ void run_case(const BlockModel& model, unsigned int slider, const SolverSettings
     migration.update(solver, mine);
     for (std::size_t i = 0; i < mine.local.size(); ++i)
       owned_slider |= mine.local[i] == slider && mine.owned[i];
+    const ContactSet& held = solver.contacts();
+    for (unsigned int c = 0; c < held.n_slots(); ++c)
+      across += held.alive[c] && mine.owned[held.block_a[c]] != mine.owned[held.block_b[c]];
   }
   int slider_owners = 0;
   MPI_Allreduce(&owned_slider, &slider_owners, 1, MPI_INT, MPI_SUM, comm);
+  long contact_steps_across = 0;
+  MPI_Allreduce(&across, &contact_steps_across, 1, MPI_LONG, MPI_SUM, comm);
 
   // Blocks: owned once, bit for bit.
   long counts[5] = {0, 0, 0, 0, 0}; // owned, differing, held, contacts differing, contacts
@@ -228,6 +235,8 @@ void run_case(const BlockModel& model, unsigned int slider, const SolverSettings
                 talus_test::verdict(slid > 20.0));
     std::printf("  the slider was owned by every rank in turn %s\n",
                 talus_test::verdict(slider_owners == ranks && migration.owner_changes() > 0));
+    std::printf("  blocks of different ranks in contact %s\n",
+                talus_test::verdict(contact_steps_across > 0));
     std::printf("  a last event chose the blocks and lists the whole model gives %s\n",
                 talus_test::verdict(same_everywhere != 0));
     std::printf("  each rank held part of the model %s\n",
@@ -240,9 +249,10 @@ void run_case(const BlockModel& model, unsigned int slider, const SolverSettings
                 talus_test::verdict(total[3] == 0 && total[4] == cw.n_contacts()));
     std::fprintf(stderr,
                  "slider moved %.3f m, owned by %d ranks; %lu migration events, %lu owner "
-                 "changes; %ld blocks differ, %ld of %ld contacts held differ, serial has %u\n",
-                 slid, slider_owners, migration.events(), migration.owner_changes(), total[1],
-                 total[3], total[4], cw.n_contacts());
+                 "changes; %ld contact-steps across ranks; %ld blocks differ, %ld of %ld contacts "
+                 "held differ, serial has %u\n",
+                 slid, slider_owners, migration.events(), migration.owner_changes(),
+                 contact_steps_across, total[1], total[3], total[4], cw.n_contacts());
   }
 }
 
