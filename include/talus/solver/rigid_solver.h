@@ -315,6 +315,8 @@ public:
   void load_state(CheckpointReader& in);
 
 private:
+  /// Moves blocks, their state and contacts between ranks (block_migration.h).
+  friend class BlockMigration;
   /// The loads that vary in time (s_.loads indices), and their sum on each
   /// block at this step: force (N, at time_) and the velocity of the held
   /// components (m/s, at time_ + dt_ / 2; bits in timed_held_).
