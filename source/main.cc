@@ -3,6 +3,7 @@
 
 #include <talus/base/exceptions.h>
 #include <talus/base/memory.h>
+#include <talus/base/parallel_environment.h>
 #include <talus/io/checkpoint.h>
 #include <talus/run/simulation.h>
 
@@ -73,19 +74,38 @@ int main(int argc, char** argv)
     return argc == 2 ? 0 : 1;
   }
   std::string scene_file = check ? argv[2] : argv[1];
-  // A model is not yet split among ranks: under 'mpirun -np N' each rank
-  // would run all of it and write the same files. One message (rank 0's).
+  // Under 'mpirun -np N' every rank runs its share of the model (rigid
+  // scenes; others are refused with a message). Rank 0 prints the summary
+  // and writes the run's files; the other ranks print nothing.
   int rank = 0;
-  if (const int ranks = launched_ranks(rank); ranks > 1)
+  const int ranks = launched_ranks(rank);
+  if (ranks > 1 && restart)
   {
     if (rank == 0)
-      std::fprintf(stderr,
-                   "talus: error: started on %d MPI ranks (mpirun -np %d), but talus runs a model "
-                   "on one rank: each rank would run the whole model and write the same files; "
-                   "run talus without mpirun\n",
-                   ranks, ranks);
+      std::fprintf(stderr, "talus: error: --restart runs on one rank (checkpoints are written "
+                           "on one rank); run it without mpirun\n");
     return 1;
   }
+  std::unique_ptr<talus::ParallelEnvironment> mpi;
+  if (ranks > 1)
+  {
+    mpi = std::make_unique<talus::ParallelEnvironment>(argc, argv);
+    if (rank != 0 && std::freopen("/dev/null", "w", stdout) == nullptr)
+      return 1;
+  }
+  // On ranks: an error of the input or the geometry is every rank's
+  // (they read and build the same), so rank 0 says it; any other stops the
+  // rank that met it, which says it and stops the others (MPI_Abort).
+  const auto stop_ranks = [&](int code)
+  {
+    if (ranks > 1)
+    {
+      std::fflush(stderr);
+      talus::abort_ranks(code);
+    }
+    return code;
+  };
+  const bool says = rank == 0;
   try
   {
     if (check)
@@ -112,26 +132,32 @@ int main(int argc, char** argv)
   {
     std::fflush(stdout); // the summary so far, then the message
     std::fprintf(stderr, "talus: %s\n", e.what());
-    return e.exit_code();
+    return stop_ranks(e.exit_code());
   }
   catch (const talus::InputError& e)
   {
     std::fflush(stdout); // the summary so far, then the message
-    std::fprintf(stderr, "talus: error: %s\n", e.what());
+    if (says)
+      std::fprintf(stderr, "talus: error: %s\n", e.what());
   }
   catch (const talus::DivergenceError& e)
   {
     std::fflush(stdout); // the summary so far, then the message
-    std::fprintf(stderr,
-                 "talus: error in %s: %s (the state of the last good step is written to the "
-                 "output folder)\n",
-                 scene_file.c_str(), e.what());
-    return 3;
+    if (ranks > 1)
+      std::fprintf(stderr, "talus: error in %s (rank %d of %d): %s\n", scene_file.c_str(), rank,
+                   ranks, e.what());
+    else
+      std::fprintf(stderr,
+                   "talus: error in %s: %s (the state of the last good step is written to the "
+                   "output folder)\n",
+                   scene_file.c_str(), e.what());
+    return stop_ranks(3);
   }
   catch (const talus::GeometryError& e)
   {
     std::fflush(stdout); // the summary so far, then the message
-    std::fprintf(stderr, "talus: error in %s: %s\n", scene_file.c_str(), e.what());
+    if (says)
+      std::fprintf(stderr, "talus: error in %s: %s\n", scene_file.c_str(), e.what());
   }
   catch (const std::bad_alloc&)
   {
@@ -141,12 +167,13 @@ int main(int argc, char** argv)
                  "talus: error in %s: out of memory (this machine has %s left); make the model "
                  "smaller: a larger 'Edge length' or 'Spacing', fewer deformable groups\n",
                  scene_file.c_str(), talus::memory_text(talus::available_memory()).c_str());
+    return stop_ranks(1);
   }
   catch (const std::exception& e)
   {
     std::fflush(stdout); // the summary so far, then the message
     std::fprintf(stderr, "talus: internal error (please report it): %s\n", e.what());
-    return 2;
+    return stop_ranks(2);
   }
   return 1;
 }

@@ -51,3 +51,16 @@ std::unique_ptr<ParallelEnvironment> ParallelEnvironment::unless_running()
 }
 
 } // namespace talus
+
+namespace talus
+{
+
+void abort_ranks(int code)
+{
+  int started = 0;
+  MPI_Initialized(&started);
+  if (started)
+    MPI_Abort(MPI_COMM_WORLD, code);
+}
+
+} // namespace talus

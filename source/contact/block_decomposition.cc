@@ -15,16 +15,11 @@ unsigned int RankBlocks::n_owned() const
 namespace
 {
 
-/// Blocks whose boxes grown by half the reach overlap: each block's
-/// neighbours (CSR: neighbours of b are neighbour[start[b] .. start[b+1])).
-void neighbours_within(const BlockModel& m, double reach, const std::vector<char>& removed,
-                       std::vector<unsigned int>& start, std::vector<unsigned int>& neighbour)
+/// Each block's box: the bounds of its vertices.
+std::vector<Box> vertex_boxes(const BlockModel& m)
 {
-  const unsigned int n = m.n_blocks();
-  std::vector<Box> envelope(n);
-  Box bounds{m.vertex.empty() ? Vec3::Zero() : m.vertex[0],
-             m.vertex.empty() ? Vec3::Zero() : m.vertex[0]};
-  for (unsigned int b = 0; b < n; ++b)
+  std::vector<Box> box(m.n_blocks());
+  for (unsigned int b = 0; b < m.n_blocks(); ++b)
   {
     Box e{m.vertex[m.vertex_start[b]], m.vertex[m.vertex_start[b]]};
     for (unsigned int v = m.vertex_start[b]; v < m.vertex_start[b + 1]; ++v)
@@ -32,36 +27,60 @@ void neighbours_within(const BlockModel& m, double reach, const std::vector<char
       e.lo = e.lo.cwiseMin(m.vertex[v]);
       e.hi = e.hi.cwiseMax(m.vertex[v]);
     }
+    box[b] = e;
+  }
+  return box;
+}
+
+/// Blocks whose boxes grown by half the reach overlap: each block's
+/// neighbours (CSR: neighbours of b are neighbour[start[b] .. start[b+1])).
+void neighbours_within(const std::vector<Box>& box, double reach, const std::vector<char>& removed,
+                       std::vector<unsigned int>& start, std::vector<unsigned int>& neighbour)
+{
+  const unsigned int n = static_cast<unsigned int>(box.size());
+  // The live blocks only enter the cell space: a removed block's box may
+  // be unknown (BlockMigration), and its pairs would be dropped anyway.
+  std::vector<unsigned int> live_block;
+  std::vector<Box> envelope;
+  Box bounds{Vec3::Zero(), Vec3::Zero()};
+  for (unsigned int b = 0; b < n; ++b)
+  {
+    if (!removed.empty() && removed[b])
+      continue;
+    Box e = box[b];
     e.lo.array() -= 0.5 * reach;
     e.hi.array() += 0.5 * reach;
-    envelope[b] = e;
-    bounds.lo = bounds.lo.cwiseMin(e.lo);
-    bounds.hi = bounds.hi.cwiseMax(e.hi);
+    bounds.lo = envelope.empty() ? e.lo : bounds.lo.cwiseMin(e.lo);
+    bounds.hi = envelope.empty() ? e.hi : bounds.hi.cwiseMax(e.hi);
+    envelope.push_back(e);
+    live_block.push_back(b);
   }
   CellSpace cells;
-  cells.define(bounds, n);
+  cells.define(bounds, static_cast<unsigned int>(envelope.size()));
   cells.map(envelope);
   std::vector<std::pair<unsigned int, unsigned int>> pairs;
   cells.candidate_pairs(envelope, {}, pairs);
+  for (auto& [a, b] : pairs)
+  {
+    a = live_block[a];
+    b = live_block[b];
+  }
   std::vector<unsigned int> count(n + 1, 0);
-  const auto live = [&](unsigned int b) { return removed.empty() || !removed[b]; };
   for (const auto& [a, b] : pairs)
-    if (live(a) && live(b))
-    {
-      ++count[a + 1];
-      ++count[b + 1];
-    }
+  {
+    ++count[a + 1];
+    ++count[b + 1];
+  }
   start.assign(n + 1, 0);
   for (unsigned int b = 0; b < n; ++b)
     start[b + 1] = start[b] + count[b + 1];
   neighbour.assign(start[n], 0);
   std::vector<unsigned int> fill(start.begin(), start.end() - 1);
   for (const auto& [a, b] : pairs)
-    if (live(a) && live(b))
-    {
-      neighbour[fill[a]++] = b;
-      neighbour[fill[b]++] = a;
-    }
+  {
+    neighbour[fill[a]++] = b;
+    neighbour[fill[b]++] = a;
+  }
 }
 
 /// Marks (1) the blocks within `layers` steps of the blocks already marked.
@@ -91,13 +110,20 @@ void grow(std::vector<char>& mark, unsigned int layers, const std::vector<unsign
 RankBlocks decompose_blocks(const BlockModel& m, const CellPartition& partition, unsigned int rank,
                             double reach, unsigned int layers, const std::vector<char>& removed)
 {
-  const unsigned int n = m.n_blocks();
-  std::vector<unsigned int> owner(n);
-  for (unsigned int b = 0; b < n; ++b)
+  std::vector<unsigned int> owner(m.n_blocks());
+  for (unsigned int b = 0; b < m.n_blocks(); ++b)
     owner[b] = partition.owner(m.centroid[b]);
+  return decompose_blocks(vertex_boxes(m), owner, rank, reach, layers, removed);
+}
+
+RankBlocks decompose_blocks(const std::vector<Box>& box, const std::vector<unsigned int>& owner,
+                            unsigned int rank, double reach, unsigned int layers,
+                            const std::vector<char>& removed)
+{
+  const unsigned int n = static_cast<unsigned int>(box.size());
   const auto live = [&](unsigned int b) { return removed.empty() || !removed[b]; };
   std::vector<unsigned int> start, neighbour;
-  neighbours_within(m, reach, removed, start, neighbour);
+  neighbours_within(box, reach, removed, start, neighbour);
 
   // Held by a rank: its own blocks and those within `layers` steps.
   const auto held_by = [&](unsigned int r)

@@ -2,14 +2,17 @@
 #include <talus/io/file_output.h>
 
 #include <cstdint>
+#include <cstring>
+#include <fstream>
 #include <ostream>
+#include <stdexcept>
 
 namespace talus
 {
 
 void write_blocks_vtu(const std::string& path, const BlockModel& m,
                       const std::vector<BlockField>& fields, VtuEncoding encoding,
-                      const std::vector<char>* gone)
+                      const std::vector<char>* gone, const std::vector<unsigned int>* ids)
 {
   // The blocks shown: all but those a stage removed.
   std::vector<unsigned int> shown;
@@ -66,10 +69,10 @@ void write_blocks_vtu(const std::string& path, const BlockModel& m,
         write_data_array<std::int64_t>(out, encoding, "faceoffsets", 1, face_offsets);
         out << "      </Cells>\n      <CellData Scalars=\"block_id\">\n";
 
-        std::vector<std::int32_t> ids;
+        std::vector<std::int32_t> block_ids;
         for (unsigned int b : shown)
-          ids.push_back(static_cast<std::int32_t>(b));
-        write_data_array<std::int32_t>(out, encoding, "block_id", 1, ids);
+          block_ids.push_back(static_cast<std::int32_t>(ids ? (*ids)[b] : b));
+        write_data_array<std::int32_t>(out, encoding, "block_id", 1, block_ids);
         std::vector<std::int32_t> groups;
         for (unsigned int b : shown)
           groups.push_back(static_cast<std::int32_t>(m.group[b]));
@@ -79,6 +82,68 @@ void write_blocks_vtu(const std::string& path, const BlockModel& m,
           write_data_array<double>(out, encoding, f.name, f.components, pick(f.values, f.components));
         out << "      </CellData>\n    </Piece>\n  </UnstructuredGrid>\n</VTKFile>\n";
       });
+}
+
+void write_pvtu(const std::string& path, const std::string& like,
+                const std::vector<std::string>& pieces)
+{
+  // The piece's declarations: its data sections and their arrays (tags
+  // before the first array's values; a DataArray tag is one line).
+  std::ifstream in(like);
+  if (!in)
+    throw std::runtime_error("cannot read " + like + " to write " + path);
+  std::string line, declared;
+  const auto attribute = [](const std::string& tag, const std::string& name)
+  {
+    const std::size_t at = tag.find(" " + name + "=\"");
+    if (at == std::string::npos)
+      return std::string();
+    const std::size_t from = at + name.size() + 3;
+    return tag.substr(from, tag.find('"', from) - from);
+  };
+  std::string section;
+  while (std::getline(in, line))
+  {
+    const std::size_t open = line.find('<');
+    if (open == std::string::npos)
+      continue;
+    const std::string tag = line.substr(open);
+    for (const char* s : {"Points", "PointData", "CellData"})
+      if (tag.rfind(std::string("<") + s, 0) == 0 &&
+          (tag[std::strlen(s) + 1] == '>' || tag[std::strlen(s) + 1] == ' '))
+      {
+        if (!section.empty() && section != "Cells")
+          declared += "    </P" + section + ">\n";
+        section = s;
+        declared += "    <P" + tag.substr(1) + "\n";
+      }
+    if (tag.rfind("<Cells>", 0) == 0)
+    {
+      if (!section.empty() && section != "Cells")
+        declared += "    </P" + section + ">\n";
+      section = "Cells";
+    }
+    if (tag.rfind("<DataArray", 0) == 0 && section != "Cells")
+      declared += "      <PDataArray type=\"" + attribute(tag, "type") + "\" Name=\"" +
+                  attribute(tag, "Name") + "\" NumberOfComponents=\"" +
+                  attribute(tag, "NumberOfComponents") + "\"/>\n";
+    if (tag.rfind("</Piece>", 0) == 0)
+      break;
+  }
+  if (!section.empty() && section != "Cells")
+    declared += "    </P" + section + ">\n";
+  write_file_atomically(path,
+                        [&](std::ostream& out)
+                        {
+                          out << "<?xml version=\"1.0\"?>\n"
+                              << "<VTKFile type=\"PUnstructuredGrid\" version=\"1.0\" "
+                                 "byte_order=\"LittleEndian\" header_type=\"UInt64\">\n"
+                              << "  <PUnstructuredGrid GhostLevel=\"0\">\n"
+                              << declared;
+                          for (const std::string& piece : pieces)
+                            out << "    <Piece Source=\"" << piece << "\"/>\n";
+                          out << "  </PUnstructuredGrid>\n</VTKFile>\n";
+                        });
 }
 
 void PvdSeries::add(double time, const std::string& vtu_file)

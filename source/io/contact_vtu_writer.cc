@@ -13,7 +13,7 @@ namespace talus
 
 void write_contacts_vtu(const std::string& path, const ContactSet& cs, const BlockModel& model,
                         const JointNumbers& joints, VtuEncoding encoding, const WaterSpec* water,
-                        double gravity)
+                        double gravity, const std::vector<unsigned int>* subcontacts)
 {
   // The joint of each contact slot, as the numbers of its subsections.
   std::vector<int> joint_set(cs.n_slots(), 0), joint(cs.n_slots(), 0), origin_of(cs.n_slots(), 0);
@@ -26,7 +26,11 @@ void write_contacts_vtu(const std::string& path, const ContactSet& cs, const Blo
       else if (origin < 0)
         joint[c] = joints.joint_number.at(static_cast<std::size_t>(-origin - 1));
     }
-  const unsigned int n = cs.n_subcontacts();
+  const unsigned int n = subcontacts ? static_cast<unsigned int>(subcontacts->size())
+                                     : cs.n_subcontacts();
+  // The k-th sub-contact written.
+  const auto pick = [&](std::size_t k) -> std::size_t
+  { return subcontacts ? (*subcontacts)[k] : k; };
   // A Float64 array of `components` values per sub-contact from `value(i, d)`.
   const auto reals = [&](std::ostream& out, const char* name, unsigned int components, auto value)
   {
@@ -35,7 +39,7 @@ void write_contacts_vtu(const std::string& path, const ContactSet& cs, const Blo
                              {
                                for (std::size_t i = first; i < first + count; ++i)
                                  for (unsigned int d = 0; d < components; ++d)
-                                   *to++ = value(i, d);
+                                   *to++ = value(pick(i), d);
                              });
   };
   const auto integers = [&](std::ostream& out, const char* name, auto value)
@@ -44,7 +48,7 @@ void write_contacts_vtu(const std::string& path, const ContactSet& cs, const Blo
                                    [&](std::size_t first, std::size_t count, std::int32_t* to)
                                    {
                                      for (std::size_t i = first; i < first + count; ++i)
-                                       *to++ = static_cast<std::int32_t>(value(i));
+                                       *to++ = static_cast<std::int32_t>(value(pick(i)));
                                    });
   };
   write_file_atomically(

@@ -147,7 +147,7 @@ double continuously_yielding(const std::vector<JointProperties>& joints, SubCont
       // Open (no tension): no forces; the shear spring's energy goes, and
       // the next shear starts a new loading (r = 0).
       const double ks = cy_shear_stiffness(joint, 0.0);
-      if (area > 0.0)
+      if (area > 0.0 && (s.counted == nullptr || s.counted[i]))
         dissipated += 0.5 * (fs[0] * fs[0] + fs[1] * fs[1] + fs[2] * fs[2]) / (ks * area);
       fs[0] = fs[1] = fs[2] = 0.0;
       s.normal_force[i] = 0.0;
@@ -207,7 +207,8 @@ double continuously_yielding(const std::vector<JointProperties>& joints, SubCont
                           (fs[0] * fs[0] + fs[1] * fs[1] + fs[2] * fs[2] -
                            (f_old[0] * f_old[0] + f_old[1] * f_old[1] + f_old[2] * f_old[2])) /
                           (ks * area);
-    dissipated += std::max(work - stored, 0.0);
+    if (s.counted == nullptr || s.counted[i])
+      dissipated += std::max(work - stored, 0.0);
     s.normal_force[i] = fn;
     s.state[i] = state;
   }

@@ -87,8 +87,9 @@ double coulomb_slip(const std::vector<JointProperties>& joints, SubContactBatch&
       if (area > 0.0)
       {
         const double held = std::min(s.normal_force[i], 0.0);
-        dissipated += 0.5 * held * held / (kn * area) +
-                      0.5 * (fs[0] * fs[0] + fs[1] * fs[1] + fs[2] * fs[2]) * shear_compliance;
+        if (s.counted == nullptr || s.counted[i])
+          dissipated += 0.5 * held * held / (kn * area) +
+                        0.5 * (fs[0] * fs[0] + fs[1] * fs[1] + fs[2] * fs[2]) * shear_compliance;
       }
       fn = 0.0;
       fs[0] = fs[1] = fs[2] = 0.0;
@@ -152,7 +153,8 @@ double coulomb_slip(const std::vector<JointProperties>& joints, SubContactBatch&
                             (fs[0] * fs[0] + fs[1] * fs[1] + fs[2] * fs[2] -
                              (f_old[0] * f_old[0] + f_old[1] * f_old[1] + f_old[2] * f_old[2])) *
                             shear_compliance;
-      dissipated += std::max(work - stored, 0.0);
+      if (s.counted == nullptr || s.counted[i])
+        dissipated += std::max(work - stored, 0.0);
     }
     s.normal_force[i] = fn;
     s.state[i] = state;

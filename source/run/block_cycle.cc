@@ -33,6 +33,16 @@ std::unique_ptr<ParallelEnvironment> prepare(Scene& scene, BlockModel& model)
   return ParallelEnvironment::unless_running();
 }
 
+/// This rank's share of the model when talus runs on several MPI ranks
+/// (null on one): ghosts within the contact tolerance plus three more of
+/// motion.
+std::unique_ptr<RankShare> share_of(const Scene& scene, const BlockModel& model)
+{
+  if (world_ranks() < 2)
+    return nullptr;
+  return std::make_unique<RankShare>(model, 4.0 * scene.solver.contact.tolerance, MPI_COMM_WORLD);
+}
+
 bool needs_built_model(const Scene& scene)
 {
   for (const StageSpec& stage : scene.stages)
@@ -43,17 +53,20 @@ bool needs_built_model(const Scene& scene)
 } // namespace
 
 BlockCycle::BlockCycle(Scene& scene, BlockModel& model, const std::string& prefix)
-    : scene_(scene), model_(model), prefix_(prefix), parallel_(prepare(scene, model)),
-      built_model_(needs_built_model(scene) ? std::make_unique<BlockModel>(model) : nullptr),
+    : share_(share_of(scene, model)), scene_(scene), model_(share_ ? share_->local() : model),
+      prefix_(prefix), parallel_(prepare(scene, model)),
+      built_model_(needs_built_model(scene) ? std::make_unique<BlockModel>(model_) : nullptr),
       meshing_start_(now()),
       // Deformable blocks among rigid ones: their zones, and their surfaces
       // as their shapes for the contacts.
-      system_(build_block_system(scene, model)), block_series_(prefix + "_blocks.pvd"),
+      system_(build_block_system(scene, model_)), block_series_(prefix + "_blocks.pvd"),
       contact_series_(prefix + "_contacts.pvd"), zone_series_(prefix + "_zones.pvd"),
-      built_centroid_(model.centroid)
+      built_centroid_(model_.centroid)
 {
   const double meshing_seconds = now() - meshing_start_;
-  check_boundary_selections(scene, model, system_.mesh);
+  check_boundary_selections(scene, model_, system_.mesh);
+  if (share_)
+    system_.solver->split_among_ranks(share_->ghost_flags(), reductions_over(share_->comm()));
   const RigidSolver& solver = *system_.solver;
   const DeformableSolver* zones = system_.zones.get();
   if (zones)
@@ -70,7 +83,7 @@ BlockCycle::BlockCycle(Scene& scene, BlockModel& model, const std::string& prefi
       std::printf("Hexahedra:    %u (mixed discretization: the tetrahedra are their two overlays "
                   "of five)\n",
                   system_.mesh_report.hexes);
-    print_mesh_quality(system_.mesh_report, system_.mesh, *zones, model);
+    print_mesh_quality(system_.mesh_report, system_.mesh, *zones, model_);
     print_nodal_mixed(*zones);
   }
   if (scene.solver.time_step > 0.0 && solver.stable_time_step() < 1e300)
@@ -224,9 +237,13 @@ int BlockCycle::factor_of_safety(const std::vector<StageSpec>& stages, unsigned 
   return 0;
 }
 
+BlockCycle::~BlockCycle() = default;
+
 void BlockCycle::step()
 {
   system_.solver->step();
+  if (share_)
+    share_->refresh(*system_.solver);
 }
 unsigned long BlockCycle::steps_done() const
 {
@@ -264,18 +281,45 @@ std::vector<double> BlockCycle::history_row()
   std::vector<double> row{double(solver.steps_done()), solver.time(), solver.unbalanced_ratio()};
   e.append_to(row);
   const bool water = has_water(scene_);
-  for (unsigned int b : scene_.solver.history_blocks)
+  const Vec3 zero = Vec3::Zero();
+  for (unsigned int global : scene_.solver.history_blocks)
   {
-    for (const Vec3* q : {&solver.displacement[b], &solver.velocity[b]})
+    // On ranks: the owner's values, zeros elsewhere (summed below).
+    const int b = share_ ? (share_->owns(global) ? share_->local_of(global) : -1)
+                         : static_cast<int>(global);
+    for (const std::vector<Vec3>* q : {&solver.displacement, &solver.velocity})
       for (int d = 0; d < 3; ++d)
-        row.push_back((*q)[d]);
+        row.push_back((b >= 0 ? (*q)[std::size_t(b)] : zero)[d]);
     // At the block's centroid now: the water it stands in.
     if (water)
-      row.push_back(pore_pressure(solver.water(), scene_.solver.gravity.norm(), model_.centroid[b]));
+      row.push_back(pore_pressure(solver.water(), scene_.solver.gravity.norm(),
+                                  model_.centroid[std::size_t(b)]));
   }
   if (system_.zones)
     points_->add_values(row, *system_.zones);
+  if (share_)
+  {
+    // Every column but the step, the time and the ratio is a sum of the
+    // ranks' shares (energies: each block and contact counted once).
+    std::vector<double> shares(row.begin() + 3, row.end());
+    share_->sum(shares);
+    std::copy(shares.begin(), shares.end(), row.begin() + 3);
+  }
   return row;
+}
+
+std::string BlockCycle::write_pieces(
+    const std::string& name, const std::function<void(const std::string&)>& write_piece) const
+{
+  const std::string& folder = scene_.output.directory;
+  std::vector<std::string> pieces;
+  for (int r = 0; r < share_->ranks(); ++r)
+    pieces.push_back(name + "_" + std::to_string(r) + ".vtu");
+  write_piece(pieces[std::size_t(share_->rank())]);
+  if (share_->rank() == 0)
+    write_pvtu(folder + "/" + name + ".pvtu", folder + "/" + pieces[0], pieces);
+  MPI_Barrier(share_->comm()); // the frame whole before the run goes on
+  return name + ".pvtu";
 }
 
 void BlockCycle::write_frame(bool diverged)
@@ -283,9 +327,10 @@ void BlockCycle::write_frame(bool diverged)
   if (!scene_.output.write_vtu)
     return;
   const RigidSolver& solver = *system_.solver;
+  const bool lists = !share_ || share_->rank() == 0; // writes the series
   char name[64];
-  std::snprintf(name, sizeof name, "_blocks_%05u.vtu", frame_++);
-  const std::string vtu = scene_.output.base_name + name;
+  std::snprintf(name, sizeof name, "_blocks_%05u", frame_++);
+  const std::string blocks = scene_.output.base_name + name;
   std::vector<BlockField> fields{{"displacement", 3, {}}, {"velocity", 3, {}}, {"rotation", 3, {}}};
   for (unsigned int b = 0; b < model_.n_blocks(); ++b)
     for (int d = 0; d < 3; ++d)
@@ -294,9 +339,26 @@ void BlockCycle::write_frame(bool diverged)
       fields[1].values.push_back(solver.velocity[b][d]);
       fields[2].values.push_back(solver.rotation[b][d]);
     }
-  write_blocks_vtu(scene_.output.directory + "/" + vtu, model_, fields, scene_.output.vtu_encoding,
-                   &solver.removed_blocks());
-  block_series_.add(solver.time(), vtu);
+  std::string vtu = blocks + ".vtu";
+  if (share_)
+  {
+    // This rank's blocks (not its ghosts), by their numbers in the model.
+    std::vector<char> gone = solver.removed_blocks();
+    for (std::size_t b = 0; b < gone.size(); ++b)
+      gone[b] |= !share_->blocks().owned[b];
+    vtu = write_pieces(blocks,
+                       [&](const std::string& piece)
+                       {
+                         write_blocks_vtu(scene_.output.directory + "/" + piece, model_, fields,
+                                          scene_.output.vtu_encoding, &gone,
+                                          &share_->blocks().local);
+                       });
+  }
+  else
+    write_blocks_vtu(scene_.output.directory + "/" + vtu, model_, fields,
+                     scene_.output.vtu_encoding, &solver.removed_blocks());
+  if (lists)
+    block_series_.add(solver.time(), vtu);
   if (diverged)
   {
     if (system_.zones)
@@ -304,12 +366,31 @@ void BlockCycle::write_frame(bool diverged)
                        zone_frame_++, false);
     return;
   }
-  std::snprintf(name, sizeof name, "_contacts_%05u.vtu", frame_ - 1);
-  const std::string contacts_vtu = scene_.output.base_name + name;
-  write_contacts_vtu(scene_.output.directory + "/" + contacts_vtu, solver.contacts(), model_,
-                     joint_numbers_, scene_.output.vtu_encoding, &solver.water(),
-                     scene_.solver.gravity.norm());
-  contact_series_.add(solver.time(), contacts_vtu);
+  std::snprintf(name, sizeof name, "_contacts_%05u", frame_ - 1);
+  const std::string contacts = scene_.output.base_name + name;
+  std::string contacts_vtu = contacts + ".vtu";
+  const ContactSet& cs = solver.contacts();
+  if (share_)
+  {
+    // The sub-contacts this rank counts (of contacts whose first block it owns).
+    std::vector<unsigned int> counted;
+    for (unsigned int i = 0; i < cs.n_subcontacts(); ++i)
+      if (share_->blocks().owned[cs.block_a[cs.sc_contact[i]]])
+        counted.push_back(i);
+    contacts_vtu = write_pieces(contacts,
+                                [&](const std::string& piece)
+                                {
+                                  write_contacts_vtu(scene_.output.directory + "/" + piece, cs,
+                                                     model_, joint_numbers_,
+                                                     scene_.output.vtu_encoding, &solver.water(),
+                                                     scene_.solver.gravity.norm(), &counted);
+                                });
+  }
+  else
+    write_contacts_vtu(scene_.output.directory + "/" + contacts_vtu, cs, model_, joint_numbers_,
+                       scene_.output.vtu_encoding, &solver.water(), scene_.solver.gravity.norm());
+  if (lists)
+    contact_series_.add(solver.time(), contacts_vtu);
   if (system_.zones)
     write_zone_frame(scene_, system_.mesh, *system_.zones, *zone_writer_, zone_series_,
                      zone_frame_++);
@@ -412,16 +493,28 @@ void BlockCycle::begin_stage(const StageSpec& stage)
     solver.reset_displacements();
 }
 
+std::pair<double, unsigned int> BlockCycle::largest_displacement() const
+{
+  // The first block of the largest displacement, as a serial loop finds it.
+  const RigidSolver& solver = *system_.solver;
+  double largest = -1.0;
+  unsigned int at = 0;
+  for (unsigned int b = 0; b < model_.n_blocks(); ++b)
+    if ((!share_ || share_->blocks().owned[b]) && solver.displacement[b].norm() > largest)
+    {
+      largest = solver.displacement[b].norm();
+      at = share_ ? share_->global_of(b) : b;
+    }
+  if (share_)
+    return share_->largest(largest, at);
+  return {largest, at};
+}
+
 std::string BlockCycle::displacement_text() const
 {
-  const RigidSolver& solver = *system_.solver;
-  unsigned int moved_most = 0;
-  for (unsigned int b = 0; b < model_.n_blocks(); ++b)
-    if (solver.displacement[b].norm() > solver.displacement[moved_most].norm())
-      moved_most = b;
+  const auto [largest, moved_most] = largest_displacement();
   char text[160];
-  std::snprintf(text, sizeof text, "%.6g m (block %u)", solver.displacement[moved_most].norm(),
-                moved_most);
+  std::snprintf(text, sizeof text, "%.6g m (block %u)", largest, moved_most);
   std::string s = text;
   if (system_.zones)
   {
@@ -436,35 +529,57 @@ void BlockCycle::print_end()
 {
   const RigidSolver& solver = *system_.solver;
   const SolverReport r = solver.report();
+  const ContactSet& cs = solver.contacts();
+  // On ranks, each contact is counted by the owner of its first block.
+  const auto counted = [&](unsigned int c)
+  { return cs.alive[c] && (!share_ || share_->blocks().owned[cs.block_a[c]]); };
+  unsigned long contacts = r.contacts, subcontacts = r.subcontacts;
+  if (share_)
+  {
+    contacts = subcontacts = 0;
+    for (unsigned int c = 0; c < cs.n_slots(); ++c)
+      contacts += counted(c);
+    for (unsigned int i = 0; i < cs.n_subcontacts(); ++i)
+      subcontacts += counted(cs.sc_contact[i]);
+    contacts = share_->sum(contacts);
+    subcontacts = share_->sum(subcontacts);
+  }
   std::printf("Steps:        %lu (time %.6g s)\n", r.steps, r.time);
-  std::printf("Contacts:     %u with %u sub-contacts\n", r.contacts, r.subcontacts);
+  std::printf("Contacts:     %lu with %lu sub-contacts\n", contacts, subcontacts);
   if (solver.water().active())
     std::printf("%s\n", solver.water_summary().c_str());
   if (scene_.joint_material_names.size() > 1)
   {
     // Which material the contacts took: the check that the rules say what
     // was meant.
-    std::vector<unsigned int> count(scene_.joint_material_names.size(), 0);
-    const ContactSet& cs = solver.contacts();
+    std::vector<double> count(scene_.joint_material_names.size(), 0.0);
     for (unsigned int c = 0; c < cs.n_slots(); ++c)
-      if (cs.alive[c])
-        ++count[cs.material[c]];
+      if (counted(c))
+        count[cs.material[c]] += 1.0;
+    if (share_)
+      share_->sum(count); // whole numbers: exact
     std::printf("Joint materials:");
     for (std::size_t k = 0; k < count.size(); ++k)
-      std::printf("%s %s %u", k == 0 ? "" : ",", scene_.joint_material_names[k].c_str(), count[k]);
+      std::printf("%s %s %.0f", k == 0 ? "" : ",", scene_.joint_material_names[k].c_str(),
+                  count[k]);
     std::printf(" contacts\n");
   }
   std::printf("Unbalanced force ratio: %.3g\n", r.ratio);
-  unsigned int moved_most = 0;
-  for (unsigned int b = 0; b < model_.n_blocks(); ++b)
-    if (solver.displacement[b].norm() > solver.displacement[moved_most].norm())
-      moved_most = b;
-  if (model_.n_blocks() > 0)
-    std::printf("Largest displacement: %.6g m (block %u)\n", solver.displacement[moved_most].norm(),
-                moved_most);
-  for (unsigned int b : scene_.solver.history_blocks)
-    std::printf("Block %u displacement: %.9g, %.9g, %.9g m\n", b, solver.displacement[b][0],
-                solver.displacement[b][1], solver.displacement[b][2]);
+  const auto [largest, moved_most] = largest_displacement();
+  if (model_.n_blocks() > 0 || share_)
+    std::printf("Largest displacement: %.6g m (block %u)\n", largest, moved_most);
+  for (unsigned int global : scene_.solver.history_blocks)
+  {
+    std::vector<double> u(3, 0.0);
+    const int b = share_ ? (share_->owns(global) ? share_->local_of(global) : -1)
+                         : static_cast<int>(global);
+    if (b >= 0)
+      for (int d = 0; d < 3; ++d)
+        u[std::size_t(d)] = solver.displacement[std::size_t(b)][d];
+    if (share_)
+      share_->sum(u); // the owner's, and zeros
+    std::printf("Block %u displacement: %.9g, %.9g, %.9g m\n", global, u[0], u[1], u[2]);
+  }
   const double total = r.seconds_detection + r.seconds_planes + r.seconds_forces + r.seconds_motion;
   std::printf(
       "   Time = %.3f s in the cycle: detection %.0f %%, common planes %.0f %%, forces %.0f %%, "
@@ -482,6 +597,27 @@ void BlockCycle::print_end()
 std::string BlockCycle::unbalanced_where() const
 {
   const unsigned int b = system_.solver->unbalanced_block();
+  if (share_)
+  {
+    // The rank with the largest force names its block, and sends where it is.
+    const auto [force, global] =
+        share_->largest(system_.solver->local_unbalanced_force(), share_->global_of(b));
+    (void)force;
+    const int at = share_->owns(global) ? share_->local_of(global) : -1;
+    std::vector<double> where(4, 0.0); // centroid and group
+    if (at >= 0)
+    {
+      for (int d = 0; d < 3; ++d)
+        where[std::size_t(d)] = model_.centroid[std::size_t(at)][d];
+      where[3] = model_.group[std::size_t(at)];
+    }
+    share_->sum(where);
+    char text[200];
+    std::snprintf(text, sizeof text, "block %u (group %s, centroid %.4g, %.4g, %.4g m)", global,
+                  model_.group_names[std::size_t(where[3])].c_str(), where[0], where[1],
+                  where[2]);
+    return text;
+  }
   const Vec3& c = model_.centroid[b];
   char where[200];
   std::snprintf(where, sizeof where, "block %u (group %s, centroid %.4g, %.4g, %.4g m)", b,

@@ -6,12 +6,14 @@
 #include <talus/io/scene_checks.h>
 #include <talus/run/block_cycle.h>
 #include <talus/run/body_cycle.h>
+#include <talus/run/rank_share.h>
 #include <talus/run/simulation.h>
 
 #include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
+#include <iostream>
 #include <map>
 
 namespace talus
@@ -54,9 +56,31 @@ Simulation::Simulation(const std::string& parameter_file, std::string restart_fr
 {
   // A restart writes into the checkpoint's folder, prepared there; a check
   // prepares nothing.
-  scene_ = read_scene(parameter_file_, restart_from_.empty() && !check_only_);
+  // On several MPI ranks (mpirun), rank 0 prepares the output folder once
+  // the scene is known to run on ranks.
+  const int ranks = world_ranks();
+  scene_ = read_scene(parameter_file_, restart_from_.empty() && !check_only_ && ranks == 1);
   if (!restart_from_.empty())
     continue_in_checkpoint_folder(restart_from_, scene_);
+  if (ranks > 1)
+  {
+    check_runs_on_ranks(scene_, ranks);
+    if (!check_only_)
+      agree_on_input_errors(
+          [&]()
+          {
+            if (world_rank() == 0)
+              try
+              {
+                prepare_output_directory(scene_.output.directory);
+              }
+              catch (const InputError& e)
+              {
+                throw scene_error(scene_, "Output", "Directory", e.what(),
+                                  "a folder that can be created and written");
+              }
+          });
+  }
   // read_scene has checked every value and prepared the output folder;
   // what needs the blocks is checked before anything is written.
   model_ = build_blocks(scene_, report_);
@@ -185,8 +209,11 @@ int Simulation::run()
     std::printf("Check:        no problem found; nothing was written\n");
     return 0;
   }
-  write_file_atomically(prefix_ + "_used_parameters.prm",
-                        [&](std::ostream& out) { out << scene_.used_parameters; });
+  // On ranks, rank 0 writes the files of the whole run; each rank its pieces.
+  const bool writes = world_rank() == 0;
+  if (writes)
+    write_file_atomically(prefix_ + "_used_parameters.prm",
+                          [&](std::ostream& out) { out << scene_.used_parameters; });
   print_model();
   if (scene_.strength_reduction.enabled)
   {
@@ -202,7 +229,7 @@ int Simulation::run()
   if (total_steps == 0)
   {
     // The model only.
-    if (scene_.output.write_vtu)
+    if (scene_.output.write_vtu && writes)
     {
       PvdSeries series(prefix_ + "_blocks.pvd");
       const std::string vtu = scene_.output.base_name + "_blocks_00000.vtu";
@@ -216,10 +243,14 @@ int Simulation::run()
   const double built_seconds = seconds_since(start);
 
   std::unique_ptr<Cycle> cycle;
-  if (body_alone(scene_, model_))
-    cycle = std::make_unique<BodyCycle>(scene_, model_, prefix_);
-  else
-    cycle = std::make_unique<BlockCycle>(scene_, model_, prefix_);
+  agree_on_input_errors(
+      [&]()
+      {
+        if (body_alone(scene_, model_))
+          cycle = std::make_unique<BodyCycle>(scene_, model_, prefix_);
+        else
+          cycle = std::make_unique<BlockCycle>(scene_, model_, prefix_);
+      });
   stages = this->stages();
   const bool staged = !scene_.stages.empty();
   std::vector<std::string> columns = cycle->history_columns();
@@ -246,27 +277,40 @@ int Simulation::run()
     }
   if (staged)
     columns.push_back("stage");
-  Checkpoint checkpoint(scene_, model_, cycle->rigid(), cycle->zones(), restart_from_);
-  HistoryFile history(prefix_ + "_history.csv", columns, 100, restart_from_.empty());
-  ProgressLine progress(total_steps);
+  // One rank: checkpoints (on ranks the scene has none, and a stop signal
+  // ends the run as usual); rank 0: the history and the progress line.
+  std::unique_ptr<Checkpoint> checkpoints;
+  if (world_ranks() == 1)
+    checkpoints =
+        std::make_unique<Checkpoint>(scene_, model_, cycle->rigid(), cycle->zones(), restart_from_);
+  std::unique_ptr<HistoryFile> history;
+  if (writes)
+    history = std::make_unique<HistoryFile>(prefix_ + "_history.csv", columns, 100,
+                                            restart_from_.empty());
+  std::ostream quiet(nullptr); // the other ranks' progress: nowhere
+  ProgressLine progress(total_steps, writes ? std::cerr : quiet, writes ? -1.0 : 1e300);
   // The loop's place: the stage (0-based), the step it began at, the steps
   // of the last history row and output frame.
   unsigned int stage_index = 0, stage_begun = 0, stages_done = 0;
   unsigned long stage_start = 0, last_row = 0, last_output = 0;
   double stage_start_time = 0.0; // s
-  checkpoint.add(history);
-  cycle->register_checkpoint(checkpoint);
-  checkpoint.add(stage_index);
-  checkpoint.add(stage_begun);
-  checkpoint.add(stage_start);
-  checkpoint.add(last_row);
-  checkpoint.add(last_output);
-  checkpoint.add(stage_start_time);
-  checkpoint.add(stages_done);
-  checkpoint.set_stages_begun(&stage_begun);
+  if (checkpoints)
+  {
+    Checkpoint& checkpoint = *checkpoints;
+    checkpoint.add(*history);
+    cycle->register_checkpoint(checkpoint);
+    checkpoint.add(stage_index);
+    checkpoint.add(stage_begun);
+    checkpoint.add(stage_start);
+    checkpoint.add(last_row);
+    checkpoint.add(last_output);
+    checkpoint.add(stage_start_time);
+    checkpoint.add(stages_done);
+    checkpoint.set_stages_begun(&stage_begun);
+  }
   if (!restart_from_.empty())
   {
-    const unsigned long step = checkpoint.restore(restart_from_);
+    const unsigned long step = checkpoints->restore(restart_from_);
     // What the stages begun changed that a checkpoint does not hold (the
     // boundaries, the rock materials), set again in their order.
     for (unsigned int k = 0; k < stage_begun; ++k)
@@ -281,7 +325,8 @@ int Simulation::run()
       row.push_back(input->scale(cycle->time()));
     if (staged)
       row.push_back(stage_index + 1);
-    history.record(row);
+    if (history)
+      history->record(row);
     last_row = cycle->steps_done();
   };
   const auto output = [&]()
@@ -340,13 +385,16 @@ int Simulation::run()
           end_time_reached = true;
           break;
         }
-        checkpoint.after_step(n);
+        if (checkpoints)
+          checkpoints->after_step(n);
       }
     }
     catch (const DivergenceError&)
     {
-      // The last good state: nothing moved after the fault was found.
-      cycle->write_frame(true);
+      // The last good state: nothing moved after the fault was found. On
+      // ranks only the rank that found it knows: it stops them all.
+      if (world_ranks() == 1)
+        cycle->write_frame(true);
       progress.finish();
       throw;
     }
@@ -372,7 +420,7 @@ int Simulation::run()
       // A checkpoint at each stage's end: a restart from it begins the next
       // stage, or one appended to the file after the run has finished.
       stages_done = stage_index + 1;
-      checkpoint.write(cycle->steps_done());
+      checkpoints->write(cycle->steps_done());
     }
   }
   if (staged)

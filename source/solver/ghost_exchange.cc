@@ -1,6 +1,8 @@
 #include <talus/solver/ghost_exchange.h>
 #include <talus/solver/rigid_solver.h>
 
+#include <algorithm>
+#include <cstdint>
 #include <stdexcept>
 
 namespace talus
@@ -32,6 +34,26 @@ RankReductions reductions_over(MPI_Comm comm)
     s.normalize();
     MPI_Allreduce(MPI_IN_PLACE, s.words().data(), ExactSum::n_words, MPI_INT64_T, MPI_SUM, comm);
     MPI_Allreduce(MPI_IN_PLACE, s.special().data(), 3, MPI_INT64_T, MPI_SUM, comm);
+  };
+  r.sums = [comm](std::vector<ExactSum>& sums)
+  {
+    std::vector<std::int64_t> words;
+    for (ExactSum& s : sums)
+    {
+      s.normalize();
+      words.insert(words.end(), s.words().begin(), s.words().end());
+      words.insert(words.end(), s.special().begin(), s.special().end());
+    }
+    MPI_Allreduce(MPI_IN_PLACE, words.data(), static_cast<int>(words.size()), MPI_INT64_T, MPI_SUM,
+                  comm);
+    const std::int64_t* at = words.data();
+    for (ExactSum& s : sums)
+    {
+      std::copy(at, at + ExactSum::n_words, s.words().begin());
+      at += ExactSum::n_words;
+      std::copy(at, at + 3, s.special().begin());
+      at += 3;
+    }
   };
   return r;
 }

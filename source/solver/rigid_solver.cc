@@ -170,23 +170,29 @@ RigidSolver::RigidSolver(BlockModel& blocks, double density, const SolverSetting
   // Energy at the start: the blocks' initial motion (with the masses the
   // cycle moves) and the joints' initial stress; the zones add theirs.
   double weight_size = 0.0;
-  for (unsigned int b = 0; b < nb; ++b)
-    if (!fixed[b] && !is_deformable_[b])
-    {
-      initial_stored_ += 0.5 * inertial_mass[b] * velocity[b].squaredNorm();
-      if (s_.principal_inertia)
-      {
-        const Vec3 p = body_momentum(b); // 1/2 w . I w with the principal moments
-        initial_stored_ += 0.5 * p.dot(p.cwiseQuotient(principal_moments[b]));
-      }
-      else
-        initial_stored_ += 0.5 * inertia[b] * spin[b].squaredNorm();
-      weight_size += mass[b] * s_.gravity.norm() * (all.hi - all.lo).norm();
-    }
-  initial_stored_ += joint_energy();
+  initial_stored_ += start_kinetic_energy((all.hi - all.lo).norm(), weight_size) + joint_energy();
   kinetic_whole_step_ = initial_stored_ - joint_energy();
   build_water_loads();
   energy_floor_ = 1e-9 * weight_size + 1e-6; // J
+}
+
+double RigidSolver::start_kinetic_energy(double size, double& weight_size) const
+{
+  double e = 0.0;
+  for (unsigned int b = 0; b < m_.n_blocks(); ++b)
+    if (!fixed[b] && !is_deformable_[b] && !is_ghost(b))
+    {
+      e += 0.5 * inertial_mass[b] * velocity[b].squaredNorm();
+      if (s_.principal_inertia)
+      {
+        const Vec3 p = body_momentum(b); // 1/2 w . I w with the principal moments
+        e += 0.5 * p.dot(p.cwiseQuotient(principal_moments[b]));
+      }
+      else
+        e += 0.5 * inertia[b] * spin[b].squaredNorm();
+      weight_size += mass[b] * s_.gravity.norm() * size;
+    }
+  return e;
 }
 
 void RigidSolver::set_masses_and_step()
@@ -627,6 +633,14 @@ void RigidSolver::contact_forces()
   const unsigned int n = cs.n_subcontacts();
   du_n_.resize(n);
   du_s_.resize(3 * n);
+  // Split among ranks: a contact's work is counted by the owner of its
+  // first block alone (every rank holding both blocks computes it).
+  if (!ghost_.empty())
+  {
+    sc_counted_.resize(n);
+    for (unsigned int i = 0; i < n; ++i)
+      sc_counted_[i] = !ghost_[cs.block_a[cs.sc_contact[i]]];
+  }
   const double beta = s_.stiffness_damping(); // Rayleigh, s
   if (beta > 0.0)
     sc_velocity_.resize(3 * n);
@@ -719,6 +733,7 @@ void RigidSolver::contact_forces()
   batch.state = cs.sc_state.data();
   batch.yield = cs.sc_yield.empty() ? nullptr : cs.sc_yield.data();
   batch.material = cs.sc_material.data();
+  batch.counted = ghost_.empty() ? nullptr : sc_counted_.data();
   friction_work_ += apply_joint_model(joints_, batch);
 
   // Force and moment sums (eqs. 28-32): A pushes B along +n.
@@ -950,6 +965,7 @@ void RigidSolver::move_blocks()
     damping_force_[b].setZero();
     damping_moment_[b].setZero();
   }
+  local_unbalanced_ = max_unbalanced;
   if (ranks_.max)
   {
     max_unbalanced = ranks_.max(max_unbalanced);
@@ -966,6 +982,33 @@ void RigidSolver::split_among_ranks(std::vector<char> ghost, RankReductions redu
   ghost_ = std::move(ghost);
   ranks_ = std::move(reductions);
   set_masses_and_step();
+  if (step_ == 0 && zones_ == nullptr)
+  {
+    // This rank's share of the energy at the start, with the masses of the
+    // whole model's density scaling: its blocks and the contacts it counts.
+    double weight_size = 0.0;
+    initial_stored_ = start_kinetic_energy(0.0, weight_size) + joint_energy();
+    kinetic_whole_step_ = initial_stored_ - joint_energy();
+  }
+  if (ranks_.sum && ranks_.max)
+  {
+    // The energy floor of the whole model (its weight times about its size),
+    // the same on every rank.
+    Box mine{m_.vertex.empty() ? Vec3::Zero() : m_.vertex[0],
+             m_.vertex.empty() ? Vec3::Zero() : m_.vertex[0]};
+    for (const Vec3& v : m_.vertex)
+    {
+      mine.lo = mine.lo.cwiseMin(v);
+      mine.hi = mine.hi.cwiseMax(v);
+    }
+    const double size = ranks_.max((mine.hi - mine.lo).norm());
+    double weight_size = 0.0;
+    start_kinetic_energy(size, weight_size);
+    ExactSum total;
+    total += weight_size;
+    ranks_.sum(total);
+    energy_floor_ = 1e-9 * total.value() + 1e-6; // J
+  }
 }
 
 std::size_t RigidSolver::packed_size(unsigned int b) const
@@ -1222,6 +1265,8 @@ double RigidSolver::joint_energy() const
   double e = 0.0;
   for (unsigned int i = 0; i < cs.n_subcontacts(); ++i)
   {
+    if (!ghost_.empty() && ghost_[cs.block_a[cs.sc_contact[i]]])
+      continue; // its first block's owner counts it
     const double a = cs.sc_area[i];
     const double fs2 = cs.sc_fs[3 * i] * cs.sc_fs[3 * i] +
                        cs.sc_fs[3 * i + 1] * cs.sc_fs[3 * i + 1] +
@@ -1281,6 +1326,19 @@ void RigidSolver::watch_energy_growth()
     zones_->add_work(z);
     kinetic += z.kinetic;
     sources += std::abs(z.initial_stored) + std::abs(z.gravity_work) + std::abs(z.boundary_work);
+  }
+  if (ranks_.sums)
+  {
+    // Split among ranks: the whole model's terms (contacts move energy
+    // between the ranks' blocks), exact, so that every rank decides alike.
+    std::vector<ExactSum> terms(4);
+    terms[0] += kinetic_whole_step_;
+    terms[1] += initial_stored_;
+    terms[2] += gravity_work_;
+    terms[3] += boundary_work_;
+    ranks_.sums(terms);
+    kinetic = terms[0].value();
+    sources = std::abs(terms[1].value()) + std::abs(terms[2].value()) + std::abs(terms[3].value());
   }
   if (!growth_watch_.diverging(step_, kinetic, sources, energy_floor_))
     return;

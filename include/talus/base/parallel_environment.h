@@ -22,4 +22,8 @@ private:
   std::unique_ptr<Impl> impl_;
 };
 
+/// Stops every rank of a run under MPI with exit code `code` (a rank that
+/// met an error the others cannot know of); returns at once without MPI.
+void abort_ranks(int code);
+
 } // namespace talus

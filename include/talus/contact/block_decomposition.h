@@ -43,4 +43,12 @@ RankBlocks decompose_blocks(const BlockModel& blocks, const CellPartition& parti
                             unsigned int rank, double reach, unsigned int layers,
                             const std::vector<char>& removed = {});
 
+/// The same from what every rank knows of the whole model when the
+/// decomposition is chosen again during a run (BlockMigration): each
+/// block's box (the bounds of its vertices, m) and the rank that owns it.
+/// The box of a removed block is not read.
+RankBlocks decompose_blocks(const std::vector<Box>& box, const std::vector<unsigned int>& owner,
+                            unsigned int rank, double reach, unsigned int layers,
+                            const std::vector<char>& removed = {});
+
 } // namespace talus

@@ -136,6 +136,8 @@ public:
   void load_state(CheckpointReader& in, unsigned int n_blocks);
 
 private:
+  /// Lays contacts out again when blocks move between ranks (block_migration.h).
+  friend class BlockMigration;
   void remove(unsigned int c);
   void build_subcontacts(unsigned int c, const BlockModel& blocks, const ContactSettings& settings,
                          const Vec3& old_normal);

@@ -25,11 +25,20 @@ struct BlockField
 /// Writes every block as one VTK polyhedron cell (type 42) of an XML
 /// unstructured grid, with block id, group and volume as cell data plus any
 /// `fields` (Float64). ParaView shows each block as a solid it can colour
-/// and select. Blocks with `(*gone)[b]` (removed by a stage) are left out.
+/// and select. Blocks with `(*gone)[b]` (removed by a stage, or another
+/// rank's) are left out. `ids`: each block's number in the whole model (a
+/// rank's share); null: its index.
 void write_blocks_vtu(const std::string& path, const BlockModel& model,
                       const std::vector<BlockField>& fields = {},
                       VtuEncoding encoding = VtuEncoding::binary,
-                      const std::vector<char>* gone = nullptr);
+                      const std::vector<char>* gone = nullptr,
+                      const std::vector<unsigned int>* ids = nullptr);
+
+/// A parallel VTU file (.pvtu) at `path` that joins the `pieces` (file
+/// names relative to its folder, one per rank); its arrays are declared as
+/// those of the piece file `like` (any of them: all have the same arrays).
+void write_pvtu(const std::string& path, const std::string& like,
+                const std::vector<std::string>& pieces);
 
 /// The list of VTU files of a run with their times, written as a PVD file so
 /// that ParaView opens the run as one time series.

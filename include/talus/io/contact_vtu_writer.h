@@ -30,9 +30,11 @@ struct JointNumbers
 /// none: contacts made by motion, or between faces of different joints);
 /// and `contact_id` (the contact's slot). With `water` active, also
 /// `pore_pressure` (Pa): the water pressure at the sub-contact's position.
+/// `subcontacts`: the sub-contacts to write (a rank's share); null: all.
 void write_contacts_vtu(const std::string& path, const ContactSet& contacts,
                         const BlockModel& model, const JointNumbers& joints,
                         VtuEncoding encoding = VtuEncoding::binary,
-                        const WaterSpec* water = nullptr, double gravity = 0.0);
+                        const WaterSpec* water = nullptr, double gravity = 0.0,
+                        const std::vector<unsigned int>* subcontacts = nullptr);
 
 } // namespace talus

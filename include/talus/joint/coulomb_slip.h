@@ -38,6 +38,10 @@ struct SubContactBatch
   /// Joint material of each sub-contact (an index into the list given to
   /// the model); null: all take the first.
   const unsigned char* material = nullptr;
+  /// Per sub-contact: whether its frictional work is this rank's to count
+  /// (a model split among ranks computes a contact on every rank that holds
+  /// both blocks; one of them counts it); null: all are.
+  const unsigned char* counted = nullptr;
 };
 
 /// Coulomb slip with tension cut-off, cohesion, dilation and loss of

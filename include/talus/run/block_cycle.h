@@ -5,10 +5,12 @@
 #include <talus/io/contact_vtu_writer.h>
 #include <talus/io/zone_vtu_writer.h>
 #include <talus/run/cycle.h>
+#include <talus/run/rank_share.h>
 #include <talus/run/run_summary.h>
 #include <talus/scene/block_system.h>
 
 #include <chrono>
+#include <functional>
 #include <memory>
 #include <string>
 #include <vector>
@@ -23,8 +25,11 @@ class BlockCycle : public Cycle
 public:
   /// Meshes the deformable blocks and builds the solvers (printing the
   /// summary's lines on zones and the time step); `prefix` is the output
-  /// folder and base name.
+  /// folder and base name. Started on several MPI ranks, each rank runs its
+  /// share of the model (RankShare) and the summary, the history and the
+  /// output are those of the whole model.
   BlockCycle(Scene& scene, BlockModel& model, const std::string& prefix);
+  ~BlockCycle() override;
 
   void step() override;
   unsigned long steps_done() const override;
@@ -46,6 +51,9 @@ public:
   std::string unbalanced_where() const override;
 
 private:
+  /// The rank's share of the model (null on one rank); declared first:
+  /// model_ is its model.
+  std::unique_ptr<RankShare> share_;
   Scene& scene_;
   BlockModel& model_;
   std::string prefix_;
@@ -65,6 +73,14 @@ private:
   unsigned int frame_ = 0, zone_frame_ = 0;
   /// The blocks' centroids as built (m): where stage regions select them.
   std::vector<Vec3> built_centroid_;
+
+  /// The global block that moved most (owned by any rank), and how far (m).
+  std::pair<double, unsigned int> largest_displacement() const;
+  /// Writes this rank's piece of a frame (`name` + "_<rank>.vtu") and, on
+  /// rank 0, the .pvtu that joins the pieces; returns the file the series
+  /// lists.
+  std::string write_pieces(const std::string& name,
+                           const std::function<void(const std::string&)>& write_piece) const;
 
 };
 

@@ -129,6 +129,7 @@ struct RankReductions
   std::function<bool(bool)> any;          ///< whether any rank's is true
   std::function<double(double)> min, max; ///< the least and the largest of all ranks'
   std::function<void(ExactSum&)> sum;     ///< each rank's partial sum becomes the total
+  std::function<void(std::vector<ExactSum>&)> sums; ///< the same for several, in one message
 };
 
 /// What a run did, for the summary.
@@ -248,6 +249,9 @@ public:
   /// comes through `reductions`. Masses and the time step are set again.
   void split_among_ranks(std::vector<char> ghost, RankReductions reductions);
   bool is_ghost(unsigned int b) const { return !ghost_.empty() && ghost_[b] != 0; }
+  /// The largest unbalanced force on a block this rank moves, at the last
+  /// step (N): on unbalanced_block().
+  double local_unbalanced_force() const { return local_unbalanced_; }
   /// Appends block b's moving state (vertices, face normals, centroid,
   /// velocities, displacements, eq. 1's measures, the last unbalanced
   /// force and moment, the last motion; principal axes) to `out`:
@@ -311,6 +315,8 @@ public:
   void load_state(CheckpointReader& in);
 
 private:
+  /// Moves blocks, their state and contacts between ranks (block_migration.h).
+  friend class BlockMigration;
   /// The loads that vary in time (s_.loads indices), and their sum on each
   /// block at this step: force (N, at time_) and the velocity of the held
   /// components (m/s, at time_ + dt_ / 2; bits in timed_held_).
@@ -345,12 +351,14 @@ private:
   BlockModel& m_;
   SolverSettings s_;
   std::vector<char> ghost_; ///< per block; empty: no ghosts
+  double local_unbalanced_ = 0.0; ///< N, see local_unbalanced_force
   RankReductions ranks_;     ///< members null: one rank
   CellSpace cells_;
   ContactSet contacts_;
   std::vector<Box> envelopes_;
   std::vector<std::pair<unsigned int, unsigned int>> pairs_;
   std::vector<double> du_n_, du_s_;
+  std::vector<unsigned char> sc_counted_; ///< split among ranks: see contact_forces
   /// Dynamics with Rayleigh beta only: the relative velocity at each
   /// sub-contact (3 per sub-contact, m/s) of the step, and the damping
   /// force and moment of the sub-contacts on each rigid block (N, N m),
@@ -378,6 +386,10 @@ private:
   /// Inertial masses (density scaling), the time step (eqs. 87-88) and
   /// the damper, from the settings and the blocks that remain.
   void set_masses_and_step();
+  /// The kinetic energy of the free blocks this rank moves, with the masses
+  /// the cycle moves (J); adds each one's weight times `size` (N m) to
+  /// `weight_size`.
+  double start_kinetic_energy(double size, double& weight_size) const;
   /// water_loads_ from s_.water, on the rigid blocks that move.
   void build_water_loads();
   std::vector<char> removed_;             ///< per block: excavated by a stage

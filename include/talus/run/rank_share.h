@@ -1,0 +1,91 @@
+#pragma once
+
+#include <talus/contact/block_decomposition.h>
+#include <talus/model/block_model.h>
+#include <talus/scene/scene.h>
+#include <talus/solver/ghost_exchange.h>
+
+#include <mpi.h>
+
+#include <functional>
+#include <memory>
+#include <string>
+#include <utility>
+#include <vector>
+
+namespace talus
+{
+
+class RigidSolver;
+
+/// The number of ranks of MPI_COMM_WORLD, 1 when MPI has not been started
+/// (talus scene.prm without mpirun).
+int world_ranks();
+/// This process's rank in MPI_COMM_WORLD, 0 without MPI.
+int world_rank();
+
+/// Runs `build` on every rank of MPI_COMM_WORLD. When it throws an
+/// InputError on some ranks, every rank throws that of the lowest of them
+/// (so that rank 0 prints it and no rank waits for the others); other
+/// exceptions pass as they are.
+void agree_on_input_errors(const std::function<void()>& build);
+
+/// Refuses, with one message naming the entry, a scene that talus cannot
+/// yet run split among ranks: deformable blocks, water, stages, the factor
+/// of safety, checkpoints, face loads on rigid blocks.
+void check_runs_on_ranks(const Scene& scene, int ranks);
+
+/// This rank's share of a model of rigid blocks split among the ranks of
+/// `comm` (issue 24): the blocks it owns, whose centroids lie in its region
+/// of a CellPartition of the model's cell space balanced by blocks, and two
+/// layers of ghosts (decompose_blocks); the model of those blocks in global
+/// order (BlockModel::subset); the exchange that keeps the ghosts equal to
+/// their owners' blocks; and the reductions that make the summary, the
+/// history and the output of the whole model from the shares.
+class RankShare
+{
+public:
+  /// `reach` (m): the contact tolerance plus the motion allowed until the
+  /// ghosts are chosen again.
+  RankShare(const BlockModel& model, double reach, MPI_Comm comm);
+
+  int rank() const { return rank_; }
+  int ranks() const { return ranks_; }
+  MPI_Comm comm() const { return comm_; }
+  const RankBlocks& blocks() const { return blocks_; }
+  /// The model of the blocks this rank holds (owned and ghosts).
+  BlockModel& local() { return local_; }
+  const BlockModel& local() const { return local_; }
+  /// Per local block: 1 for a ghost (RigidSolver::split_among_ranks).
+  std::vector<char> ghost_flags() const;
+
+  /// Local index of global block `global`, or -1 when this rank does not
+  /// hold it.
+  int local_of(unsigned int global) const;
+  bool owns(unsigned int global) const;
+
+  /// Ghosts refreshed from their owners after a step.
+  void refresh(RigidSolver& solver) { exchange_->refresh(solver); }
+  /// Doubles sent by this rank at the last refresh.
+  std::size_t sent() const { return exchange_->sent(); }
+
+  /// Element-wise sums over the ranks of `values` (in place).
+  void sum(std::vector<double>& values) const;
+  unsigned long sum(unsigned long value) const;
+  /// The largest of the ranks' `value`, with the global block that has it
+  /// (the lowest numbered one of equal values, as a serial loop that keeps
+  /// the first largest finds).
+  std::pair<double, unsigned int> largest(double value, unsigned int global) const;
+
+  /// The global number of the model's block `local` (a local index).
+  unsigned int global_of(unsigned int local) const { return blocks_.local[local]; }
+
+private:
+  MPI_Comm comm_;
+  int rank_ = 0, ranks_ = 1;
+  RankBlocks blocks_;
+  BlockModel local_;
+  std::unique_ptr<GhostExchange> exchange_;
+};
+
+} // namespace talus

@@ -1,0 +1,104 @@
+#pragma once
+
+#include <talus/contact/block_decomposition.h>
+#include <talus/contact/cell_partition.h>
+
+#include <mpi.h>
+
+#include <vector>
+
+namespace talus
+{
+
+class RigidSolver;
+
+/// Ownership that follows the blocks of a rigid model split among ranks
+/// (issue 24; the manual's "Data Structure": blocks are remapped to
+/// neighbouring processors as they move). The decomposition of
+/// decompose_blocks holds every contact of a rank's owned blocks only while
+/// no block has moved more than the margin in its `reach`, and its owners
+/// stay near their blocks only while the centroids stay in their regions.
+/// When either fails on some rank, every block goes to the rank whose
+/// region holds its centroid, the ghosts are chosen again around the
+/// blocks as they are now, and each rank receives the blocks it newly holds
+/// from their old owners, with everything the solver keeps of them
+/// (geometry, group, masses, motion, the state of eq. 1 and of the damper's
+/// last force) and their contacts' state (common plane, sub-contacts with
+/// their normal and shear forces, shear displacements, slip state,
+/// dilation, yield state), and drops the blocks it no longer needs. The
+/// local order stays the global order, and the contacts are laid out again
+/// in block-pair order, so that the run stays bit-identical to the serial
+/// one.
+///
+/// Communication at a migration event (rare: the margin of `reach` is worth
+/// many steps of motion), all of it between ranks whose regions are near,
+/// point to point, with the sizes by MPI_Alltoall (one integer per pair of
+/// ranks): each owner sends its blocks' boxes and centroids (10 numbers a
+/// block) to the ranks whose regions come within (layers + 1) (reach + s)
+/// of them (s: the longest side of any block's box), enough for each to
+/// choose its blocks and lists as from the whole model; each rank asks the
+/// old owners for the blocks it newly holds, and they send them. Besides,
+/// one MPI_Allreduce for s and one for the count of owner changes.
+///
+/// Rigid blocks only: a solver with zones, face loads or water is refused
+/// (std::logic_error) at the first event.
+class BlockMigration
+{
+public:
+  /// For `solver`, which holds `blocks` (decompose_blocks with `reach` and
+  /// `layers`) of a model split by `partition` among the ranks of `comm`.
+  /// `reach` must exceed twice the contact tolerance; the rest is twice the
+  /// motion a block may make between two choices of the ghosts.
+  /// `partition` must outlive this object.
+  BlockMigration(const RigidSolver& solver, const RankBlocks& blocks,
+                 const CellPartition& partition, double reach, unsigned int layers, MPI_Comm comm);
+
+  /// Call after every step once the ghosts were refreshed
+  /// (GhostExchange::refresh), on every rank alike. Migrates when due();
+  /// then `blocks`, the solver's block model (the one it was built on,
+  /// changed in place), its per-block state and contacts change, and a
+  /// GhostExchange on `blocks` sends along the new lists. Returns whether
+  /// it migrated.
+  bool update(RigidSolver& solver, RankBlocks& blocks);
+
+  /// Whether the decomposition must be chosen again, decided on all ranks
+  /// alike (RankReductions::any): an owned block whose centroid has left
+  /// this rank's region, or that has moved more than allowance() since the
+  /// ghosts were chosen (its path, the sum of its vertices' largest moves
+  /// per step along an axis, eq. 1's measure).
+  bool due(const RigidSolver& solver, const RankBlocks& blocks) const;
+  /// Chooses owners and ghosts again now and moves the blocks (collective).
+  void migrate(RigidSolver& solver, RankBlocks& blocks);
+
+  /// The motion (m) a block may make between two choices of the ghosts:
+  /// two blocks whose boxes were more than `reach` apart then come within
+  /// two contact tolerances (the envelopes' overlap that makes a candidate
+  /// pair) only after moving together by reach - 2 CTOL.
+  double allowance() const { return allowance_; }
+  /// Migration events so far.
+  unsigned long events() const { return events_; }
+  /// Blocks that changed owner, over all ranks and events (equal on every rank).
+  unsigned long owner_changes() const { return owner_changes_; }
+  /// Blocks this rank received (began to hold) and dropped, over all events.
+  unsigned long received() const { return received_; }
+  unsigned long dropped() const { return dropped_; }
+
+private:
+  /// Every per-block array of the solver that outlives a step, in one
+  /// fixed order: `visit(array)` for each (those of principal inertia and
+  /// of loads in time only where the solver has them). An array added to
+  /// RigidSolver per block must be added there, or a block that changes
+  /// rank loses it.
+  template <typename Visit>
+  static void visit_block_arrays(RigidSolver& solver, Visit&& visit);
+
+  const CellPartition& partition_;
+  double reach_;
+  unsigned int layers_;
+  MPI_Comm comm_;
+  double allowance_;
+  std::vector<double> path_at_choice_; ///< per local block: its path when the ghosts were chosen
+  unsigned long events_ = 0, owner_changes_ = 0, received_ = 0, dropped_ = 0;
+};
+
+} // namespace talus

@@ -1,0 +1,157 @@
+#include <talus/base/exceptions.h>
+#include <talus/contact/cell_partition.h>
+#include <talus/contact/cell_space.h>
+#include <talus/io/scene_checks.h>
+#include <talus/run/rank_share.h>
+#include <talus/run/run_summary.h>
+
+#include <algorithm>
+
+namespace talus
+{
+
+int world_ranks()
+{
+  int started = 0, ranks = 1;
+  MPI_Initialized(&started);
+  if (started)
+    MPI_Comm_size(MPI_COMM_WORLD, &ranks);
+  return ranks;
+}
+
+int world_rank()
+{
+  int started = 0, rank = 0;
+  MPI_Initialized(&started);
+  if (started)
+    MPI_Comm_rank(MPI_COMM_WORLD, &rank);
+  return rank;
+}
+
+void agree_on_input_errors(const std::function<void()>& build)
+{
+  const int ranks = world_ranks();
+  if (ranks < 2)
+  {
+    build();
+    return;
+  }
+  std::string message;
+  int failed = ranks;
+  try
+  {
+    build();
+  }
+  catch (const InputError& e)
+  {
+    message = e.what();
+    failed = world_rank();
+  }
+  int first = ranks;
+  MPI_Allreduce(&failed, &first, 1, MPI_INT, MPI_MIN, MPI_COMM_WORLD);
+  if (first == ranks)
+    return;
+  int length = static_cast<int>(message.size());
+  MPI_Bcast(&length, 1, MPI_INT, first, MPI_COMM_WORLD);
+  message.resize(static_cast<std::size_t>(length));
+  MPI_Bcast(message.data(), length, MPI_CHAR, first, MPI_COMM_WORLD);
+  throw InputError(message);
+}
+
+void check_runs_on_ranks(const Scene& scene, int ranks)
+{
+  const std::string on = "talus runs on " + std::to_string(ranks) +
+                         " MPI ranks only scenes of rigid blocks so far";
+  const std::string allowed = "run it without mpirun (one rank), or leave this out";
+  if (!scene.deformable.groups.empty())
+    throw scene_error(scene, "Deformable", "Groups", "deformable blocks: " + on, allowed);
+  if (!scene.stages.empty())
+    throw scene_error(scene, scene.stages.front().section, "",
+                      "stages: " + on + " in one stage ('Solver')", allowed);
+  if (scene.strength_reduction.enabled)
+    throw scene_error(scene, "Solver", "Mode", "the factor of safety: " + on, allowed);
+  if (has_water(scene))
+    throw scene_error(scene, "Water", "", "water: " + on + " without water", allowed);
+  if (!scene.face_pressures.empty())
+    throw scene_error(scene, scene.face_pressure_sections.front(), "",
+                      "face loads: " + on + " without 'Boundary N' face loads", allowed);
+  if (scene.solver.partial_density_scaling)
+    throw scene_error(scene, "Solver", "Partial density scaling",
+                      "partial density scaling: " + on + " without it", allowed);
+  if (scene.output.checkpoint_interval > 0)
+    throw scene_error(scene, "Output", "Checkpoint interval",
+                      "checkpoints: " + on + " without checkpoints", allowed);
+}
+
+RankShare::RankShare(const BlockModel& model, double reach, MPI_Comm comm) : comm_(comm)
+{
+  MPI_Comm_rank(comm, &rank_);
+  MPI_Comm_size(comm, &ranks_);
+  // The cell space of the whole model, about one cell per block (as the
+  // contact search's), cut into regions of equal numbers of blocks.
+  Box domain{Vec3::Zero(), Vec3::Zero()};
+  if (!model.vertex.empty())
+    domain = Box{model.vertex[0], model.vertex[0]};
+  for (const Vec3& v : model.vertex)
+  {
+    domain.lo = domain.lo.cwiseMin(v);
+    domain.hi = domain.hi.cwiseMax(v);
+  }
+  CellSpace cells;
+  cells.define(domain, model.n_blocks());
+  const CellPartition partition(domain, domain.lo, cells.cell_size(), model.centroid,
+                                std::vector<double>(model.n_blocks(), 1.0),
+                                static_cast<unsigned int>(ranks_));
+  blocks_ = decompose_blocks(model, partition, static_cast<unsigned int>(rank_), reach, 2);
+  local_ = model.subset(blocks_.local);
+  exchange_ = std::make_unique<GhostExchange>(blocks_, comm_);
+}
+
+std::vector<char> RankShare::ghost_flags() const
+{
+  std::vector<char> ghost(blocks_.local.size());
+  for (std::size_t i = 0; i < ghost.size(); ++i)
+    ghost[i] = !blocks_.owned[i];
+  return ghost;
+}
+
+int RankShare::local_of(unsigned int global) const
+{
+  const auto at = std::lower_bound(blocks_.local.begin(), blocks_.local.end(), global);
+  if (at == blocks_.local.end() || *at != global)
+    return -1;
+  return static_cast<int>(at - blocks_.local.begin());
+}
+
+bool RankShare::owns(unsigned int global) const
+{
+  const int i = local_of(global);
+  return i >= 0 && blocks_.owned[static_cast<std::size_t>(i)];
+}
+
+void RankShare::sum(std::vector<double>& values) const
+{
+  MPI_Allreduce(MPI_IN_PLACE, values.data(), static_cast<int>(values.size()), MPI_DOUBLE, MPI_SUM,
+                comm_);
+}
+
+unsigned long RankShare::sum(unsigned long value) const
+{
+  unsigned long total = 0;
+  MPI_Allreduce(&value, &total, 1, MPI_UNSIGNED_LONG, MPI_SUM, comm_);
+  return total;
+}
+
+std::pair<double, unsigned int> RankShare::largest(double value, unsigned int global) const
+{
+  // MPI_MAXLOC keeps the smaller index of equal values.
+  struct
+  {
+    double value;
+    int index;
+  } mine{value, static_cast<int>(global)}, all{0.0, 0};
+  MPI_Allreduce(&mine, &all, 1, MPI_DOUBLE_INT, MPI_MAXLOC, comm_);
+  return {all.value, static_cast<unsigned int>(all.index)};
+}
+
+} // namespace talus

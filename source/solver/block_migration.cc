@@ -1,0 +1,626 @@
+#include <talus/joint/continuously_yielding.h>
+#include <talus/solver/block_migration.h>
+#include <talus/solver/rigid_solver.h>
+
+#include <algorithm>
+#include <cstdint>
+#include <cstring>
+#include <map>
+#include <stdexcept>
+#include <type_traits>
+#include <unordered_set>
+
+namespace talus
+{
+
+namespace
+{
+
+/// Values appended bit for bit (plain numbers, and Eigen's fixed-size
+/// vectors and matrices, which are their numbers).
+struct Bytes
+{
+  std::vector<char> data;
+  template <typename T>
+  void put(const T& x)
+  {
+    const char* p = reinterpret_cast<const char*>(&x);
+    data.insert(data.end(), p, p + sizeof(T));
+  }
+};
+
+/// Reads what Bytes wrote, in the same order.
+struct Reader
+{
+  const char* at;
+  template <typename T>
+  T get()
+  {
+    T x;
+    std::memcpy(static_cast<void*>(&x), at, sizeof(T));
+    at += sizeof(T);
+    return x;
+  }
+};
+
+std::uint64_t pair_key(unsigned int a, unsigned int b)
+{
+  return (static_cast<std::uint64_t>(a) << 32) | b;
+}
+
+/// The position of global block g in the ascending `local`, or -1.
+int local_of(const std::vector<unsigned int>& local, unsigned int g)
+{
+  const auto it = std::lower_bound(local.begin(), local.end(), g);
+  return it != local.end() && *it == g ? static_cast<int>(it - local.begin()) : -1;
+}
+
+/// Appends block b of `from` to `to`, every value bit for bit (as
+/// BlockModel::subset).
+void append_block(BlockModel& to, const BlockModel& from, unsigned int b)
+{
+  const unsigned int v0 = from.vertex_start[b], first = to.n_vertices();
+  to.vertex.insert(to.vertex.end(), from.vertex.begin() + v0,
+                   from.vertex.begin() + from.vertex_start[b + 1]);
+  to.vertex_start.push_back(to.n_vertices());
+  for (unsigned int f = from.face_start[b]; f < from.face_start[b + 1]; ++f)
+  {
+    for (unsigned int k = from.face_loop_start[f]; k < from.face_loop_start[f + 1]; ++k)
+      to.face_vertex.push_back(from.face_vertex[k] - v0 + first);
+    to.face_loop_start.push_back(static_cast<unsigned int>(to.face_vertex.size()));
+    to.face_normal.push_back(from.face_normal[f]);
+    to.face_origin.push_back(from.face_origin[f]);
+    if (!from.face_corner_share.empty())
+      to.face_corner_share.push_back(from.face_corner_share[f]);
+  }
+  to.face_start.push_back(to.n_faces());
+  to.volume.push_back(from.volume[b]);
+  to.centroid.push_back(from.centroid[b]);
+  to.inertia.push_back(from.inertia[b]);
+  to.group.push_back(from.group[b]);
+}
+
+void put_geometry(Bytes& out, const BlockModel& m, unsigned int b)
+{
+  const unsigned int v0 = m.vertex_start[b];
+  out.put<unsigned int>(m.vertex_start[b + 1] - v0);
+  out.put<unsigned int>(m.face_start[b + 1] - m.face_start[b]);
+  out.put<char>(!m.face_corner_share.empty());
+  for (unsigned int v = v0; v < m.vertex_start[b + 1]; ++v)
+    out.put(m.vertex[v]);
+  for (unsigned int f = m.face_start[b]; f < m.face_start[b + 1]; ++f)
+  {
+    out.put<unsigned int>(m.face_loop_start[f + 1] - m.face_loop_start[f]);
+    for (unsigned int k = m.face_loop_start[f]; k < m.face_loop_start[f + 1]; ++k)
+      out.put<unsigned int>(m.face_vertex[k] - v0);
+    out.put(m.face_normal[f]);
+    out.put(m.face_origin[f]);
+    if (!m.face_corner_share.empty())
+      out.put(m.face_corner_share[f]);
+  }
+  out.put(m.volume[b]);
+  out.put(m.centroid[b]);
+  out.put(m.inertia[b]);
+  out.put(m.group[b]);
+}
+
+/// Reads put_geometry's block as the one block of `m`.
+void get_geometry(Reader& in, BlockModel& m)
+{
+  const unsigned int nv = in.get<unsigned int>(), nf = in.get<unsigned int>();
+  const bool shares = in.get<char>() != 0;
+  for (unsigned int v = 0; v < nv; ++v)
+    m.vertex.push_back(in.get<Vec3>());
+  m.vertex_start.push_back(nv);
+  for (unsigned int f = 0; f < nf; ++f)
+  {
+    const unsigned int loop = in.get<unsigned int>();
+    for (unsigned int k = 0; k < loop; ++k)
+      m.face_vertex.push_back(in.get<unsigned int>());
+    m.face_loop_start.push_back(static_cast<unsigned int>(m.face_vertex.size()));
+    m.face_normal.push_back(in.get<Vec3>());
+    m.face_origin.push_back(in.get<int>());
+    if (shares)
+      m.face_corner_share.push_back(in.get<std::array<double, 3>>());
+  }
+  m.face_start.push_back(nf);
+  m.volume.push_back(in.get<double>());
+  m.centroid.push_back(in.get<Vec3>());
+  m.inertia.push_back(in.get<std::array<double, 6>>());
+  m.group.push_back(in.get<unsigned int>());
+}
+
+/// One int per rank each way (MPI_Alltoall), then the messages whose
+/// lengths they give, point to point between the ranks with something to
+/// trade.
+std::vector<std::vector<char>> trade(const std::vector<std::vector<char>>& out, MPI_Comm comm,
+                                     int tag)
+{
+  const int ranks = static_cast<int>(out.size());
+  std::vector<int> send_count(ranks), receive_count(ranks);
+  for (int r = 0; r < ranks; ++r)
+    send_count[r] = static_cast<int>(out[r].size());
+  MPI_Alltoall(send_count.data(), 1, MPI_INT, receive_count.data(), 1, MPI_INT, comm);
+  std::vector<std::vector<char>> in(ranks);
+  std::vector<MPI_Request> requests;
+  for (int r = 0; r < ranks; ++r)
+    if (receive_count[r] > 0)
+    {
+      in[r].resize(receive_count[r]);
+      requests.emplace_back();
+      MPI_Irecv(in[r].data(), receive_count[r], MPI_BYTE, r, tag, comm, &requests.back());
+    }
+  for (int r = 0; r < ranks; ++r)
+    if (send_count[r] > 0)
+    {
+      requests.emplace_back();
+      MPI_Isend(out[r].data(), send_count[r], MPI_BYTE, r, tag, comm, &requests.back());
+    }
+  if (MPI_Waitall(static_cast<int>(requests.size()), requests.data(), MPI_STATUSES_IGNORE) !=
+      MPI_SUCCESS)
+    throw std::runtime_error("BlockMigration: a message between ranks failed");
+  return in;
+}
+
+} // namespace
+
+template <typename Visit>
+void BlockMigration::visit_block_arrays(RigidSolver& s, Visit&& visit)
+{
+  visit(s.mass);
+  visit(s.inertial_mass);
+  visit(s.inertia);
+  visit(s.velocity);
+  visit(s.spin);
+  visit(s.force);
+  visit(s.moment);
+  visit(s.displacement);
+  visit(s.rotation);
+  visit(s.fixed);
+  visit(s.applied_force);
+  visit(s.applied_force_rate);
+  visit(s.prescribed);
+  visit(s.moved);
+  visit(s.path);
+  visit(s.last_force_);
+  visit(s.last_moment_);
+  visit(s.motion_dx_);
+  visit(s.motion_dtheta_);
+  visit(s.damping_force_);
+  visit(s.damping_moment_);
+  visit(s.is_deformable_);
+  visit(s.removed_);
+  visit(s.true_inertia_);
+  visit(s.envelopes_);
+  if (s.s_.principal_inertia)
+  {
+    visit(s.principal_moments);
+    visit(s.axes);
+    visit(s.true_principal_);
+  }
+  if (!s.timed_force_.empty())
+  {
+    visit(s.timed_force_);
+    visit(s.timed_velocity_);
+    visit(s.timed_held_);
+  }
+}
+
+BlockMigration::BlockMigration(const RigidSolver& solver, const RankBlocks& blocks,
+                               const CellPartition& partition, double reach, unsigned int layers,
+                               MPI_Comm comm)
+    : partition_(partition), reach_(reach), layers_(layers), comm_(comm),
+      allowance_(0.5 * (reach - 2.0 * solver.s_.contact.tolerance)), path_at_choice_(solver.path)
+{
+  if (!(allowance_ > 0.0))
+    throw std::invalid_argument("BlockMigration: the reach must exceed twice the contact "
+                                "tolerance (the rest is the motion allowed between choices)");
+  if (blocks.local.size() != solver.path.size())
+    throw std::invalid_argument("BlockMigration: the solver does not hold these blocks");
+}
+
+bool BlockMigration::due(const RigidSolver& solver, const RankBlocks& blocks) const
+{
+  bool mine = false;
+  for (std::size_t i = 0; i < blocks.local.size() && !mine; ++i)
+    if (blocks.owned[i] && !solver.removed_[i])
+      mine = solver.path[i] - path_at_choice_[i] > allowance_ ||
+             partition_.owner(solver.m_.centroid[i]) != blocks.rank;
+  if (solver.ranks_.any)
+    return solver.ranks_.any(mine);
+  int in = mine, out = 0; // a solver not split_among_ranks: decided here all the same
+  MPI_Allreduce(&in, &out, 1, MPI_INT, MPI_LOR, comm_);
+  return out != 0;
+}
+
+bool BlockMigration::update(RigidSolver& solver, RankBlocks& blocks)
+{
+  if (!due(solver, blocks))
+    return false;
+  migrate(solver, blocks);
+  return true;
+}
+
+void BlockMigration::migrate(RigidSolver& s, RankBlocks& blocks)
+{
+  if (s.zones_ != nullptr || !s.face_loads_.empty() || !s.water_loads_.empty())
+    throw std::logic_error("BlockMigration: blocks with zones, face loads or water do not "
+                           "move between ranks yet");
+  int rank = 0, n_ranks = 1;
+  MPI_Comm_rank(comm_, &rank);
+  MPI_Comm_size(comm_, &n_ranks);
+  BlockModel& m = s.m_;
+  ContactSet& cs = s.contacts_;
+  const std::vector<unsigned int>& old_local = blocks.local;
+  const unsigned int n_old = static_cast<unsigned int>(old_local.size());
+
+  // 1. Each owned block's box and centroid to the ranks whose regions come
+  // within `span` of its box, point to point. A block whose centroid lies
+  // in a region has its box there; one within `layers` steps of it (a step:
+  // boxes within the reach) lies within layers (reach + s) of the region, s
+  // the longest side of any block's box; so does every block on a chain of
+  // `layers` steps from a block of this rank to one of another's, which
+  // decides what this rank sends that one. Every rank then chooses its
+  // blocks and lists as it would from the whole model. (s: the boxes as
+  // they are now; one step more of margin.)
+  double largest = 0.0;
+  std::vector<Box> own_box(n_old);
+  for (unsigned int i = 0; i < n_old; ++i)
+    if (blocks.owned[i] && !s.removed_[i])
+    {
+      Box e{m.vertex[m.vertex_start[i]], m.vertex[m.vertex_start[i]]};
+      for (unsigned int v = m.vertex_start[i]; v < m.vertex_start[i + 1]; ++v)
+      {
+        e.lo = e.lo.cwiseMin(m.vertex[v]);
+        e.hi = e.hi.cwiseMax(m.vertex[v]);
+      }
+      own_box[i] = e;
+      largest = std::max(largest, (e.hi - e.lo).maxCoeff());
+    }
+  MPI_Allreduce(MPI_IN_PLACE, &largest, 1, MPI_DOUBLE, MPI_MAX, comm_);
+  const double span = (layers_ + 1) * (reach_ + largest);
+  std::vector<std::vector<char>> boxes_out(n_ranks);
+  std::vector<unsigned int> near;
+  for (unsigned int i = 0; i < n_old; ++i)
+    if (blocks.owned[i] && !s.removed_[i]) // a removed block is held nowhere from now on
+    {
+      partition_.ranks_near(own_box[i], span, near);
+      Bytes record;
+      record.put(old_local[i]);
+      record.put(own_box[i].lo);
+      record.put(own_box[i].hi);
+      record.put(m.centroid[i]);
+      for (unsigned int q : near)
+        boxes_out[q].insert(boxes_out[q].end(), record.data.begin(), record.data.end());
+    }
+  const std::vector<std::vector<char>> boxes_in = trade(boxes_out, comm_, 2411);
+  // The blocks this rank knows of, by global number: box, old and new owner.
+  struct Known
+  {
+    unsigned int block, old_owner, owner;
+    Box box;
+  };
+  std::vector<Known> known;
+  for (int r = 0; r < n_ranks; ++r)
+  {
+    Reader in{boxes_in[r].data()};
+    while (in.at != boxes_in[r].data() + boxes_in[r].size())
+    {
+      Known k;
+      k.block = in.get<unsigned int>();
+      k.old_owner = static_cast<unsigned int>(r);
+      k.box.lo = in.get<Vec3>();
+      k.box.hi = in.get<Vec3>();
+      k.owner = partition_.owner(in.get<Vec3>());
+      known.push_back(k);
+    }
+  }
+  std::sort(known.begin(), known.end(),
+            [](const Known& a, const Known& b) { return a.block < b.block; });
+  std::vector<Box> box(known.size());
+  std::vector<unsigned int> owner(known.size());
+  long taken_over = 0; // blocks this rank owns now that another owned
+  for (std::size_t k = 0; k < known.size(); ++k)
+  {
+    box[k] = known[k].box;
+    owner[k] = known[k].owner;
+    taken_over += known[k].owner == static_cast<unsigned int>(rank) &&
+                  known[k].old_owner != static_cast<unsigned int>(rank);
+  }
+  MPI_Allreduce(MPI_IN_PLACE, &taken_over, 1, MPI_LONG, MPI_SUM, comm_);
+  owner_changes_ += static_cast<unsigned long>(taken_over);
+  // Chosen among the known blocks, then numbered globally again (the
+  // lists hold positions in `local`, which stay).
+  RankBlocks next = decompose_blocks(box, owner, static_cast<unsigned int>(rank), reach_, layers_);
+  std::vector<unsigned int> old_owner(next.local.size());
+  for (std::size_t j = 0; j < next.local.size(); ++j)
+  {
+    old_owner[j] = known[next.local[j]].old_owner;
+    next.local[j] = known[next.local[j]].block;
+  }
+  const unsigned int n_new = static_cast<unsigned int>(next.local.size());
+
+  // 2. Requests: the blocks this rank newly holds, to their old owners.
+  std::vector<int> old_of(n_new); // per new local block: its old local index, or -1
+  std::vector<std::vector<char>> request(n_ranks);
+  for (unsigned int j = 0; j < n_new; ++j)
+  {
+    old_of[j] = local_of(old_local, next.local[j]);
+    if (old_of[j] < 0)
+    {
+      Bytes b;
+      b.put(next.local[j]);
+      auto& to = request[old_owner[j]];
+      to.insert(to.end(), b.data.begin(), b.data.end());
+      ++received_;
+    }
+  }
+  std::vector<int> new_of(n_old, -1); // per old local block: its new local index, or -1
+  for (unsigned int j = 0; j < n_new; ++j)
+    if (old_of[j] >= 0)
+      new_of[old_of[j]] = static_cast<int>(j);
+  for (unsigned int i = 0; i < n_old; ++i)
+    dropped_ += new_of[i] < 0;
+  const std::vector<std::vector<char>> asked = trade(request, comm_, 2412);
+
+  // 3. Replies: each block asked for with its geometry, its state in the
+  // solver and every contact it has (an owned block has all of its own).
+  // The sub-contacts of a contact are contiguous (ContactSet's pair order).
+  std::vector<unsigned int> sc_begin(cs.n_slots(), 0), sc_end(cs.n_slots(), 0);
+  for (unsigned int k = 0; k < cs.n_subcontacts(); ++k)
+  {
+    const unsigned int c = cs.sc_contact[k];
+    if (sc_end[c] == 0)
+      sc_begin[c] = k;
+    sc_end[c] = k + 1;
+  }
+  std::vector<std::vector<unsigned int>> contacts_of(n_old);
+  for (unsigned int c = 0; c < cs.n_slots(); ++c)
+    if (cs.alive[c])
+    {
+      contacts_of[cs.block_a[c]].push_back(c);
+      contacts_of[cs.block_b[c]].push_back(c);
+    }
+  const bool dilation = s.s_.contact.dilation, yielding = s.s_.contact.yielding;
+  // A contact with its sub-contacts, blocks by global number.
+  const auto put_contact = [&](Bytes& out, unsigned int c)
+  {
+    out.put(old_local[cs.block_a[c]]);
+    out.put(old_local[cs.block_b[c]]);
+    out.put(cs.plane[c]);
+    out.put(cs.gap[c]);
+    out.put(cs.type[c]);
+    out.put(cs.material[c]);
+    out.put(cs.path_at_update[c]);
+    out.put<unsigned int>(sc_end[c] - sc_begin[c]);
+    for (unsigned int k = sc_begin[c]; k < sc_end[c]; ++k)
+    {
+      out.put(cs.sc_position[k]);
+      out.put(cs.sc_area[k]);
+      out.put(cs.sc_un[k]);
+      out.put(cs.sc_fn[k]);
+      for (int d = 0; d < 3; ++d)
+        out.put(cs.sc_fs[3 * k + d]);
+      for (int d = 0; d < 3; ++d)
+        out.put(cs.sc_us[3 * k + d]);
+      out.put(cs.sc_state[k]);
+      out.put(cs.sc_material[k]);
+      out.put(cs.sc_fresh[k]);
+      if (dilation)
+        out.put(cs.sc_dilation[k]);
+      if (yielding)
+        for (unsigned int y = 0; y < yield_state_size; ++y)
+          out.put(cs.sc_yield[yield_state_size * k + y]);
+    }
+  };
+  std::vector<std::vector<char>> reply(n_ranks);
+  for (int r = 0; r < n_ranks; ++r)
+  {
+    Bytes out;
+    Reader in{asked[r].data()};
+    for (std::size_t k = 0; k < asked[r].size() / sizeof(unsigned int); ++k)
+    {
+      const unsigned int g = in.get<unsigned int>();
+      const int i = local_of(old_local, g);
+      if (i < 0 || !blocks.owned[i])
+        throw std::logic_error("BlockMigration: asked for a block this rank does not own");
+      out.put(g);
+      put_geometry(out, m, static_cast<unsigned int>(i));
+      visit_block_arrays(s, [&](auto& array) { out.put(array[i]); });
+      out.put<unsigned int>(static_cast<unsigned int>(contacts_of[i].size()));
+      for (unsigned int c : contacts_of[i])
+        put_contact(out, c);
+    }
+    reply[r] = std::move(out.data);
+  }
+  const std::vector<std::vector<char>> got = trade(reply, comm_, 2413);
+
+  // 4. The blocks received: geometry as one-block models, where their
+  // solver state starts, and their contacts (records of put_contact) with
+  // blocks held here from now on, each pair once (a contact between two
+  // blocks new here comes from both their owners). None of them is among
+  // the contacts kept, which join two blocks held before.
+  std::vector<BlockModel> arrived(n_new);
+  std::vector<const char*> arrays_of(n_new, nullptr);
+  std::vector<std::pair<std::uint64_t, const char*>> received_contacts;
+  std::unordered_set<std::uint64_t> have;
+  const auto skip_contact = [&](Reader& in)
+  {
+    const char* start = in.at;
+    const unsigned int a = in.get<unsigned int>(), b = in.get<unsigned int>();
+    in.at += sizeof(CommonPlane) + sizeof(double) + sizeof(ContactType) + sizeof(unsigned char) +
+             sizeof(double);
+    const unsigned int n_sc = in.get<unsigned int>();
+    in.at += n_sc *
+             (sizeof(Vec3) + 9 * sizeof(double) + 3 * sizeof(unsigned char) +
+              (dilation ? sizeof(double) : 0) + (yielding ? yield_state_size * sizeof(double) : 0));
+    const int la = local_of(next.local, a), lb = local_of(next.local, b);
+    if (la >= 0 && lb >= 0 && have.insert(pair_key(la, lb)).second)
+      received_contacts.emplace_back(pair_key(la, lb), start);
+  };
+  std::size_t arrays_size = 0;
+  visit_block_arrays(s, [&](auto& array) { arrays_size += sizeof(array[0]); });
+  for (int r = 0; r < n_ranks; ++r)
+  {
+    Reader in{got[r].data()};
+    while (in.at != got[r].data() + got[r].size())
+    {
+      const int j = local_of(next.local, in.get<unsigned int>());
+      get_geometry(in, arrived[j]);
+      arrays_of[j] = in.at;
+      in.at += arrays_size;
+      const unsigned int n_contacts = in.get<unsigned int>();
+      for (unsigned int k = 0; k < n_contacts; ++k)
+        skip_contact(in);
+    }
+  }
+
+  // 5. The model and the solver's arrays in the new local order (the
+  // global order): kept blocks from here, others as received.
+  BlockModel model;
+  model.group_names = m.group_names;
+  for (unsigned int j = 0; j < n_new; ++j)
+    if (old_of[j] >= 0)
+      append_block(model, m, static_cast<unsigned int>(old_of[j]));
+    else
+      append_block(model, arrived[j], 0);
+  std::size_t at = 0; // byte offset of the array in a received block's state
+  visit_block_arrays(s,
+                     [&](auto& array)
+                     {
+                       using T = typename std::decay_t<decltype(array)>::value_type;
+                       std::vector<T> next_array(n_new);
+                       for (unsigned int j = 0; j < n_new; ++j)
+                         if (old_of[j] >= 0)
+                           next_array[j] = array[old_of[j]];
+                         else
+                           std::memcpy(static_cast<void*>(&next_array[j]), arrays_of[j] + at,
+                                       sizeof(T));
+                       at += sizeof(T);
+                       array.swap(next_array);
+                     });
+  m = std::move(model);
+
+  // 6. The contacts again, in block-pair order (those kept are in it
+  // already, the global order being kept), slots in that order, each
+  // contact's sub-contacts after its predecessor's.
+  cs.sort_by_pair();
+  std::vector<std::pair<std::uint64_t, unsigned int>> kept; // new pair, old slot
+  for (const unsigned int c : cs.pair_order_)
+    if (cs.alive[c] && new_of[cs.block_a[c]] >= 0 && new_of[cs.block_b[c]] >= 0)
+      kept.emplace_back(pair_key(new_of[cs.block_a[c]], new_of[cs.block_b[c]]), c);
+  std::sort(received_contacts.begin(), received_contacts.end());
+  ContactSet laid;
+  const auto add_contact = [&](std::uint64_t key)
+  {
+    const unsigned int c = laid.n_slots();
+    laid.block_a.push_back(static_cast<unsigned int>(key >> 32));
+    laid.block_b.push_back(static_cast<unsigned int>(key & 0xffffffffu));
+    laid.alive.push_back(1);
+    laid.slot_of_pair_[key] = c;
+    ++laid.n_alive_;
+    return c;
+  };
+  const auto add_kept = [&](std::uint64_t key, unsigned int old)
+  {
+    const unsigned int c = add_contact(key);
+    laid.plane.push_back(cs.plane[old]);
+    laid.gap.push_back(cs.gap[old]);
+    laid.type.push_back(cs.type[old]);
+    laid.material.push_back(cs.material[old]);
+    laid.path_at_update.push_back(cs.path_at_update[old]);
+    for (unsigned int k = sc_begin[old]; k < sc_end[old]; ++k)
+    {
+      laid.sc_contact.push_back(c);
+      laid.sc_position.push_back(cs.sc_position[k]);
+      laid.sc_area.push_back(cs.sc_area[k]);
+      laid.sc_un.push_back(cs.sc_un[k]);
+      laid.sc_fn.push_back(cs.sc_fn[k]);
+      laid.sc_fs.insert(laid.sc_fs.end(), &cs.sc_fs[3 * k], &cs.sc_fs[3 * k] + 3);
+      laid.sc_us.insert(laid.sc_us.end(), &cs.sc_us[3 * k], &cs.sc_us[3 * k] + 3);
+      laid.sc_state.push_back(cs.sc_state[k]);
+      laid.sc_material.push_back(cs.sc_material[k]);
+      laid.sc_fresh.push_back(cs.sc_fresh[k]);
+      if (dilation)
+        laid.sc_dilation.push_back(cs.sc_dilation[k]);
+      if (yielding)
+        laid.sc_yield.insert(laid.sc_yield.end(), &cs.sc_yield[yield_state_size * k],
+                             &cs.sc_yield[yield_state_size * k] + yield_state_size);
+    }
+  };
+  const auto add_received = [&](std::uint64_t key, const char* record)
+  {
+    Reader in{record + 2 * sizeof(unsigned int)};
+    const unsigned int c = add_contact(key);
+    laid.plane.push_back(in.get<CommonPlane>());
+    laid.gap.push_back(in.get<double>());
+    laid.type.push_back(in.get<ContactType>());
+    laid.material.push_back(in.get<unsigned char>());
+    laid.path_at_update.push_back(in.get<double>());
+    const unsigned int n_sc = in.get<unsigned int>();
+    for (unsigned int k = 0; k < n_sc; ++k)
+    {
+      laid.sc_contact.push_back(c);
+      laid.sc_position.push_back(in.get<Vec3>());
+      laid.sc_area.push_back(in.get<double>());
+      laid.sc_un.push_back(in.get<double>());
+      laid.sc_fn.push_back(in.get<double>());
+      for (int d = 0; d < 3; ++d)
+        laid.sc_fs.push_back(in.get<double>());
+      for (int d = 0; d < 3; ++d)
+        laid.sc_us.push_back(in.get<double>());
+      laid.sc_state.push_back(in.get<unsigned char>());
+      laid.sc_material.push_back(in.get<unsigned char>());
+      laid.sc_fresh.push_back(in.get<unsigned char>());
+      if (dilation)
+        laid.sc_dilation.push_back(in.get<double>());
+      if (yielding)
+        for (unsigned int y = 0; y < yield_state_size; ++y)
+          laid.sc_yield.push_back(in.get<double>());
+    }
+  };
+  for (std::size_t k = 0, r = 0; k < kept.size() || r < received_contacts.size();)
+    if (r == received_contacts.size() ||
+        (k < kept.size() && kept[k].first < received_contacts[r].first))
+    {
+      add_kept(kept[k].first, kept[k].second);
+      ++k;
+    }
+    else
+    {
+      add_received(received_contacts[r].first, received_contacts[r].second);
+      ++r;
+    }
+  laid.is_deformable_ = cs.is_deformable_; // rigid only: none
+  laid.vertex_gridpoint_ = cs.vertex_gridpoint_;
+  cs = std::move(laid);
+
+  // 7. The rest of the solver: ghosts, the cell space on the blocks held
+  // now, eq. 1's flag for the blocks received, the block of the ratio.
+  s.ghost_.assign(n_new, 0);
+  for (unsigned int j = 0; j < n_new; ++j)
+  {
+    s.ghost_[j] = !next.owned[j];
+    if (old_of[j] < 0)
+      s.moved_beyond_tolerance_ |= s.moved[j] > s.s_.contact.tolerance;
+  }
+  Box bounds{Vec3::Zero(), Vec3::Zero()};
+  if (!m.vertex.empty())
+    bounds = Box{m.vertex[0], m.vertex[0]};
+  for (const Vec3& v : m.vertex)
+  {
+    bounds.lo = bounds.lo.cwiseMin(v);
+    bounds.hi = bounds.hi.cwiseMax(v);
+  }
+  s.cells_.define(bounds, n_new);
+  s.ratio_block_ = s.ratio_block_ < n_old && new_of[s.ratio_block_] >= 0
+                       ? static_cast<unsigned int>(new_of[s.ratio_block_])
+                       : 0;
+  s.too_fast_.clear();
+  s.pairs_.clear();
+  blocks = std::move(next);
+  path_at_choice_ = s.path;
+  ++events_;
+}
+
+} // namespace talus
