@@ -243,7 +243,15 @@ void BlockCycle::step()
 {
   system_.solver->step();
   if (share_)
+  {
+    // The block of the largest force by its global number: the refresh may
+    // hand blocks to other ranks and number the rest again.
+    const unsigned int b = system_.solver->unbalanced_block();
+    const bool mine = b < model_.n_blocks() && share_->blocks().owned[b];
+    unbalanced_ = {mine ? system_.solver->local_unbalanced_force() : -1.0,
+                   mine ? share_->global_of(b) : 0};
     share_->refresh(*system_.solver);
+  }
 }
 unsigned long BlockCycle::steps_done() const
 {
@@ -600,8 +608,8 @@ std::string BlockCycle::unbalanced_where() const
   if (share_)
   {
     // The rank with the largest force names its block, and sends where it is.
-    const auto [force, global] =
-        share_->largest(system_.solver->local_unbalanced_force(), share_->global_of(b));
+    // (A rank with no free block offers none.)
+    const auto [force, global] = share_->largest(unbalanced_.first, unbalanced_.second);
     (void)force;
     const int at = share_->owns(global) ? share_->local_of(global) : -1;
     std::vector<double> where(4, 0.0); // centroid and group

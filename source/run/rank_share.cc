@@ -10,6 +10,14 @@
 namespace talus
 {
 
+namespace
+{
+/// Layers of ghosts: one holds every block an owned block can touch; the
+/// second, every block those can touch, so that a ghost that becomes owned
+/// has its contacts already.
+constexpr unsigned int layers = 2;
+} // namespace
+
 int world_ranks()
 {
   int started = 0, ranks = 1;
@@ -83,7 +91,8 @@ void check_runs_on_ranks(const Scene& scene, int ranks)
                       "checkpoints: " + on + " without checkpoints", allowed);
 }
 
-RankShare::RankShare(const BlockModel& model, double reach, MPI_Comm comm) : comm_(comm)
+RankShare::RankShare(const BlockModel& model, double reach, MPI_Comm comm)
+    : comm_(comm), reach_(reach)
 {
   MPI_Comm_rank(comm, &rank_);
   MPI_Comm_size(comm, &ranks_);
@@ -99,12 +108,27 @@ RankShare::RankShare(const BlockModel& model, double reach, MPI_Comm comm) : com
   }
   CellSpace cells;
   cells.define(domain, model.n_blocks());
-  const CellPartition partition(domain, domain.lo, cells.cell_size(), model.centroid,
-                                std::vector<double>(model.n_blocks(), 1.0),
-                                static_cast<unsigned int>(ranks_));
-  blocks_ = decompose_blocks(model, partition, static_cast<unsigned int>(rank_), reach, 2);
+  partition_ = std::make_unique<CellPartition>(domain, domain.lo, cells.cell_size(),
+                                               model.centroid,
+                                               std::vector<double>(model.n_blocks(), 1.0),
+                                               static_cast<unsigned int>(ranks_));
+  blocks_ = decompose_blocks(model, *partition_, static_cast<unsigned int>(rank_), reach, layers);
   local_ = model.subset(blocks_.local);
   exchange_ = std::make_unique<GhostExchange>(blocks_, comm_);
+}
+
+void RankShare::refresh(RigidSolver& solver)
+{
+  exchange_->refresh(solver);
+  if (!migration_)
+    migration_ = std::make_unique<BlockMigration>(solver, blocks_, *partition_, reach_, layers,
+                                                  comm_);
+  migration_->update(solver, blocks_);
+}
+
+unsigned long RankShare::migrations() const
+{
+  return migration_ ? migration_->events() : 0;
 }
 
 std::vector<char> RankShare::ghost_flags() const

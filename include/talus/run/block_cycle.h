@@ -74,6 +74,9 @@ private:
   /// The blocks' centroids as built (m): where stage regions select them.
   std::vector<Vec3> built_centroid_;
 
+  /// On ranks: this rank's largest unbalanced force at the last step (N;
+  /// -1: none) and its block's global number.
+  std::pair<double, unsigned int> unbalanced_{-1.0, 0};
   /// The global block that moved most (owned by any rank), and how far (m).
   std::pair<double, unsigned int> largest_displacement() const;
   /// Writes this rank's piece of a frame (`name` + "_<rank>.vtu") and, on

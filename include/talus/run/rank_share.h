@@ -1,8 +1,10 @@
 #pragma once
 
 #include <talus/contact/block_decomposition.h>
+#include <talus/contact/cell_partition.h>
 #include <talus/model/block_model.h>
 #include <talus/scene/scene.h>
+#include <talus/solver/block_migration.h>
 #include <talus/solver/ghost_exchange.h>
 
 #include <mpi.h>
@@ -64,8 +66,13 @@ public:
   int local_of(unsigned int global) const;
   bool owns(unsigned int global) const;
 
-  /// Ghosts refreshed from their owners after a step.
-  void refresh(RigidSolver& solver) { exchange_->refresh(solver); }
+  /// After a step: the ghosts refreshed from their owners, then the blocks
+  /// handed to other ranks when they have moved far enough
+  /// (BlockMigration; local numbers may change: local() changes in place
+  /// and blocks() gives the new map).
+  void refresh(RigidSolver& solver);
+  /// Migration events so far, and the blocks that changed owner in them.
+  unsigned long migrations() const;
   /// Doubles sent by this rank at the last refresh.
   std::size_t sent() const { return exchange_->sent(); }
 
@@ -83,9 +90,12 @@ public:
 private:
   MPI_Comm comm_;
   int rank_ = 0, ranks_ = 1;
+  double reach_;
+  std::unique_ptr<CellPartition> partition_;
   RankBlocks blocks_;
   BlockModel local_;
   std::unique_ptr<GhostExchange> exchange_;
+  std::unique_ptr<BlockMigration> migration_; ///< made at the first refresh
 };
 
 } // namespace talus
