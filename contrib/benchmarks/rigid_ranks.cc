@@ -12,6 +12,7 @@
 #include "benchmark_arguments.h"
 #include "settling_cubes.h"
 
+#include <talus/base/memory.h>
 #include <talus/base/parallel_environment.h>
 #include <talus/contact/block_decomposition.h>
 #include <talus/geometry/block_generator.h>
@@ -23,10 +24,12 @@
 #include <mpi.h>
 
 #include <chrono>
+#include <cmath>
 #include <cstdio>
 #include <ctime>
 #include <fstream>
 #include <string>
+#include <vector>
 
 using namespace talus;
 
@@ -85,6 +88,7 @@ int main(int argc, char** argv)
                                 std::vector<double>(model.n_blocks(), 1.0),
                                 static_cast<unsigned int>(ranks));
   const double reach = 4.0 * s.contact.tolerance;
+  const double memory_before = peak_memory(); // bytes: with the whole model built
   RankBlocks mine = decompose_blocks(model, partition, static_cast<unsigned int>(rank), reach, 2);
   BlockModel local = model.subset(mine.local);
   RigidSolver solver(local, 2650.0, s);
@@ -96,13 +100,54 @@ int main(int argc, char** argv)
   BlockMigration migration(solver, mine, partition, reach, 2, comm);
   MPI_Barrier(comm);
   const auto start = std::chrono::steady_clock::now();
+  double exchange_seconds = 0.0; // in GhostExchange::refresh, this rank
   for (unsigned long k = 0; k < steps; ++k)
   {
     solver.step();
+    const auto refresh_start = std::chrono::steady_clock::now();
     exchange.refresh(solver);
+    exchange_seconds += seconds_since(refresh_start);
     migration.update(solver, mine);
   }
   const double mine_seconds = seconds_since(start);
+  // The rise of the peak resident memory of a rank that never ran the whole
+  // model (rank 1) with its share (blocks, solver, contacts, exchange), per
+  // block it holds (ghosts included).
+  double memory_per_block =
+      rank == 1 ? (peak_memory() - memory_before) / double(mine.local.size()) : 0.0;
+  MPI_Allreduce(MPI_IN_PLACE, &memory_per_block, 1, MPI_DOUBLE, MPI_MAX, comm);
+
+  // This machine's MPI between ranks 0 and 1: latency (8-byte round trips)
+  // and bandwidth (1 MB messages), for the exchange model.
+  const auto ping_pong = [&](std::size_t bytes, int trips)
+  {
+    std::vector<char> buffer(bytes);
+    MPI_Barrier(comm);
+    const auto t0 = std::chrono::steady_clock::now();
+    for (int k = 0; k < trips && ranks > 1; ++k)
+      if (rank == 0)
+      {
+        MPI_Send(buffer.data(), int(bytes), MPI_CHAR, 1, 7, comm);
+        MPI_Recv(buffer.data(), int(bytes), MPI_CHAR, 1, 7, comm, MPI_STATUS_IGNORE);
+      }
+      else if (rank == 1)
+      {
+        MPI_Recv(buffer.data(), int(bytes), MPI_CHAR, 0, 7, comm, MPI_STATUS_IGNORE);
+        MPI_Send(buffer.data(), int(bytes), MPI_CHAR, 0, 7, comm);
+      }
+    return seconds_since(t0) / (2.0 * trips); // one way
+  };
+  const double latency = ping_pong(8, 2000);
+  const double bandwidth = 1e6 / (ping_pong(1000000, 200) - latency); // bytes/s
+  double allreduce = 0.0; // one MPI_Allreduce of a double
+  {
+    double x = rank;
+    MPI_Barrier(comm);
+    const auto t0 = std::chrono::steady_clock::now();
+    for (int k = 0; k < 2000; ++k)
+      MPI_Allreduce(MPI_IN_PLACE, &x, 1, MPI_DOUBLE, MPI_MAX, comm);
+    allreduce = seconds_since(t0) / 2000.0;
+  }
   // The cost of one migration event, forced: the boxes gathered, the
   // ghosts chosen again, the blocks traded.
   MPI_Barrier(comm);
@@ -124,6 +169,8 @@ int main(int argc, char** argv)
   double sent = static_cast<double>(exchange.sent()) * 8.0, sent_all = 0.0;
   MPI_Reduce(&held, &held_all, 1, MPI_LONG, MPI_SUM, 0, comm);
   MPI_Reduce(&sent, &sent_all, 1, MPI_DOUBLE, MPI_SUM, 0, comm);
+  double exchange_all = 0.0;
+  MPI_Reduce(&exchange_seconds, &exchange_all, 1, MPI_DOUBLE, MPI_MAX, 0, comm);
   if (rank == 0)
   {
     const std::time_t now = std::time(nullptr);
@@ -143,5 +190,43 @@ int main(int argc, char** argv)
                 "after the steps took %.3f s on rank 0 and chose %s\n",
                 migration.events() - 1, migration.owner_changes(), event_seconds,
                 same ? "the blocks and lists of the start" : "OTHER BLOCKS OR LISTS (wrong)");
+    if (ranks < 2)
+      return 0;
+    std::printf("exchange: %.1f %% of the split run's time (the slowest rank in GhostExchange)\n",
+                100.0 * exchange_all / split_seconds);
+    std::printf("MPI between ranks 0 and 1: latency %.2f us, bandwidth %.2f GB/s, one "
+                "MPI_Allreduce %.2f us\n",
+                1e6 * latency, 1e-9 * bandwidth, 1e6 * allreduce);
+    std::printf("memory per block held (rank 1: the rise of its peak resident memory with its "
+                "share, ghosts included): %.0f bytes\n",
+                memory_per_block);
+
+    // The exchange model: P ranks, each a cube of m = N / P blocks of side
+    // L = m^(1/3) (in block sizes). A rank holds (L + 4)^3 blocks (two
+    // layers of ghosts on every side), computes contacts for all of them
+    // and moves its m, at the rate of the whole run (t per block-step);
+    // it sends each of its blocks within two layers of a face to that
+    // neighbour (12 L^2 blocks, plus edges and corners: (L + 4)^3 - L^3 in
+    // all) at the measured bytes per ghost, to 26 neighbours (latency
+    // each), and takes part in 5 reductions of log2 P latencies each.
+    const double t_block = serial_seconds / (double(model.n_blocks()) * steps);
+    const double ghosts_here = double(held_all - model.n_blocks());
+    const double bytes_per_ghost = ghosts_here > 0.0 ? sent_all / ghosts_here : 0.0;
+    std::printf("model inputs: %.3g s per block-step (whole run), %.0f bytes per ghost sent\n",
+                t_block, bytes_per_ghost);
+    for (const double total : {1e7})
+      for (const double p : {64.0, 1000.0})
+      {
+        const double m = total / p, side = std::cbrt(m);
+        const double held_blocks = std::pow(side + 4.0, 3);
+        const double compute = held_blocks * t_block; // ghosts' contacts computed again
+        const double sent_bytes = (held_blocks - m) * bytes_per_ghost;
+        const double talk = 26.0 * latency + sent_bytes / bandwidth +
+                            5.0 * std::log2(p) * latency;
+        const double efficiency = m * t_block / (compute + talk);
+        std::printf("predicted: %.0f blocks on %.0f ranks: %.0f blocks a rank, held %.2f times; "
+                    "%.3g s computing and %.3g s exchanging a step; efficiency %.0f %%\n",
+                    total, p, m, held_blocks / m, compute, talk, 100.0 * efficiency);
+      }
   }
 }
