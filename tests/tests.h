@@ -12,6 +12,7 @@
 #include <cstdlib>
 #include <iostream>
 #include <string>
+#include <vector>
 
 namespace talus_test
 {
@@ -85,6 +86,20 @@ inline void check_error(const std::string& name, double computed, double expecte
   print_value(stderr, name, computed, expected, "\n");
   const double error = relative_error(computed, expected);
   std::printf("%s: relative error %.1e %s\n", name.c_str(), error, verdict(error <= tolerance));
+}
+
+/// Largest deviation of any zone's stress (6 components a zone) from zone
+/// 0's, over the largest stress component of zone 0: the patch tests'
+/// measure of a uniform stress.
+inline double stress_spread(const std::vector<double>& s)
+{
+  double scale = 0.0, spread = 0.0;
+  for (int c = 0; c < 6; ++c)
+    scale = std::max(scale, std::abs(s[c]));
+  for (std::size_t z = 0; z < s.size() / 6; ++z)
+    for (int c = 0; c < 6; ++c)
+      spread = std::max(spread, std::abs(s[6 * z + c] - s[c]));
+  return spread / scale;
 }
 
 } // namespace talus_test

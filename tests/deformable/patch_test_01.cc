@@ -22,19 +22,6 @@ using namespace talus;
 
 namespace
 {
-/// Largest deviation of any zone's stress from zone 0's, over the largest
-/// stress component of zone 0.
-double stress_spread(const std::vector<double>& s)
-{
-  double scale = 0.0, spread = 0.0;
-  for (int c = 0; c < 6; ++c)
-    scale = std::max(scale, std::abs(s[c]));
-  for (std::size_t z = 0; z < s.size() / 6; ++z)
-    for (int c = 0; c < 6; ++c)
-      spread = std::max(spread, std::abs(s[6 * z + c] - s[c]));
-  return spread / scale;
-}
-
 bool on_boundary(const double* p)
 {
   for (int d = 0; d < 3; ++d)
@@ -90,7 +77,8 @@ int main(int argc, char** argv)
     solver.step(); // moves
     solver.step(); // the strain of that motion
     std::printf("1. linear velocity field: largest difference between zone stresses %s\n",
-                stress_spread(solver.stress()) < 1e-12 ? "below 1e-12 of the stress" : "TOO LARGE");
+                talus_test::stress_spread(solver.stress()) < 1e-12 ? "below 1e-12 of the stress"
+                                                                   : "TOO LARGE");
   }
   // 2. Linear displacement on the boundary, interior by the static solver.
   {
@@ -126,13 +114,14 @@ int main(int argc, char** argv)
       size = std::max(size, exact.norm());
     }
     std::fprintf(stderr, "steps %lu, ratio %g, displacement error %g, stress spread %g\n", steps,
-                 solver.unbalanced_ratio(), error / size, stress_spread(solver.stress()));
+                 solver.unbalanced_ratio(), error / size,
+                 talus_test::stress_spread(solver.stress()));
     std::printf("2. boundary-driven patch: equilibrium reached: %s\n",
                 solver.unbalanced_ratio() < 1e-12 ? "yes" : "NO");
     std::printf("   interior on the linear field: largest error %s of the largest displacement\n",
                 error / size < 1e-6 ? "below 1e-6 (round-off of positions near 1 m)" : "TOO LARGE");
     std::printf("   zone stresses: largest difference %s\n",
-                stress_spread(solver.stress()) < 1e-7
+                talus_test::stress_spread(solver.stress()) < 1e-7
                     ? "below 1e-7 of the stress (the geometry is updated, so uniform to the order "
                       "of the strain, 1e-8)"
                     : "TOO LARGE");

@@ -49,21 +49,13 @@
 #include <vector>
 
 #include "../tests.h"
+#include "rank_checks.h"
 
 using namespace talus;
+using talus_test::same_bits;
 
 namespace
 {
-
-bool same_bits(const Vec3& a, const Vec3& b)
-{
-  return std::memcmp(a.data(), b.data(), 3 * sizeof(double)) == 0;
-}
-
-bool same_bits(double a, double b)
-{
-  return std::memcmp(&a, &b, sizeof(double)) == 0;
-}
 
 /// The scene above; `slider` is the sliding cube's number.
 BlockModel sliding_scene(SolverSettings& s, unsigned int& slider)
@@ -173,13 +165,7 @@ void run_case(const BlockModel& model, unsigned int slider, const SolverSettings
       continue;
     const unsigned int g = mine.local[i];
     ++counts[0];
-    bool same = same_bits(solver.velocity[i], serial.velocity[g]) &&
-                same_bits(solver.spin[i], serial.spin[g]) &&
-                same_bits(local.centroid[i], whole.centroid[g]);
-    for (unsigned int v = 0; v < local.vertex_start[i + 1] - local.vertex_start[i]; ++v)
-      same &= same_bits(local.vertex[local.vertex_start[i] + v],
-                        whole.vertex[whole.vertex_start[g] + v]);
-    counts[1] += !same;
+    counts[1] += !talus_test::same_block(solver, local, i, serial, whole, g);
   }
   // Contacts: each of the serial run's held by the owner of its first
   // block, with the same sub-contacts' forces.

@@ -30,6 +30,7 @@
 #include <vector>
 
 #include "../tests.h"
+#include "rank_checks.h"
 
 using namespace talus;
 
@@ -85,11 +86,6 @@ subsection Solver
 end
 )";
 
-bool same_bits(const Vec3& a, const Vec3& b)
-{
-  return std::memcmp(a.data(), b.data(), 3 * sizeof(double)) == 0;
-}
-
 } // namespace
 
 /// Runs the model whole and split on every rank; rank 0 prints the
@@ -144,13 +140,7 @@ void run_case(const Scene& scene, const BlockModel& model, const SolverSettings&
       continue;
     const unsigned int g = mine.local[i];
     ++counts[0];
-    bool same = same_bits(solver.velocity[i], serial.velocity[g]) &&
-                same_bits(solver.spin[i], serial.spin[g]) &&
-                same_bits(local.centroid[i], whole.centroid[g]);
-    for (unsigned int v = 0; v < local.vertex_start[i + 1] - local.vertex_start[i]; ++v)
-      same &= same_bits(local.vertex[local.vertex_start[i] + v],
-                        whole.vertex[whole.vertex_start[g] + v]);
-    counts[1] += !same;
+    counts[1] += !talus_test::same_block(solver, local, i, serial, whole, g);
     largest_move = std::max(largest_move, serial.displacement[g].norm());
   }
   long total[4];

@@ -6,6 +6,7 @@
 // zones), measured on BlockTetrahedra, and a converter to TetMesh for the
 // solvers.
 
+#include <talus/geometry/block_generator.h>
 #include <talus/model/block_model.h>
 #include <talus/zone/convex_block_mesher.h>
 #include <talus/zone/tet_mesh.h>
@@ -392,6 +393,48 @@ inline talus::TetMesh to_tet_mesh(const std::vector<BlockTetrahedra>& meshes,
     }
   }
   return out;
+}
+
+/// A cube of side 2 m turned about an oblique axis, its edges and six
+/// corners cut off by planes at 1.25 m and 1.5 m from its centre: every
+/// piece of the cutting, `inner` the one of 24 faces in the middle.
+inline talus::BlockModel many_faced_block(unsigned int& inner)
+{
+  using namespace talus;
+  const Eigen::Matrix3d turn =
+      Eigen::AngleAxisd(0.4, Vec3(1, 2, 3).normalized()).toRotationMatrix();
+  const Vec3 centre(0.3, -0.2, 0.1);
+  BlockGenerator generator(ConvexPolyhedron::box(Vec3::Constant(-4), Vec3::Constant(4)), {});
+  std::vector<Plane> planes;
+  for (int axis = 0; axis < 3; ++axis)
+    for (int sign : {-1, 1})
+    {
+      Vec3 face = Vec3::Zero();
+      face[axis] = sign;
+      planes.emplace_back(face, 1.0);
+      Vec3 edge = face;
+      edge[(axis + 1) % 3] = 1;
+      planes.emplace_back(edge.normalized(), 1.25);
+      edge[(axis + 1) % 3] = -1;
+      planes.emplace_back(edge.normalized(), 1.25);
+    }
+  for (const Vec3& corner : {Vec3(1, 1, 1), Vec3(-1, 1, 1), Vec3(1, -1, 1), Vec3(1, 1, -1),
+                             Vec3(-1, -1, 1), Vec3(1, -1, -1)})
+    planes.emplace_back(corner.normalized(), 1.5);
+  for (const Plane& p : planes)
+  {
+    const Vec3 normal = turn * p.normal;
+    generator.cut_plane(Plane(normal, p.offset + normal.dot(centre)));
+  }
+  BlockModel model;
+  inner = 0;
+  for (const ConvexPolyhedron& b : generator.blocks())
+  {
+    const unsigned int i = model.add_block(b, 0);
+    if (b.contains(centre, 0.0))
+      inner = i;
+  }
+  return model;
 }
 
 } // namespace talus_test
