@@ -398,6 +398,12 @@ std::map<std::string, unsigned int> ParameterFile::lines() const
   return lines;
 }
 
+std::string ParameterFile::file_of(const std::string& name) const
+{
+  const unsigned int line = line_of(path(), name);
+  return line > 0 ? origin_[line - 1].first : filename_;
+}
+
 std::map<std::string, std::string> ParameterFile::line_files() const
 {
   std::map<std::string, std::string> files;

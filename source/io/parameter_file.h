@@ -62,6 +62,10 @@ public:
   std::string used_parameters() const;
 
   const std::string& filename() const { return filename_; }
+  /// The file that sets entry `name` of the current subsection: an included
+  /// file, or the parameter file (also when the entry is not set). A path
+  /// an entry names is relative to the folder of the file it is written in.
+  std::string file_of(const std::string& name) const;
 
   /// Line of each subsection ("Joint set 1", first opening) and of each
   /// entry the file sets ("Joint set 1 / Spacing"), for messages about

@@ -398,7 +398,7 @@ void parse_load(ParameterFile& prm, const std::string& section, const std::strin
                         "and its blocks start from where the stages before left them)",
                         "0, 0, 0 in a stage; a force that changes: a stage with 'Time limit' for "
                         "each value");
-  load.motion = parse_time_function(prm, scene.parameter_file, load.prescribe_velocity,
+  load.motion = parse_time_function(prm, load.prescribe_velocity,
                                     "value unless 'Prescribe velocity = true'");
   if (load.motion.acceleration && load.force != Vec3::Zero())
     throw prm.error("Force", "is not taken with 'Input = acceleration' (which drives the velocity)",
@@ -520,7 +520,7 @@ void parse_deformable(ParameterFile& prm, Scene& scene)
   {
     std::filesystem::path path(d.mesh_file);
     if (path.is_relative())
-      path = std::filesystem::path(scene.parameter_file).parent_path() / path;
+      path = std::filesystem::path(prm.file_of("Mesh file")).parent_path() / path;
     if (!std::filesystem::is_regular_file(path))
       throw prm.error("Mesh file", "names '" + path.string() + "', which is not a readable file",
                       "a gmsh .msh file of linear tetrahedra");
@@ -673,8 +673,8 @@ void parse_boundary(ParameterFile& prm, const std::string& section, const std::s
                       "false in a stage; report it on a 'Boundary N' of the file's top level "
                       "with the same box");
   }
-  const TimeFunction motion = parse_time_function(
-      prm, scene.parameter_file, condition == "velocity", "value unless 'Condition = velocity'");
+  const TimeFunction motion = parse_time_function(prm, condition == "velocity",
+                                                  "value unless 'Condition = velocity'");
   if (motion.varies() && (condition == "fixed" || condition == "quiet"))
     throw prm.error("Time function",
                     "varies nothing on a " + condition + " boundary" +

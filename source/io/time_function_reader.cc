@@ -47,8 +47,8 @@ void declare_time_function(ParameterFile& prm, const std::string& what)
               "pulse: duration of the half sine (s).");
 }
 
-TimeFunction parse_time_function(const ParameterFile& prm, const std::string& parameter_file,
-                                 bool acceleration_allowed, const std::string& why_not)
+TimeFunction parse_time_function(const ParameterFile& prm, bool acceleration_allowed,
+                                 const std::string& why_not)
 {
   const std::string kind = prm.get("Time function");
   const bool acceleration = prm.get("Input") == "acceleration";
@@ -84,7 +84,7 @@ TimeFunction parse_time_function(const ParameterFile& prm, const std::string& pa
                       "a CSV file of lines 'time, value'");
     std::filesystem::path path(table);
     if (path.is_relative())
-      path = std::filesystem::path(parameter_file).parent_path() / path;
+      path = std::filesystem::path(prm.file_of("Time table")).parent_path() / path;
     try
     {
       f = read_time_table(path.string());

@@ -17,11 +17,12 @@ namespace talus
 void declare_time_function(ParameterFile& prm, const std::string& what);
 
 /// Reads the time function of the current subsection, checked: a table
-/// from its CSV file (relative to the parameter file `parameter_file`), a
-/// harmonic or a pulse, integrated when 'Input = acceleration'.
+/// from its CSV file (relative to the folder of the file that names it:
+/// the parameter file or one it includes), a harmonic or a pulse,
+/// integrated when 'Input = acceleration'.
 /// `acceleration_allowed`: the input drives a velocity (otherwise an
 /// acceleration input is refused, with `why_not` as the allowed values).
-TimeFunction parse_time_function(const ParameterFile& prm, const std::string& parameter_file,
-                                 bool acceleration_allowed, const std::string& why_not);
+TimeFunction parse_time_function(const ParameterFile& prm, bool acceleration_allowed,
+                                 const std::string& why_not);
 
 } // namespace talus
