@@ -588,6 +588,10 @@ void ContactSet::load_state(CheckpointReader& in, unsigned int n_blocks)
       in.mismatch("contact slots (a live one)", slots[k] + 1ull, ns);
     slot_of_pair_[pairs[k]] = slots[k];
   }
+  // The block-pair order is that of these contacts, not of those the solver
+  // was built with: sorted again at the next update.
+  pair_order_.clear();
+  pair_order_stale_ = true;
 }
 
 void RigidSolver::save_state(CheckpointWriter& out) const
