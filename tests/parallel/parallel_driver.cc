@@ -74,9 +74,9 @@ int main(int argc, char** argv)
     }
   const std::string talus = TALUS_EXECUTABLE, mpiexec = MPIEXEC_EXECUTABLE;
   const std::string quiet = "TALUS_PROGRESS_SECONDS=0 ";
-  const Run serial = run(quiet + "TALUS_OUTPUT_DIRECTORY=serial_output " + talus + " " + prm +
-                             " 2> serial.err",
-                         "serial_output");
+  const Run serial =
+      run(quiet + "TALUS_OUTPUT_DIRECTORY=serial_output " + talus + " " + prm + " 2> serial.err",
+          "serial_output");
   std::printf("serial run: exit code %d, %u summary lines\n", serial.exit_code,
               count_lines(serial.summary));
   bool all = !ranks.empty();
@@ -84,8 +84,8 @@ int main(int argc, char** argv)
   {
     const std::string folder = "ranks" + std::to_string(n) + "_output";
     const Run split = run(quiet + "TALUS_OUTPUT_DIRECTORY=" + folder + " " + mpiexec + " -n " +
-                              std::to_string(n) + " --oversubscribe " + talus + " " + prm +
-                              " 2> " + folder + ".err",
+                              std::to_string(n) + " --oversubscribe " + talus + " " + prm + " 2> " +
+                              folder + ".err",
                           folder);
     const bool same = split.exit_code == serial.exit_code && split.summary == serial.summary;
     std::printf("%d ranks: exit code %d, summary the serial run's line for line: %s\n", n,
