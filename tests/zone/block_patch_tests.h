@@ -15,6 +15,7 @@
 //    everywhere. This holds only if the mesh's surface is the block's
 //    surface (each triangle's area vector is its share of the face's).
 
+#include <talus/geometry/block_generator.h>
 #include <talus/solver/deformable_solver.h>
 #include <talus/zone/implicit_elastic.h>
 
@@ -45,6 +46,19 @@ enum class Hold
   first_three_whole,
   boundary_thirds
 };
+
+/// A unit cube cut by one oblique joint; `larger` is its larger block (7
+/// faces), the one both patch tests mesh.
+inline BlockModel cut_cube(unsigned int& larger)
+{
+  BlockGenerator generator(ConvexPolyhedron::box(Vec3::Zero(), Vec3::Ones()), {});
+  generator.cut_plane(Plane::through(Vec3(0.5, 0.45, 0.55), normal_from_dip(35.0, 60.0)));
+  BlockModel blocks;
+  for (const ConvexPolyhedron& b : generator.blocks())
+    blocks.add_block(b, 0);
+  larger = blocks.volume[0] > blocks.volume[1] ? 0 : 1;
+  return blocks;
+}
 
 /// Runs both tests on `zones`, the mesh of block `block` of `blocks` at
 /// edge length `h` (m), and prints their verdicts.

@@ -5,7 +5,6 @@
 // gridpoints onto the block's faces.
 
 #include <talus/base/parallel_environment.h>
-#include <talus/geometry/block_generator.h>
 #include <talus/zone/convex_block_mesher.h>
 
 #include "block_patch_tests.h"
@@ -16,12 +15,8 @@ int main(int argc, char** argv)
 {
   ParallelEnvironment env(argc, argv);
   const double h = 0.2;
-  BlockGenerator generator(ConvexPolyhedron::box(Vec3::Zero(), Vec3::Ones()), {});
-  generator.cut_plane(Plane::through(Vec3(0.5, 0.45, 0.55), normal_from_dip(35.0, 60.0)));
-  BlockModel blocks;
-  for (const ConvexPolyhedron& b : generator.blocks())
-    blocks.add_block(b, 0);
-  const unsigned int block = blocks.volume[0] > blocks.volume[1] ? 0 : 1;
+  unsigned int block = 0;
+  const BlockModel blocks = block_patch::cut_cube(block);
   const BlockTetrahedra zones = mesh_convex_block(blocks, block, [h](const Vec3&) { return h; });
   block_patch::run(blocks, block, h, zones, block_patch::Hold::boundary_thirds);
 }
