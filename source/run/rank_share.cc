@@ -12,10 +12,10 @@ namespace talus
 
 namespace
 {
-/// Layers of ghosts: one holds every block an owned block can touch; the
-/// second, every block those can touch, so that a ghost that becomes owned
-/// has its contacts already.
-constexpr unsigned int layers = 2;
+/// Layers of ghosts: one holds every block an owned block can touch. No
+/// contact between two ghosts is kept; a ghost that becomes owned comes
+/// with its contacts from its old owner (BlockMigration).
+constexpr unsigned int layers = 1;
 } // namespace
 
 int world_ranks()

@@ -346,6 +346,11 @@ void BlockMigration::migrate(RigidSolver& s, RankBlocks& blocks)
   for (unsigned int j = 0; j < n_new; ++j)
   {
     old_of[j] = local_of(old_local, next.local[j]);
+    // A ghost that becomes owned comes whole from its old owner, which
+    // holds every contact it has (here its contacts with other ghosts were
+    // never made).
+    if (old_of[j] >= 0 && next.owned[j] && !blocks.owned[old_of[j]])
+      old_of[j] = -1;
     if (old_of[j] < 0)
     {
       Bytes b;
@@ -455,7 +460,8 @@ void BlockMigration::migrate(RigidSolver& s, RankBlocks& blocks)
              (sizeof(Vec3) + 9 * sizeof(double) + 3 * sizeof(unsigned char) +
               (dilation ? sizeof(double) : 0) + (yielding ? yield_state_size * sizeof(double) : 0));
     const int la = local_of(next.local, a), lb = local_of(next.local, b);
-    if (la >= 0 && lb >= 0 && have.insert(pair_key(la, lb)).second)
+    if (la >= 0 && lb >= 0 && (next.owned[la] || next.owned[lb]) &&
+        have.insert(pair_key(la, lb)).second)
       received_contacts.emplace_back(pair_key(la, lb), start);
   };
   std::size_t arrays_size = 0;
@@ -507,7 +513,8 @@ void BlockMigration::migrate(RigidSolver& s, RankBlocks& blocks)
   cs.sort_by_pair();
   std::vector<std::pair<std::uint64_t, unsigned int>> kept; // new pair, old slot
   for (const unsigned int c : cs.pair_order_)
-    if (cs.alive[c] && new_of[cs.block_a[c]] >= 0 && new_of[cs.block_b[c]] >= 0)
+    if (cs.alive[c] && new_of[cs.block_a[c]] >= 0 && new_of[cs.block_b[c]] >= 0 &&
+        (next.owned[new_of[cs.block_a[c]]] || next.owned[new_of[cs.block_b[c]]]))
       kept.emplace_back(pair_key(new_of[cs.block_a[c]], new_of[cs.block_b[c]]), c);
   std::sort(received_contacts.begin(), received_contacts.end());
   ContactSet laid;

@@ -622,8 +622,9 @@ void RigidSolver::detect_contacts(bool everything)
   }
   cells_.map(envelopes_);
   cells_.candidate_pairs(envelopes_, everything ? std::vector<char>() : flagged, pairs_);
+  // Split among ranks, two ghosts' contact is their owners' work alone.
   for (const auto& [a, b] : pairs_)
-    if (!(fixed[a] && fixed[b]) && !removed_[a] && !removed_[b])
+    if (!(fixed[a] && fixed[b]) && !removed_[a] && !removed_[b] && !(is_ghost(a) && is_ghost(b)))
       contacts_.try_create(a, b, m_, s_.contact);
 }
 
@@ -981,6 +982,7 @@ void RigidSolver::split_among_ranks(std::vector<char> ghost, RankReductions redu
 {
   ghost_ = std::move(ghost);
   ranks_ = std::move(reductions);
+  contacts_.drop_contacts_among(ghost_);
   set_masses_and_step();
   if (step_ == 0 && zones_ == nullptr)
   {

@@ -76,6 +76,11 @@ public:
   /// Deletes the contacts of the blocks with `gone[b]` (excavated); their
   /// sub-contacts go at the next update().
   void remove_contacts_of(const std::vector<char>& gone);
+  /// Deletes the contacts between two blocks both marked in `among`, with
+  /// their sub-contacts now; the others stay as they are, in their order.
+  /// A rank's share of a split model (issue 24) keeps no contact between
+  /// two of its ghosts: no owned block feels it.
+  void drop_contacts_among(const std::vector<char>& among);
 
   /// Deformable blocks take part through their surface gridpoints:
   /// `is_deformable` per block, `vertex_gridpoint` per vertex of the block

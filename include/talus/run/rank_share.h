@@ -39,8 +39,9 @@ void check_runs_on_ranks(const Scene& scene, int ranks);
 
 /// This rank's share of a model of rigid blocks split among the ranks of
 /// `comm` (issue 24): the blocks it owns, whose centroids lie in its region
-/// of a CellPartition of the model's cell space balanced by blocks, and two
-/// layers of ghosts (decompose_blocks); the model of those blocks in global
+/// of a CellPartition of the model's cell space balanced by blocks, and one
+/// layer of ghosts, the blocks within reach of those (decompose_blocks;
+/// contacts between two ghosts are not kept); the model of those blocks in global
 /// order (BlockModel::subset); the exchange that keeps the ghosts equal to
 /// their owners' blocks; and the reductions that make the summary, the
 /// history and the output of the whole model from the shares.

@@ -21,11 +21,13 @@ class RigidSolver;
 /// When either fails on some rank, every block goes to the rank whose
 /// region holds its centroid, the ghosts are chosen again around the
 /// blocks as they are now, and each rank receives the blocks it newly holds
-/// from their old owners, with everything the solver keeps of them
+/// or newly owns (a ghost that becomes owned) from their old owners, with
+/// everything the solver keeps of them
 /// (geometry, group, masses, motion, the state of eq. 1 and of the damper's
 /// last force) and their contacts' state (common plane, sub-contacts with
 /// their normal and shear forces, shear displacements, slip state,
-/// dilation, yield state), and drops the blocks it no longer needs. The
+/// dilation, yield state), and drops the blocks it no longer needs and the
+/// contacts between two of its ghosts (no rank keeps those). The
 /// local order stays the global order, and the contacts are laid out again
 /// in block-pair order, so that the run stays bit-identical to the serial
 /// one.
