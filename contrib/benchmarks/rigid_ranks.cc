@@ -2,7 +2,7 @@
 // settling scene of rigid_settling.cc (n x n x n unit cubes on a fixed
 // floor layer, static with local damping), first whole on rank 0 alone
 // while the other ranks wait, then split among all ranks by a CellPartition
-// with two layers of ghosts refreshed after every step (GhostExchange) and
+// with RankShare's layers of ghosts refreshed after every step (GhostExchange) and
 // owners that follow the blocks (BlockMigration's check after every step).
 // Prints both rates, the speed-up measured in this one run, the blocks each
 // rank holds and the exchange volume per step.
@@ -17,12 +17,14 @@
 #include <talus/contact/block_decomposition.h>
 #include <talus/geometry/block_generator.h>
 #include <talus/model/block_model.h>
+#include <talus/run/rank_share.h>
 #include <talus/solver/block_migration.h>
 #include <talus/solver/ghost_exchange.h>
 #include <talus/solver/rigid_solver.h>
 
 #include <mpi.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -89,7 +91,9 @@ int main(int argc, char** argv)
                                 static_cast<unsigned int>(ranks));
   const double reach = 4.0 * s.contact.tolerance;
   const double memory_before = peak_memory(); // bytes: with the whole model built
-  RankBlocks mine = decompose_blocks(model, partition, static_cast<unsigned int>(rank), reach, 2);
+  const unsigned int layers = RankShare::ghost_layers;
+  RankBlocks mine =
+      decompose_blocks(model, partition, static_cast<unsigned int>(rank), reach, layers);
   BlockModel local = model.subset(mine.local);
   RigidSolver solver(local, 2650.0, s);
   std::vector<char> ghost(mine.local.size());
@@ -97,7 +101,7 @@ int main(int argc, char** argv)
     ghost[i] = !mine.owned[i];
   solver.split_among_ranks(ghost, reductions_over(comm));
   GhostExchange exchange(mine, comm);
-  BlockMigration migration(solver, mine, partition, reach, 2, comm);
+  BlockMigration migration(solver, mine, partition, reach, layers, comm);
   MPI_Barrier(comm);
   const auto start = std::chrono::steady_clock::now();
   double exchange_seconds = 0.0; // in GhostExchange::refresh, this rank
@@ -202,27 +206,34 @@ int main(int argc, char** argv)
                 memory_per_block);
 
     // The exchange model: P ranks, each a cube of m = N / P blocks of side
-    // L = m^(1/3) (in block sizes). A rank holds (L + 4)^3 blocks (two
-    // layers of ghosts on every side), computes contacts for all of them
-    // and moves its m, at the rate of the whole run (t per block-step);
-    // it sends each of its blocks within two layers of a face to that
-    // neighbour (12 L^2 blocks, plus edges and corners: (L + 4)^3 - L^3 in
-    // all) at the measured bytes per ghost, to 26 neighbours (latency
-    // each), and takes part in 5 reductions of log2 P latencies each.
+    // L = m^(1/3) (in block sizes). A rank holds (L + 2 g)^3 blocks (g
+    // layers of ghosts on every side). It moves its m at the whole run's
+    // rate (t per block-step) and pays, per ghost it holds, what a ghost
+    // cost here: the split run's time beyond its owned blocks' share of the
+    // whole run's, less the exchange, over the ghosts (its contacts with
+    // owned blocks are computed on both sides). It sends each of its blocks
+    // within g layers of a face to that neighbour ((L + 2 g)^3 - L^3 in all)
+    // at the measured bytes per ghost, to 26 neighbours (latency each), and
+    // takes part in 5 reductions of log2 P latencies each.
     const double t_block = serial_seconds / (double(model.n_blocks()) * steps);
     const double ghosts_here = double(held_all - model.n_blocks());
     const double bytes_per_ghost = ghosts_here > 0.0 ? sent_all / ghosts_here : 0.0;
-    std::printf("model inputs: %.3g s per block-step (whole run), %.0f bytes per ghost sent\n",
-                t_block, bytes_per_ghost);
+    const double t_ghost =
+        ghosts_here > 0.0
+            ? std::max(0.0, (ranks * (split_seconds - exchange_all) - serial_seconds) /
+                                (ghosts_here * steps))
+            : 0.0;
+    std::printf("model inputs: %.3g s per block-step (whole run), %.3g s per ghost-step, %.0f "
+                "bytes per ghost sent\n",
+                t_block, t_ghost, bytes_per_ghost);
     for (const double total : {1e7})
       for (const double p : {64.0, 1000.0})
       {
         const double m = total / p, side = std::cbrt(m);
-        const double held_blocks = std::pow(side + 4.0, 3);
-        const double compute = held_blocks * t_block; // ghosts' contacts computed again
+        const double held_blocks = std::pow(side + 2.0 * layers, 3);
+        const double compute = m * t_block + (held_blocks - m) * t_ghost;
         const double sent_bytes = (held_blocks - m) * bytes_per_ghost;
-        const double talk = 26.0 * latency + sent_bytes / bandwidth +
-                            5.0 * std::log2(p) * latency;
+        const double talk = 26.0 * latency + sent_bytes / bandwidth + 5.0 * std::log2(p) * latency;
         const double efficiency = m * t_block / (compute + talk);
         std::printf("predicted: %.0f blocks on %.0f ranks: %.0f blocks a rank, held %.2f times; "
                     "%.3g s computing and %.3g s exchanging a step; efficiency %.0f %%\n",

@@ -258,8 +258,7 @@ void ContactSet::drop_contacts_among(const std::vector<char>& among)
   if (!any)
     return;
   // Sub-contacts of the contacts left, moved down in place.
-  const bool nodes = !sc_node.empty(), dilated = !sc_dilation.empty(),
-             yielded = !sc_yield.empty();
+  const bool nodes = !sc_node.empty(), dilated = !sc_dilation.empty(), yielded = !sc_yield.empty();
   unsigned int kept = 0;
   for (unsigned int i = 0; i < n_subcontacts(); ++i)
   {

@@ -10,14 +10,6 @@
 namespace talus
 {
 
-namespace
-{
-/// Layers of ghosts: one holds every block an owned block can touch. No
-/// contact between two ghosts is kept; a ghost that becomes owned comes
-/// with its contacts from its old owner (BlockMigration).
-constexpr unsigned int layers = 1;
-} // namespace
-
 int world_ranks()
 {
   int started = 0, ranks = 1;
@@ -108,11 +100,11 @@ RankShare::RankShare(const BlockModel& model, double reach, MPI_Comm comm)
   }
   CellSpace cells;
   cells.define(domain, model.n_blocks());
-  partition_ = std::make_unique<CellPartition>(domain, domain.lo, cells.cell_size(),
-                                               model.centroid,
+  partition_ = std::make_unique<CellPartition>(domain, domain.lo, cells.cell_size(), model.centroid,
                                                std::vector<double>(model.n_blocks(), 1.0),
                                                static_cast<unsigned int>(ranks_));
-  blocks_ = decompose_blocks(model, *partition_, static_cast<unsigned int>(rank_), reach, layers);
+  blocks_ =
+      decompose_blocks(model, *partition_, static_cast<unsigned int>(rank_), reach, ghost_layers);
   local_ = model.subset(blocks_.local);
   exchange_ = std::make_unique<GhostExchange>(blocks_, comm_);
 }
@@ -121,8 +113,8 @@ void RankShare::refresh(RigidSolver& solver)
 {
   exchange_->refresh(solver);
   if (!migration_)
-    migration_ = std::make_unique<BlockMigration>(solver, blocks_, *partition_, reach_, layers,
-                                                  comm_);
+    migration_ =
+        std::make_unique<BlockMigration>(solver, blocks_, *partition_, reach_, ghost_layers, comm_);
   migration_->update(solver, blocks_);
 }
 

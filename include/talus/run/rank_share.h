@@ -48,6 +48,11 @@ void check_runs_on_ranks(const Scene& scene, int ranks);
 class RankShare
 {
 public:
+  /// Layers of ghosts: one holds every block an owned block can touch. No
+  /// contact between two ghosts is kept; a ghost that becomes owned comes
+  /// with its contacts from its old owner (BlockMigration).
+  static constexpr unsigned int ghost_layers = 1;
+
   /// `reach` (m): the contact tolerance plus the motion allowed until the
   /// ghosts are chosen again.
   RankShare(const BlockModel& model, double reach, MPI_Comm comm);
