@@ -28,8 +28,10 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <cstring>
 #include <ctime>
 #include <fstream>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -73,13 +75,15 @@ int main(int argc, char** argv)
 
   // 1. Whole, on rank 0 alone.
   double serial_seconds = 0.0;
+  BlockModel whole;
+  std::unique_ptr<RigidSolver> whole_solver;
   if (rank == 0)
   {
-    BlockModel whole = model;
-    RigidSolver solver(whole, 2650.0, s);
+    whole = model;
+    whole_solver = std::make_unique<RigidSolver>(whole, 2650.0, s);
     const auto start = std::chrono::steady_clock::now();
     for (unsigned long k = 0; k < steps; ++k)
-      solver.step();
+      whole_solver->step();
     serial_seconds = seconds_since(start);
   }
   MPI_Barrier(comm);
@@ -114,6 +118,37 @@ int main(int argc, char** argv)
     migration.update(solver, mine);
   }
   const double mine_seconds = seconds_since(start);
+  // The split run must be the whole run: every owned block's centroid,
+  // velocity and spin, gathered on rank 0 and compared bit for bit (this
+  // is what a run on oversubscribed ranks checks).
+  std::vector<double> state;
+  for (std::size_t i = 0; i < mine.local.size(); ++i)
+    if (mine.owned[i])
+    {
+      state.push_back(mine.local[i]);
+      for (const Vec3* v : {&local.centroid[i], &solver.velocity[i], &solver.spin[i]})
+        state.insert(state.end(), v->data(), v->data() + 3);
+    }
+  int count = static_cast<int>(state.size());
+  std::vector<int> counts(ranks), starts(ranks, 0);
+  MPI_Gather(&count, 1, MPI_INT, counts.data(), 1, MPI_INT, 0, comm);
+  for (int r = 1; r < ranks; ++r)
+    starts[r] = starts[r - 1] + counts[r - 1];
+  std::vector<double> all_state(rank == 0 ? starts.back() + counts.back() : 0);
+  MPI_Gatherv(state.data(), count, MPI_DOUBLE, all_state.data(), counts.data(), starts.data(),
+              MPI_DOUBLE, 0, comm);
+  unsigned long differ = 0, compared = 0;
+  if (rank == 0)
+    for (std::size_t k = 0; k < all_state.size(); k += 10, ++compared)
+    {
+      const unsigned int b = static_cast<unsigned int>(all_state[k]);
+      const double serial[9] = {whole.centroid[b].x(),         whole.centroid[b].y(),
+                                whole.centroid[b].z(),         whole_solver->velocity[b].x(),
+                                whole_solver->velocity[b].y(), whole_solver->velocity[b].z(),
+                                whole_solver->spin[b].x(),     whole_solver->spin[b].y(),
+                                whole_solver->spin[b].z()};
+      differ += std::memcmp(serial, &all_state[k + 1], sizeof serial) != 0;
+    }
   // The rise of the peak resident memory of a rank that never ran the whole
   // model (rank 1) with its share (blocks, solver, contacts, exchange), per
   // block it holds (ghosts included).
@@ -182,6 +217,9 @@ int main(int argc, char** argv)
     std::strftime(date, sizeof date, "%Y-%m-%d %H:%M UTC", std::gmtime(&now));
     std::printf("%s, %s; %d ranks\n", cpu_model().c_str(), date, ranks);
     std::printf("n = %u: %u blocks, %lu steps\n", n, model.n_blocks(), steps);
+    std::printf("split run against the whole run: %lu of %lu blocks (%s) differ in centroid, "
+                "velocity or spin, bit for bit\n",
+                differ, compared, compared == model.n_blocks() ? "all" : "NOT ALL");
     std::printf("whole on one rank: %.3f s, %.0f block-cycles/s\n", serial_seconds,
                 double(model.n_blocks()) * steps / serial_seconds);
     std::printf("split on %d ranks: %.3f s, %.0f block-cycles/s; speed-up %.2f\n", ranks,
