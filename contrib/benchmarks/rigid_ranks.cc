@@ -10,6 +10,7 @@
 //   mpirun -np 2 build/contrib/benchmarks/benchmark_rigid_ranks [n] [steps]
 
 #include "benchmark_arguments.h"
+#include "rank_figures.h"
 #include "settling_cubes.h"
 
 #include <talus/base/memory.h>
@@ -37,24 +38,8 @@
 
 using namespace talus;
 
-namespace
-{
-
-std::string cpu_model()
-{
-  std::ifstream in("/proc/cpuinfo");
-  for (std::string line; std::getline(in, line);)
-    if (line.rfind("model name", 0) == 0)
-      return line.substr(line.find(':') + 2);
-  return "unknown CPU";
-}
-
-double seconds_since(std::chrono::steady_clock::time_point t)
-{
-  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t).count();
-}
-
-} // namespace
+using rank_figures::cpu_model;
+using rank_figures::seconds_since;
 
 int main(int argc, char** argv)
 {
@@ -156,37 +141,10 @@ int main(int argc, char** argv)
       rank == 1 ? (peak_memory() - memory_before) / double(mine.local.size()) : 0.0;
   MPI_Allreduce(MPI_IN_PLACE, &memory_per_block, 1, MPI_DOUBLE, MPI_MAX, comm);
 
-  // This machine's MPI between ranks 0 and 1: latency (8-byte round trips)
-  // and bandwidth (1 MB messages), for the exchange model.
-  const auto ping_pong = [&](std::size_t bytes, int trips)
-  {
-    std::vector<char> buffer(bytes);
-    MPI_Barrier(comm);
-    const auto t0 = std::chrono::steady_clock::now();
-    for (int k = 0; k < trips && ranks > 1; ++k)
-      if (rank == 0)
-      {
-        MPI_Send(buffer.data(), int(bytes), MPI_CHAR, 1, 7, comm);
-        MPI_Recv(buffer.data(), int(bytes), MPI_CHAR, 1, 7, comm, MPI_STATUS_IGNORE);
-      }
-      else if (rank == 1)
-      {
-        MPI_Recv(buffer.data(), int(bytes), MPI_CHAR, 0, 7, comm, MPI_STATUS_IGNORE);
-        MPI_Send(buffer.data(), int(bytes), MPI_CHAR, 0, 7, comm);
-      }
-    return seconds_since(t0) / (2.0 * trips); // one way
-  };
-  const double latency = ping_pong(8, 2000);
-  const double bandwidth = 1e6 / (ping_pong(1000000, 200) - latency); // bytes/s
-  double allreduce = 0.0; // one MPI_Allreduce of a double
-  {
-    double x = rank;
-    MPI_Barrier(comm);
-    const auto t0 = std::chrono::steady_clock::now();
-    for (int k = 0; k < 2000; ++k)
-      MPI_Allreduce(MPI_IN_PLACE, &x, 1, MPI_DOUBLE, MPI_MAX, comm);
-    allreduce = seconds_since(t0) / 2000.0;
-  }
+  // This machine's MPI between ranks 0 and 1, for the exchange model.
+  const rank_figures::MpiFigures mpi_figures = rank_figures::measure_mpi(comm);
+  const double latency = mpi_figures.latency, bandwidth = mpi_figures.bandwidth,
+               allreduce = mpi_figures.allreduce;
   // The cost of one migration event, forced: the boxes gathered, the
   // ghosts chosen again, the blocks traded.
   MPI_Barrier(comm);

@@ -43,20 +43,41 @@ bool inside(const ConvexRegion& r, const double* p)
   return r.holds(Vec3(p[0], p[1], p[2]));
 }
 
+/// The raw array of a gridpoint vector: a ghosted vector's local form
+/// (owned entries, then the ghosts), or the vector itself.
+double* get_local_array(Vec v, Vec& form)
+{
+  form = nullptr;
+  PetscBool ghosted = PETSC_FALSE;
+  PetscObjectTypeCompare(reinterpret_cast<PetscObject>(v), VECMPI, &ghosted);
+  if (ghosted)
+    VecGhostGetLocalForm(v, &form); // null when the vector has no ghosts
+  double* data = nullptr;
+  VecGetArray(form != nullptr ? form : v, &data);
+  return data;
+}
+
+void restore_local_array(Vec v, Vec& form, double*& data)
+{
+  VecRestoreArray(form != nullptr ? form : v, &data);
+  if (form != nullptr)
+    VecGhostRestoreLocalForm(v, &form);
+}
+
 /// The raw local array of a PETSc vector for the length of one stage.
 class LocalArray
 {
 public:
   explicit LocalArray(const dealii::PETScWrappers::MPI::Vector& v) : vec_(v)
   {
-    VecGetArray(vec_, &data_);
+    data_ = get_local_array(vec_, form_);
   }
-  ~LocalArray() { VecRestoreArray(vec_, &data_); }
+  ~LocalArray() { restore_local_array(vec_, form_, data_); }
   double* data() { return data_; }
   double& operator[](std::size_t i) { return data_[i]; }
 
 private:
-  Vec vec_;
+  Vec vec_, form_ = nullptr;
   double* data_ = nullptr;
 };
 
@@ -160,7 +181,7 @@ DeformableSolver::DeformableSolver(const TetMesh& mesh, std::vector<ZoneMaterial
                                    const SolverSettings& settings,
                                    std::vector<GridpointCondition> conditions,
                                    std::vector<FacePressure> pressures,
-                                   const InitialStress* initial)
+                                   const InitialStress* initial, const GridpointShare* share)
     : mesh_(mesh), materials_(std::move(materials)), material_of_zone_(std::move(material_of_zone)),
       s_(settings), conditions_(std::move(conditions)), pressures_(std::move(pressures))
 {
@@ -273,8 +294,42 @@ DeformableSolver::DeformableSolver(const TetMesh& mesh, std::vector<ZoneMaterial
   else
     dt_ = scaled ? 1.0 : stable_time_step_of(mass, stiffness, beta);
   petsc_ = std::make_unique<PetscState>();
-  for (auto* v : {&petsc_->position, &petsc_->velocity, &petsc_->force, &petsc_->inertial_mass})
-    v->reinit(MPI_COMM_WORLD, 3 * ng, 3 * ng);
+  n_moved_ = ng;
+  if (share != nullptr)
+  {
+    // Split among ranks: vectors of the whole model, this rank's
+    // gridpoints as its range and the ghosts as ghost entries.
+    share_ = std::make_unique<GridpointShare>(*share);
+    if (nodal_mixed_ || mesh_.quadratic() || mesh_.n_hexes() > 0 ||
+        s_.damping == Damping::adaptive_global)
+      throw std::logic_error("DeformableSolver: only 4-node zones without global adaptive "
+                             "damping are split among ranks yet");
+    n_moved_ = share_->n_owned;
+    unsigned long mine = n_moved_, before = 0, all = 0;
+    MPI_Exscan(&mine, &before, 1, MPI_UNSIGNED_LONG, MPI_SUM, share_->comm);
+    MPI_Allreduce(&mine, &all, 1, MPI_UNSIGNED_LONG, MPI_SUM, share_->comm);
+    int rank = 0;
+    MPI_Comm_rank(share_->comm, &rank);
+    if (rank == 0)
+      before = 0; // MPI_Exscan leaves rank 0's undefined
+    dealii::IndexSet owned(3 * all), ghosts(3 * all);
+    owned.add_range(3 * before, 3 * (before + mine));
+    for (unsigned int k : share_->ghost_index)
+      ghosts.add_range(3 * std::size_t(k), 3 * std::size_t(k) + 3);
+    if (ghosts.n_elements() != 3 * (ng - n_moved_))
+      throw std::logic_error("DeformableSolver: one ghost index per ghost gridpoint is needed");
+    for (auto* v : {&petsc_->position, &petsc_->velocity, &petsc_->force, &petsc_->inertial_mass})
+      v->reinit(owned, ghosts, share_->comm);
+    // The step of the whole model: ghosts' masses and stiffnesses are
+    // partial (some of their zones are elsewhere), so the owners' alone.
+    if (s_.time_step <= 0.0 && !scaled)
+      dt_ = least_over_ranks(stable_time_step_of(
+          std::vector<double>(mass.begin(), mass.begin() + n_moved_),
+          std::vector<double>(stiffness.begin(), stiffness.begin() + n_moved_), beta));
+  }
+  else // this rank's own (a collective on the world would wait for the other ranks)
+    for (auto* v : {&petsc_->position, &petsc_->velocity, &petsc_->force, &petsc_->inertial_mass})
+      v->reinit(MPI_COMM_SELF, 3 * ng, 3 * ng);
   {
     LocalArray x(petsc_->position), m(petsc_->inertial_mass);
     for (unsigned int g = 0; g < ng; ++g)
@@ -1311,7 +1366,7 @@ void DeformableSolver::move_gridpoints()
   const double h = step_ == 0 ? 0.5 * dt_ : dt_;
   double largest = 0.0, size_sum = 0.0;
   unsigned int n_free = 0;
-  const unsigned int ng = mesh_.n_gridpoints();
+  // Split among ranks, the ghosts (after n_moved_) are their owners' to move.
   // Energy account (see EnergyAccount): each force works over h (v- + v+) / 2.
   // The kinetic energy is that of the inertial masses m (with any mass of
   // density scaling): the work of the forces changes exactly that, so the
@@ -1331,7 +1386,7 @@ void DeformableSolver::move_gridpoints()
   // its middle (velocities live at half steps).
   for (unsigned int c = 0; c < conditions_.size(); ++c)
     motion_scale_[c] = conditions_[c].motion.scale(time_ + 0.5 * dt_);
-  for (unsigned int g = 0; g < ng; ++g)
+  for (unsigned int g = 0; g < n_moved_; ++g)
   {
     double f2 = 0.0, size2 = 0.0;
     const std::array<double, 6>* cq =
@@ -1578,6 +1633,8 @@ void DeformableSolver::move()
 {
   const auto t0 = std::chrono::steady_clock::now();
   move_gridpoints();
+  if (share_)
+    refresh_ghosts();
   if ((step_ + 1) % Damper::servo_period == 0)
     damper_.adjust();
   time_ += dt_;
@@ -1586,20 +1643,45 @@ void DeformableSolver::move()
       std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
 }
 
-DeformableSolver::View::View(DeformableSolver& solver) : solver_(solver)
+struct DeformableSolver::View::Forms
 {
-  VecGetArray(static_cast<const Vec&>(solver_.petsc_->position), &x);
-  VecGetArray(static_cast<const Vec&>(solver_.petsc_->velocity), &v);
-  VecGetArray(static_cast<const Vec&>(solver_.petsc_->force), &f);
+  Vec x = nullptr, v = nullptr, f = nullptr;
+};
+
+DeformableSolver::View::View(DeformableSolver& solver)
+    : solver_(solver), forms_(std::make_unique<Forms>())
+{
+  x = get_local_array(static_cast<const Vec&>(solver_.petsc_->position), forms_->x);
+  v = get_local_array(static_cast<const Vec&>(solver_.petsc_->velocity), forms_->v);
+  f = get_local_array(static_cast<const Vec&>(solver_.petsc_->force), forms_->f);
   if (!solver_.damping_force_.empty())
     damping = solver_.damping_force_.data();
 }
 
 DeformableSolver::View::~View()
 {
-  VecRestoreArray(static_cast<const Vec&>(solver_.petsc_->position), &x);
-  VecRestoreArray(static_cast<const Vec&>(solver_.petsc_->velocity), &v);
-  VecRestoreArray(static_cast<const Vec&>(solver_.petsc_->force), &f);
+  restore_local_array(static_cast<const Vec&>(solver_.petsc_->position), forms_->x, x);
+  restore_local_array(static_cast<const Vec&>(solver_.petsc_->velocity), forms_->v, v);
+  restore_local_array(static_cast<const Vec&>(solver_.petsc_->force), forms_->f, f);
+}
+
+void DeformableSolver::refresh_ghosts()
+{
+  // The owners' positions and velocities into the ghost entries (one
+  // scatter each, to and from the ranks that share gridpoints).
+  for (const auto* vec : {&petsc_->position, &petsc_->velocity})
+  {
+    const Vec& raw = static_cast<const Vec&>(*vec);
+    VecGhostUpdateBegin(raw, INSERT_VALUES, SCATTER_FORWARD);
+    VecGhostUpdateEnd(raw, INSERT_VALUES, SCATTER_FORWARD);
+  }
+}
+
+double DeformableSolver::least_over_ranks(double value) const
+{
+  if (share_)
+    MPI_Allreduce(MPI_IN_PLACE, &value, 1, MPI_DOUBLE, MPI_MIN, share_->comm);
+  return value;
 }
 
 void DeformableSolver::use_time_step(double dt, const std::vector<double>& joint_stiffness)

@@ -2,6 +2,7 @@
 
 #include <talus/geometry/plane.h>
 #include <talus/model/initial_stress.h>
+#include <talus/zone/gridpoint_share.h>
 #include <talus/solver/rigid_face_loads.h> // FacePressure
 #include <talus/solver/rigid_solver.h>
 #include <talus/zone/implicit_elastic.h>
@@ -58,7 +59,7 @@ public:
                    std::vector<unsigned int> material_of_zone, const SolverSettings& settings,
                    std::vector<GridpointCondition> conditions = {},
                    std::vector<FacePressure> pressures = {},
-                   const InitialStress* initial = nullptr);
+                   const InitialStress* initial = nullptr, const GridpointShare* share = nullptr);
   ~DeformableSolver();
 
   /// Time step of eqs. 84-86 with the true masses (s), with the joint
@@ -100,6 +101,8 @@ public:
 
   private:
     DeformableSolver& solver_;
+    struct Forms; ///< the vectors' local forms (ghosted vectors)
+    std::unique_ptr<Forms> forms_;
   };
 
   /// Sets the time step shared with rigid blocks (s) and adds the joint
@@ -299,6 +302,14 @@ private:
   std::vector<GridpointCondition> conditions_;
   std::vector<FacePressure> pressures_;
   std::unique_ptr<PetscState> petsc_;
+  /// Split among ranks: this rank's share (null in one run). Only the
+  /// first n_moved_ gridpoints move here; the ghosts after them are
+  /// refreshed from their owners (refresh_ghosts).
+  std::unique_ptr<GridpointShare> share_;
+  unsigned int n_moved_ = 0;
+  void refresh_ghosts();
+  /// The least of `value` over the ranks (itself in one run).
+  double least_over_ranks(double value) const;
   /// Runs of consecutive zones with one material (the mesher keeps each
   /// block's zones together): batch k is [batch_start_[k], batch_start_[k+1]).
   std::vector<unsigned int> batch_start_;

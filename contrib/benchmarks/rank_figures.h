@@ -1,0 +1,77 @@
+#pragma once
+
+// What the benchmarks of runs split among ranks print about the machine
+// and its MPI: the CPU model, wall time, and MPI between ranks 0 and 1
+// (latency, bandwidth, one MPI_Allreduce), the inputs of their models of
+// larger runs.
+
+#include <mpi.h>
+
+#include <chrono>
+#include <cstddef>
+#include <fstream>
+#include <string>
+#include <vector>
+
+namespace rank_figures
+{
+
+inline std::string cpu_model()
+{
+  std::ifstream in("/proc/cpuinfo");
+  for (std::string line; std::getline(in, line);)
+    if (line.rfind("model name", 0) == 0)
+      return line.substr(line.find(':') + 2);
+  return "unknown CPU";
+}
+
+inline double seconds_since(std::chrono::steady_clock::time_point t)
+{
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t).count();
+}
+
+struct MpiFigures
+{
+  double latency = 0.0;   ///< s, one way, 8 bytes
+  double bandwidth = 0.0; ///< bytes/s, 1 MB messages
+  double allreduce = 0.0; ///< s, one MPI_Allreduce of a double
+};
+
+/// Ping-pong between ranks 0 and 1 (8-byte and 1 MB messages) and a run of
+/// MPI_Allreduce on all ranks of `comm` (collective).
+inline MpiFigures measure_mpi(MPI_Comm comm)
+{
+  int rank = 0, ranks = 1;
+  MPI_Comm_rank(comm, &rank);
+  MPI_Comm_size(comm, &ranks);
+  const auto ping_pong = [&](std::size_t bytes, int trips)
+  {
+    std::vector<char> buffer(bytes);
+    MPI_Barrier(comm);
+    const auto t0 = std::chrono::steady_clock::now();
+    for (int k = 0; k < trips && ranks > 1; ++k)
+      if (rank == 0)
+      {
+        MPI_Send(buffer.data(), int(bytes), MPI_CHAR, 1, 7, comm);
+        MPI_Recv(buffer.data(), int(bytes), MPI_CHAR, 1, 7, comm, MPI_STATUS_IGNORE);
+      }
+      else if (rank == 1)
+      {
+        MPI_Recv(buffer.data(), int(bytes), MPI_CHAR, 0, 7, comm, MPI_STATUS_IGNORE);
+        MPI_Send(buffer.data(), int(bytes), MPI_CHAR, 0, 7, comm);
+      }
+    return seconds_since(t0) / (2.0 * trips); // one way
+  };
+  MpiFigures f;
+  f.latency = ping_pong(8, 2000);
+  f.bandwidth = 1e6 / (ping_pong(1000000, 200) - f.latency);
+  double x = rank;
+  MPI_Barrier(comm);
+  const auto t0 = std::chrono::steady_clock::now();
+  for (int k = 0; k < 2000; ++k)
+    MPI_Allreduce(MPI_IN_PLACE, &x, 1, MPI_DOUBLE, MPI_MAX, comm);
+  f.allreduce = seconds_since(t0) / 2000.0;
+  return f;
+}
+
+} // namespace rank_figures

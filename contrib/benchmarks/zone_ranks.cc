@@ -1,0 +1,215 @@
+// Strong scaling of the zone cycle split among ranks (issue 24): the
+// elastic 10 m cube of zone_cycle.cc (5 n^3 constant-strain tetrahedra,
+// static with local damping and density scaling, under gravity from the
+// gravitational stress, base held), first whole on rank 0 alone while the
+// other ranks wait, then split among all ranks.
+//
+// The split: each gridpoint belongs to the rank whose region of a
+// CellPartition (balanced by the zones around the gridpoints) holds it;
+// each rank holds every zone with a gridpoint of its own, in the mesh's
+// zone order, and the other gridpoints of those zones as ghosts
+// (GridpointShare). It moves its own gridpoints; PETSc's ghost update
+// brings the ghosts' positions and velocities after every step. The zones
+// of a cut are computed on both sides: that is what keeps every owned
+// gridpoint's force sum in the one run's order, so the split run must equal
+// the whole run bit for bit, which the benchmark checks (every gridpoint's
+// position, gathered on rank 0).
+//
+// Prints both rates and the speed-up measured in this one run, the zones
+// held over the model's, the exchange per step, the memory per zone held,
+// this machine's MPI, and a model of 100 million zones on 64 and 1,000
+// ranks from those figures.
+//   cmake --build build --target benchmark_zone_ranks
+//   mpirun -np 2 build/contrib/benchmarks/benchmark_zone_ranks [n] [steps]
+// Defaults: n = 59 (1,026,895 zones), 20 steps.
+
+#include "benchmark_arguments.h"
+#include "rank_figures.h"
+
+#include <talus/base/memory.h>
+#include <talus/base/parallel_environment.h>
+#include <talus/contact/cell_partition.h>
+#include <talus/solver/deformable_solver.h>
+#include <talus/zone/block_mesher.h>
+#include <talus/zone/gridpoint_share.h>
+#include <talus/zone/mesh_share.h>
+
+#include <mpi.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <cstring>
+#include <ctime>
+#include <memory>
+#include <vector>
+
+using namespace talus;
+using rank_figures::seconds_since;
+
+int main(int argc, char** argv)
+{
+  ParallelEnvironment env(argc, argv);
+  const MPI_Comm comm = MPI_COMM_WORLD;
+  int rank = 0, ranks = 1;
+  MPI_Comm_rank(comm, &rank);
+  MPI_Comm_size(comm, &ranks);
+  const unsigned int n =
+      argc > 1 ? whole_argument(argv[0], argv[1], "the cells per side (first argument)", 2, 200)
+               : 59;
+  const unsigned long steps =
+      argc > 2 ? whole_argument(argv[0], argv[2], "the step count (second argument)", 1, 100000)
+               : 20;
+
+  const double side = 10.0, density = 2650.0, g = 9.81;
+  ZoneMaterial elastic;
+  elastic.density = density;
+  elastic.set_young_poisson(1e10, 0.25);
+  SolverSettings settings;
+  settings.dynamic = false;
+  settings.gravity = Vec3(0, 0, -g);
+  GridpointCondition base;
+  base.region = Box{Vec3(-1, -1, -1e-9), Vec3(side + 1, side + 1, 1e-9)};
+  InitialStress initial;
+  initial.base[2] = -density * g * side;
+  initial.gradient[2] = density * g;
+
+  // Every rank meshes the cube (the mesher is deterministic).
+  BlockModel blocks;
+  blocks.add_block(ConvexPolyhedron::box(Vec3::Zero(), Vec3::Constant(side)), 0);
+  MeshReport report;
+  const TetMesh mesh = mesh_blocks(blocks, {0}, side / n, report, ZoneElement::tet4);
+  const unsigned int nz = mesh.n_zones(), ng = mesh.n_gridpoints();
+
+  // 1. Whole, on rank 0 alone.
+  double whole_seconds = 0.0;
+  std::vector<double> whole_x;
+  if (rank == 0)
+  {
+    DeformableSolver solver(mesh, {elastic}, std::vector<unsigned int>(nz, 0), settings, {base}, {},
+                            &initial);
+    const auto start = std::chrono::steady_clock::now();
+    for (unsigned long k = 0; k < steps; ++k)
+      solver.step();
+    whole_seconds = seconds_since(start);
+    whole_x = solver.positions();
+  }
+  MPI_Barrier(comm);
+
+  // 2. Split among the ranks: owners from a partition of the gridpoints
+  // weighed by their zones, on cells of a tenth of the side.
+  std::vector<Vec3> point(ng);
+  std::vector<double> work(ng, 0.0);
+  for (unsigned int p = 0; p < ng; ++p)
+    point[p] = Vec3(mesh.position[3 * p], mesh.position[3 * p + 1], mesh.position[3 * p + 2]);
+  for (const auto& zone : mesh.zone_gridpoint)
+    for (unsigned int p : zone)
+      work[p] += 0.25;
+  const Box domain{Vec3::Zero(), Vec3::Constant(side)};
+  const CellPartition partition(domain, domain.lo, Vec3::Constant(side / n), point, work,
+                                static_cast<unsigned int>(ranks));
+  std::vector<unsigned int> owner(ng);
+  for (unsigned int p = 0; p < ng; ++p)
+    owner[p] = partition.owner(point[p]);
+  const double memory_before = peak_memory();
+  const MeshShare mine = share_mesh(mesh, owner, static_cast<unsigned int>(rank),
+                                    static_cast<unsigned int>(ranks), comm);
+  const unsigned int held_zones = mine.mesh.n_zones();
+  DeformableSolver solver(mine.mesh, {elastic}, std::vector<unsigned int>(held_zones, 0), settings,
+                          {base}, {}, &initial, &mine.share);
+  MPI_Barrier(comm);
+  const auto start = std::chrono::steady_clock::now();
+  for (unsigned long k = 0; k < steps; ++k)
+    solver.step();
+  const double mine_seconds = seconds_since(start);
+  const double memory_per_zone =
+      rank == 1 ? (peak_memory() - memory_before) / double(held_zones) : 0.0;
+
+  // The split run must be the whole run: own gridpoints' positions on rank 0.
+  const std::vector<double> x = solver.positions();
+  std::vector<double> state;
+  for (unsigned int i = 0; i < mine.share.n_owned; ++i)
+  {
+    state.push_back(mine.gridpoint[i]);
+    state.insert(state.end(), &x[3 * i], &x[3 * i] + 3);
+  }
+  int count = static_cast<int>(state.size());
+  std::vector<int> counts(ranks), starts(ranks, 0);
+  MPI_Gather(&count, 1, MPI_INT, counts.data(), 1, MPI_INT, 0, comm);
+  for (int r = 1; r < ranks; ++r)
+    starts[r] = starts[r - 1] + counts[r - 1];
+  std::vector<double> all_state(rank == 0 ? starts.back() + counts.back() : 0);
+  MPI_Gatherv(state.data(), count, MPI_DOUBLE, all_state.data(), counts.data(), starts.data(),
+              MPI_DOUBLE, 0, comm);
+
+  double split_seconds = 0.0, memory = 0.0;
+  MPI_Reduce(&mine_seconds, &split_seconds, 1, MPI_DOUBLE, MPI_MAX, 0, comm);
+  MPI_Allreduce(&memory_per_zone, &memory, 1, MPI_DOUBLE, MPI_MAX, comm);
+  long held[2] = {long(held_zones), long(mine.mesh.n_gridpoints() - mine.share.n_owned)},
+       held_all[2] = {0, 0};
+  MPI_Reduce(held, held_all, 2, MPI_LONG, MPI_SUM, 0, comm);
+  const rank_figures::MpiFigures mpi = rank_figures::measure_mpi(comm);
+  if (rank != 0)
+    return 0;
+
+  unsigned long differ = 0, compared = 0;
+  for (std::size_t k = 0; k < all_state.size(); k += 4, ++compared)
+    differ += std::memcmp(&whole_x[3 * std::size_t(all_state[k])], &all_state[k + 1],
+                          3 * sizeof(double)) != 0;
+  const std::time_t now = std::time(nullptr);
+  char date[32];
+  std::strftime(date, sizeof date, "%Y-%m-%d %H:%M UTC", std::gmtime(&now));
+  std::printf("%s, %s; %d ranks\n", rank_figures::cpu_model().c_str(), date, ranks);
+  std::printf("n = %u: %u zones, %u gridpoints, %lu steps\n", n, nz, ng, steps);
+  std::printf("split run against the whole run: %lu of %lu gridpoints (%s) differ in position, "
+              "bit for bit\n",
+              differ, compared, compared == ng ? "all" : "NOT ALL");
+  std::printf("whole on one rank: %.3f s, %.3g zone-cycles/s\n", whole_seconds,
+              double(nz) * steps / whole_seconds);
+  std::printf("split on %d ranks: %.3f s, %.3g zone-cycles/s; speed-up %.2f\n", ranks,
+              split_seconds, double(nz) * steps / split_seconds, whole_seconds / split_seconds);
+  const double ghost_gridpoints = double(held_all[1]);
+  const double exchange_bytes = ghost_gridpoints * 6 * sizeof(double); // positions, velocities
+  std::printf("zones held %.4f times the model's (the zones of the cuts on both sides); ghost "
+              "gridpoints %.0f, exchange %.0f bytes per step in all\n",
+              double(held_all[0]) / nz, ghost_gridpoints, exchange_bytes);
+  if (ranks > 1)
+    std::printf("MPI between ranks 0 and 1: latency %.2f us, bandwidth %.2f GB/s, one "
+                "MPI_Allreduce %.2f us\n",
+                1e6 * mpi.latency, 1e-9 * mpi.bandwidth, 1e6 * mpi.allreduce);
+  if (ranks > 1)
+    std::printf("memory per zone held (rank 1: the rise of its peak resident memory with its "
+                "share, ghosts included): %.0f bytes\n",
+                memory);
+
+  // The model: P ranks, each a cube of m = Z / P zones, L = (m / 5)^(1/3)
+  // cells on a side. Zones held: 5 (L + 2 t)^3, with t the depth of the
+  // zones a cut adds on each side, measured here (the extra zones per cut
+  // over 5 n^2; one cut per pair of ranks when split in two); each held
+  // zone costs as much as one in the whole run. Ghost gridpoints: (L + 2
+  // t)^3 - L^3 in gridpoint layers, 48 bytes each per step, to 26
+  // neighbours (latency each), with 2 reductions of log2 P latencies.
+  if (ranks == 2)
+  {
+    const double t_zone = whole_seconds / (double(nz) * steps);
+    const double depth = (double(held_all[0]) - nz) / (2.0 * 5.0 * n * n);
+    const double ghost_depth = ghost_gridpoints / (2.0 * (n + 1.0) * (n + 1.0));
+    std::printf("model inputs: %.3g s per zone-step (whole run); a cut adds %.2f cells of zones "
+                "and %.2f layers of ghost gridpoints on each side\n",
+                t_zone, depth, ghost_depth);
+    for (const double p : {64.0, 1000.0})
+    {
+      const double total = 1e8, m = total / p, cells = std::cbrt(m / 5.0);
+      const double held_zones_rank = 5.0 * std::pow(cells + 2.0 * depth, 3);
+      const double compute = held_zones_rank * t_zone;
+      const double ghosts = std::pow(cells + 1.0 + 2.0 * ghost_depth, 3) - std::pow(cells + 1.0, 3);
+      const double talk =
+          26.0 * mpi.latency + ghosts * 48.0 / mpi.bandwidth + 2.0 * std::log2(p) * mpi.latency;
+      std::printf("predicted: %.0f zones on %.0f ranks: %.0f zones a rank, held %.3f times; %.3g "
+                  "s computing and %.3g s exchanging a step; efficiency %.0f %%\n",
+                  total, p, m, held_zones_rank / m, compute, talk,
+                  100.0 * m * t_zone / (compute + talk));
+    }
+  }
+  return 0;
+}

@@ -1,0 +1,33 @@
+#pragma once
+
+#include <talus/zone/gridpoint_share.h>
+#include <talus/zone/tet_mesh.h>
+
+#include <mpi.h>
+
+#include <vector>
+
+namespace talus
+{
+
+/// A rank's part of a mesh of 4-node zones split among MPI ranks by its
+/// gridpoints (issue 24): the zones with a gridpoint the rank owns, in the
+/// whole mesh's zone order (so that an owned gridpoint sums its zones'
+/// forces as in one run), on the rank's own gridpoints in the mesh's order
+/// and then the ghosts, ordered by their numbers in the whole model's
+/// vectors (GridpointShare: each rank's gridpoints numbered together, rank
+/// by rank). Boundary faces of the zones held come along.
+struct MeshShare
+{
+  TetMesh mesh;
+  GridpointShare share;
+  std::vector<unsigned int> gridpoint; ///< per local gridpoint: its number in the whole mesh
+};
+
+/// The part of `whole` that rank `rank` of `ranks` holds, with `owner[g]`
+/// the rank of each gridpoint. Every rank must pass the same `owner`.
+/// 4-node zones only (no 10-node or hexahedral zones).
+MeshShare share_mesh(const TetMesh& whole, const std::vector<unsigned int>& owner,
+                     unsigned int rank, unsigned int ranks, MPI_Comm comm);
+
+} // namespace talus
