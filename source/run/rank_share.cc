@@ -86,12 +86,9 @@ void check_runs_on_ranks(const Scene& scene, int ranks)
   if (scene.solver.partial_density_scaling)
     throw scene_error(scene, "Solver", "Partial density scaling",
                       "partial density scaling: " + on + " without it", allowed);
-  if (scene.output.checkpoint_interval > 0)
-    throw scene_error(scene, "Output", "Checkpoint interval",
-                      "checkpoints: " + on + " without checkpoints", allowed);
 }
 
-RankShare::RankShare(const BlockModel& model, double reach, MPI_Comm comm)
+RankShare::RankShare(const BlockModel& model, double reach, MPI_Comm comm, const RankBlocks* saved)
     : comm_(comm), reach_(reach)
 {
   MPI_Comm_rank(comm, &rank_);
@@ -112,7 +109,9 @@ RankShare::RankShare(const BlockModel& model, double reach, MPI_Comm comm)
                                                model.centroid,
                                                std::vector<double>(model.n_blocks(), 1.0),
                                                static_cast<unsigned int>(ranks_));
-  blocks_ = decompose_blocks(model, *partition_, static_cast<unsigned int>(rank_), reach, layers);
+  blocks_ =
+      saved ? *saved
+            : decompose_blocks(model, *partition_, static_cast<unsigned int>(rank_), reach, layers);
   local_ = model.subset(blocks_.local);
   exchange_ = std::make_unique<GhostExchange>(blocks_, comm_);
 }
@@ -121,9 +120,14 @@ void RankShare::refresh(RigidSolver& solver)
 {
   exchange_->refresh(solver);
   if (!migration_)
-    migration_ = std::make_unique<BlockMigration>(solver, blocks_, *partition_, reach_, layers,
-                                                  comm_);
+    make_migration(solver);
   migration_->update(solver, blocks_);
+}
+
+void RankShare::make_migration(const RigidSolver& solver)
+{
+  migration_ =
+      std::make_unique<BlockMigration>(solver, blocks_, *partition_, reach_, layers, comm_);
 }
 
 unsigned long RankShare::migrations() const
