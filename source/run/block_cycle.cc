@@ -615,6 +615,10 @@ void BlockCycle::print_end()
   std::printf("Output:       %s_blocks.pvd, %s_contacts.pvd, %s%s_history.csv\n", prefix_.c_str(),
               prefix_.c_str(), system_.zones ? (prefix_ + "_zones.pvd, ").c_str() : "",
               prefix_.c_str());
+  // On standard error: the summary is the serial run's, line for line.
+  if (share_ && share_->rank() == 0)
+    std::fprintf(stderr, "talus: on %d ranks: %lu migration events, %lu owner changes\n",
+                 share_->ranks(), share_->migrations(), share_->owner_changes());
 }
 
 std::string BlockCycle::unbalanced_where() const

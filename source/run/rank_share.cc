@@ -135,6 +135,11 @@ unsigned long RankShare::migrations() const
   return migration_ ? migration_->events() : 0;
 }
 
+unsigned long RankShare::owner_changes() const
+{
+  return migration_ ? migration_->owner_changes() : 0;
+}
+
 std::vector<char> RankShare::ghost_flags() const
 {
   std::vector<char> ghost(blocks_.local.size());

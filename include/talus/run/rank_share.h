@@ -77,6 +77,7 @@ public:
   void refresh(RigidSolver& solver);
   /// Migration events so far, and the blocks that changed owner in them.
   unsigned long migrations() const;
+  unsigned long owner_changes() const;
   /// Doubles sent by this rank at the last refresh.
   std::size_t sent() const { return exchange_->sent(); }
 
