@@ -235,6 +235,7 @@ void RankShare::save_state(CheckpointWriter& out) const
   out.put(static_cast<unsigned char>(migration_ != nullptr));
   if (migration_)
     migration_->save_state(out);
+  out.put(event_steps_);
 }
 
 void RankShare::load_state(CheckpointReader& in, const RigidSolver& solver)
@@ -251,6 +252,7 @@ void RankShare::load_state(CheckpointReader& in, const RigidSolver& solver)
     make_migration(solver);
     migration_->load_state(in);
   }
+  in.get(event_steps_);
 }
 
 } // namespace talus

@@ -617,8 +617,11 @@ void BlockCycle::print_end()
               prefix_.c_str());
   // On standard error: the summary is the serial run's, line for line.
   if (share_ && share_->rank() == 0)
-    std::fprintf(stderr, "talus: on %d ranks: %lu migration events, %lu owner changes\n",
-                 share_->ranks(), share_->migrations(), share_->owner_changes());
+    std::fprintf(stderr,
+                 "talus: on %d ranks: %lu migration events (the sum of their steps %lu), %lu "
+                 "owner changes\n",
+                 share_->ranks(), share_->migrations(), share_->event_steps(),
+                 share_->owner_changes());
 }
 
 std::string BlockCycle::unbalanced_where() const

@@ -4,6 +4,7 @@
 #include <talus/io/scene_checks.h>
 #include <talus/run/rank_share.h>
 #include <talus/run/run_summary.h>
+#include <talus/solver/rigid_solver.h>
 
 #include <algorithm>
 
@@ -121,7 +122,8 @@ void RankShare::refresh(RigidSolver& solver)
   exchange_->refresh(solver);
   if (!migration_)
     make_migration(solver);
-  migration_->update(solver, blocks_);
+  if (migration_->update(solver, blocks_))
+    event_steps_ += solver.steps_done();
 }
 
 void RankShare::make_migration(const RigidSolver& solver)

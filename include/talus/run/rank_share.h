@@ -78,6 +78,9 @@ public:
   /// Migration events so far, and the blocks that changed owner in them.
   unsigned long migrations() const;
   unsigned long owner_changes() const;
+  /// The sum of the steps of the migration events: when they happened, in
+  /// one number (a restart that lost the migration's state moves them).
+  unsigned long event_steps() const { return event_steps_; }
   /// Doubles sent by this rank at the last refresh.
   std::size_t sent() const { return exchange_->sent(); }
 
@@ -107,6 +110,7 @@ private:
   BlockModel local_;
   std::unique_ptr<GhostExchange> exchange_;
   std::unique_ptr<BlockMigration> migration_; ///< made at the first refresh
+  unsigned long event_steps_ = 0;
   void make_migration(const RigidSolver& solver);
 };
 
