@@ -309,7 +309,9 @@ int Simulation::run()
   }
   if (!restart_from_.empty())
   {
-    const unsigned long step = checkpoints->restore(restart_from_);
+    // On ranks: a rank's file that does not fit its share stops every rank.
+    unsigned long step = 0;
+    agree_on_input_errors([&]() { step = checkpoints->restore(restart_from_); });
     // What the stages begun changed that a checkpoint does not hold (the
     // boundaries, the rock materials), set again in their order.
     for (unsigned int k = 0; k < stage_begun; ++k)
