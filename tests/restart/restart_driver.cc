@@ -147,10 +147,10 @@ void show(const char* what, const Result& r)
   {
     const bool dashes = line.rfind("--------", 0) == 0;
     launcher_box ^= dashes;
-    // The migration's figures (compared between runs below) go to
-    // standard error: rounding may move them.
+    // The migration's figures (compared between runs below) go to a file
+    // of their own: rounding may move them.
     if (line.find("migration events") != std::string::npos)
-      std::fprintf(stderr, "%s: %s\n", what, line.c_str());
+      std::ofstream("migration_events.txt", std::ios::app) << what << ": " << line << "\n";
     else if (!dashes && !launcher_box)
       std::printf("  | %s\n", line.c_str());
   }
@@ -195,6 +195,7 @@ int main(int argc, char** argv)
   if (argc != 2)
     return 2;
   here = fs::current_path().string() + "/";
+  fs::remove("migration_events.txt");
   const std::string source = read_file(argv[1]);
   const fs::path scene = fs::absolute("scene.prm");
   write_file(scene, source);
