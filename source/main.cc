@@ -5,6 +5,7 @@
 #include <talus/base/memory.h>
 #include <talus/base/parallel_environment.h>
 #include <talus/io/checkpoint.h>
+#include <talus/io/rank_checkpoint.h>
 #include <talus/run/simulation.h>
 
 #include <talus_revision.h>
@@ -37,7 +38,8 @@ constexpr const char* usage =
     "  and writes nothing: exit code 0 when it would run, 1 when not.\n"
     "  --restart continues a run from its checkpoint (<Base name>_checkpoint.bin,\n"
     "  written every 'Checkpoint interval' steps and on SIGINT/SIGTERM) with the\n"
-    "  parameter file it was written for (or SCENE.prm, the same file moved).\n";
+    "  parameter file it was written for (or SCENE.prm, the same file moved);\n"
+    "  a run on N ranks continues with mpirun -np N talus --restart CHECKPOINT.\n";
 
 /// The number of ranks a launcher started this process among (Open MPI's
 /// mpirun, or a PMI launcher), and this one's rank, read from the
@@ -79,13 +81,6 @@ int main(int argc, char** argv)
   // and writes the run's files; the other ranks print nothing.
   int rank = 0;
   const int ranks = launched_ranks(rank);
-  if (ranks > 1 && restart)
-  {
-    if (rank == 0)
-      std::fprintf(stderr, "talus: error: --restart runs on one rank (checkpoints are written "
-                           "on one rank); run it without mpirun\n");
-    return 1;
-  }
   std::unique_ptr<talus::ParallelEnvironment> mpi;
   if (ranks > 1)
   {
@@ -113,7 +108,8 @@ int main(int argc, char** argv)
     std::string restart_from;
     if (restart)
     {
-      restart_from = argv[2];
+      // On N ranks, this rank's file of the set (io/rank_checkpoint.h).
+      restart_from = talus::checkpoint_of_this_rank(argv[2]);
       // The parameter file may be named (a moved project); else the checkpoint's.
       scene_file =
           argc == 4 ? std::string(argv[3]) : talus::checkpoint_parameter_file(restart_from);
@@ -131,8 +127,10 @@ int main(int argc, char** argv)
   catch (const talus::RunInterrupted& e)
   {
     std::fflush(stdout); // the summary so far, then the message
-    std::fprintf(stderr, "talus: %s\n", e.what());
-    return stop_ranks(e.exit_code());
+    if (says)
+      std::fprintf(stderr, "talus: %s\n", e.what());
+    // On ranks every rank stopped at the same step, its file written.
+    return e.exit_code();
   }
   catch (const talus::InputError& e)
   {

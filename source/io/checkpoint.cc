@@ -5,9 +5,11 @@
 #include <talus/io/checkpoint.h>
 #include <talus/io/file_output.h>
 #include <talus/io/history_file.h>
+#include <talus/io/rank_checkpoint.h>
 #include <talus/joint/continuously_yielding.h>
 #include <talus/scene/scene.h>
 #include <talus/model/block_model.h>
+#include <talus/run/rank_share.h>
 #include <talus/solver/damper.h>
 #include <talus/solver/deformable_solver.h>
 #include <talus/solver/rigid_solver.h>
@@ -53,8 +55,9 @@ void put_header_value(std::string& s, const T& v)
   s.append(reinterpret_cast<const char*>(&v), sizeof(T));
 }
 
-/// The payload of a checkpoint file, its header checked.
-CheckpointReader read_checkpoint(const std::string& file)
+} // namespace
+
+CheckpointReader read_checkpoint(const std::string& file, unsigned int* rank, unsigned int* ranks)
 {
   std::error_code ec;
   if (std::filesystem::is_directory(file, ec))
@@ -91,8 +94,18 @@ CheckpointReader read_checkpoint(const std::string& file)
     throw refuse("the checkpoint is corrupt (its checksum does not match its content)");
   CheckpointReader reader(bytes.substr(header_size), file);
   reader.tag("talus checkpoint");
+  unsigned int written_rank = 0, written_ranks = 1;
+  reader.get(written_rank);
+  reader.get(written_ranks);
+  if (rank != nullptr)
+    *rank = written_rank;
+  if (ranks != nullptr)
+    *ranks = written_ranks;
   return reader;
 }
+
+namespace
+{
 
 /// Fingerprint of the model's initial geometry and of the zones' gridpoints.
 std::uint64_t geometry_fingerprint(const BlockModel& model, const DeformableSolver* zones)
@@ -120,10 +133,12 @@ std::uint64_t fnv1a(const void* data, std::size_t size, std::uint64_t seed)
 
 // ---- Signals -----------------------------------------------------------------
 
-RunInterrupted::RunInterrupted(int signal, unsigned long step, const std::string& checkpoint)
+RunInterrupted::RunInterrupted(int signal, unsigned long step, const std::string& checkpoint,
+                               const std::string& restart_with)
     : std::runtime_error(std::string("stopped by ") + signal_name(signal) + " at step " +
                          std::to_string(step) + "; checkpoint written to " + checkpoint +
-                         "; continue with: talus --restart " + checkpoint),
+                         "; continue with: " +
+                         (restart_with.empty() ? "talus --restart " + checkpoint : restart_with)),
       signal(signal), step(step), checkpoint(checkpoint)
 {
 }
@@ -262,6 +277,13 @@ void compare_fingerprints(const std::string& checkpoint, const Scene& scene,
 }
 } // namespace
 
+RankBlocks read_rank_blocks(const std::string& file)
+{
+  CheckpointReader in = read_checkpoint(file);
+  read_fingerprints(in);
+  return get_rank_blocks(in);
+}
+
 void check_checkpoint_scene(const std::string& checkpoint, const Scene& scene)
 {
   CheckpointReader in = read_checkpoint(checkpoint);
@@ -307,8 +329,10 @@ Checkpoint::Checkpoint(const Scene& scene, const BlockModel& model, RigidSolver*
                        DeformableSolver* zones, const std::string& restart_from)
     : scene_(scene), rigid_(rigid), zones_(zones), scene_hash_(scene_fingerprint(scene)),
       geometry_hash_(geometry_fingerprint(model, zones)),
-      interval_(scene.output.checkpoint_interval),
-      path_(scene.output.directory + "/" + scene.output.base_name + "_checkpoint.bin")
+      interval_(scene.output.checkpoint_interval), rank_(static_cast<unsigned int>(world_rank())),
+      ranks_(static_cast<unsigned int>(world_ranks())),
+      set_(scene.output.directory + "/" + scene.output.base_name + "_checkpoint.bin"),
+      path_(ranks_ > 1 ? rank_checkpoint_path(set_, rank_, ranks_) : set_)
 {
   if (const char* at = std::getenv("TALUS_TEST_SIGNAL_AT_STEP"))
     signal_test_step_ = std::atol(at);
@@ -342,9 +366,20 @@ void Checkpoint::after_step(unsigned long step)
 {
   if (signal_test_step_ >= 0 && step == static_cast<unsigned long>(signal_test_step_))
     std::raise(SIGTERM);
-  const int signal = stop_signal_received();
+  int signal = stop_signal_received();
+  if (ranks_ > 1)
+  {
+    // Every rank stops at the same step (a signal reaches the ranks at
+    // different steps), so that the files of the set are of one step.
+    int any = signal;
+    MPI_Allreduce(&signal, &any, 1, MPI_INT, MPI_MAX, MPI_COMM_WORLD);
+    signal = any;
+  }
   if (signal != 0 || (interval_ > 0 && step % interval_ == 0))
     write(step);
+  if (signal != 0 && ranks_ > 1)
+    throw RunInterrupted(signal, step, rank_checkpoint_path(set_, -1, ranks_),
+                         "mpirun -np " + std::to_string(ranks_) + " talus --restart " + set_);
   if (signal != 0)
     throw RunInterrupted(signal, step, path_);
 }
@@ -353,12 +388,16 @@ void Checkpoint::write(unsigned long step) const
 {
   CheckpointWriter out;
   out.tag("talus checkpoint");
+  out.put(rank_);
+  out.put(ranks_);
   out.put(std::filesystem::absolute(scene_.parameter_file).lexically_normal().string());
   out.put(scene_hash_.base);
   out.put(scene_hash_.stages);
   out.put(stages_begun_ != nullptr ? *stages_begun_ : 0u);
   out.put(geometry_hash_);
   out.put(static_cast<std::uint64_t>(step));
+  if (share_ != nullptr)
+    share_->save_state(out);
   out.tag("counters");
   out.put(static_cast<std::uint64_t>(counters_.size()));
   for (const unsigned int* c : counters_)
@@ -395,12 +434,25 @@ void Checkpoint::write(unsigned long step) const
                           file.write(header.data(), header.size());
                           file.write(payload.data(), payload.size());
                         });
+  // On ranks: the set whole (every rank's file of this step in place)
+  // before the run goes on or stops.
+  if (ranks_ > 1)
+    MPI_Barrier(MPI_COMM_WORLD);
 }
 
 unsigned long Checkpoint::restore(const std::string& file)
 {
-  CheckpointReader in = read_checkpoint(file);
+  unsigned int rank = 0, ranks = 1;
+  CheckpointReader in = read_checkpoint(file, &rank, &ranks);
+  if (rank != rank_ || ranks != ranks_)
+    throw InputError(file + ": written by rank " + std::to_string(rank) + " of " +
+                     std::to_string(ranks) + ", read by rank " + std::to_string(rank_) + " of " +
+                     std::to_string(ranks_) + "; allowed: " + restart_command(file, ranks));
   const unsigned long step = check_fingerprints(in, file);
+  if ((share_ != nullptr) != (ranks > 1))
+    in.mismatch("ranks' shares", ranks > 1, share_ != nullptr);
+  if (share_ != nullptr)
+    share_->load_state(in, *rigid_);
   std::uint64_t n = 0;
   in.tag("counters");
   in.get(n);

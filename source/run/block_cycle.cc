@@ -1,6 +1,7 @@
 #include <talus/base/memory.h>
 #include <talus/base/exceptions.h>
 #include <talus/io/checkpoint.h>
+#include <talus/io/rank_checkpoint.h>
 #include <talus/io/factor_of_safety_run.h>
 #include <talus/scene/factor_of_safety.h>
 #include <talus/io/scene_checks.h>
@@ -35,12 +36,19 @@ std::unique_ptr<ParallelEnvironment> prepare(Scene& scene, BlockModel& model)
 
 /// This rank's share of the model when talus runs on several MPI ranks
 /// (null on one): ghosts within the contact tolerance plus three more of
-/// motion.
-std::unique_ptr<RankShare> share_of(const Scene& scene, const BlockModel& model)
+/// motion; on a restart, the blocks the rank held at its checkpoint.
+std::unique_ptr<RankShare> share_of(const Scene& scene, const BlockModel& model,
+                                    const std::string& restart_from)
 {
   if (world_ranks() < 2)
     return nullptr;
-  return std::make_unique<RankShare>(model, 4.0 * scene.solver.contact.tolerance, MPI_COMM_WORLD);
+  const double reach = 4.0 * scene.solver.contact.tolerance;
+  if (!restart_from.empty())
+  {
+    const RankBlocks saved = read_rank_blocks(restart_from);
+    return std::make_unique<RankShare>(model, reach, MPI_COMM_WORLD, &saved);
+  }
+  return std::make_unique<RankShare>(model, reach, MPI_COMM_WORLD);
 }
 
 bool needs_built_model(const Scene& scene)
@@ -52,9 +60,10 @@ bool needs_built_model(const Scene& scene)
 }
 } // namespace
 
-BlockCycle::BlockCycle(Scene& scene, BlockModel& model, const std::string& prefix)
-    : share_(share_of(scene, model)), scene_(scene), model_(share_ ? share_->local() : model),
-      prefix_(prefix), parallel_(prepare(scene, model)),
+BlockCycle::BlockCycle(Scene& scene, BlockModel& model, const std::string& prefix,
+                       const std::string& restart_from)
+    : share_(share_of(scene, model, restart_from)), scene_(scene),
+      model_(share_ ? share_->local() : model), prefix_(prefix), parallel_(prepare(scene, model)),
       built_model_(needs_built_model(scene) ? std::make_unique<BlockModel>(model_) : nullptr),
       meshing_start_(now()),
       // Deformable blocks among rigid ones: their zones, and their surfaces
@@ -410,6 +419,12 @@ void BlockCycle::register_checkpoint(Checkpoint& checkpoint)
     checkpoint.add(*s);
   checkpoint.add(frame_);
   checkpoint.add(zone_frame_);
+  if (share_)
+  {
+    checkpoint.add(*share_);
+    checkpoint.add(unbalanced_.first);
+    checkpoint.add(unbalanced_.second);
+  }
 }
 
 void BlockCycle::begin_stage(const StageSpec& stage)
@@ -600,6 +615,13 @@ void BlockCycle::print_end()
   std::printf("Output:       %s_blocks.pvd, %s_contacts.pvd, %s%s_history.csv\n", prefix_.c_str(),
               prefix_.c_str(), system_.zones ? (prefix_ + "_zones.pvd, ").c_str() : "",
               prefix_.c_str());
+  // On standard error: the summary is the serial run's, line for line.
+  if (share_ && share_->rank() == 0)
+    std::fprintf(stderr,
+                 "talus: on %d ranks: %lu migration events (the sum of their steps %lu), %lu "
+                 "owner changes\n",
+                 share_->ranks(), share_->migrations(), share_->event_steps(),
+                 share_->owner_changes());
 }
 
 std::string BlockCycle::unbalanced_where() const

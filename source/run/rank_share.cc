@@ -4,6 +4,7 @@
 #include <talus/io/scene_checks.h>
 #include <talus/run/rank_share.h>
 #include <talus/run/run_summary.h>
+#include <talus/solver/rigid_solver.h>
 
 #include <algorithm>
 
@@ -78,12 +79,9 @@ void check_runs_on_ranks(const Scene& scene, int ranks)
   if (scene.solver.partial_density_scaling)
     throw scene_error(scene, "Solver", "Partial density scaling",
                       "partial density scaling: " + on + " without it", allowed);
-  if (scene.output.checkpoint_interval > 0)
-    throw scene_error(scene, "Output", "Checkpoint interval",
-                      "checkpoints: " + on + " without checkpoints", allowed);
 }
 
-RankShare::RankShare(const BlockModel& model, double reach, MPI_Comm comm)
+RankShare::RankShare(const BlockModel& model, double reach, MPI_Comm comm, const RankBlocks* saved)
     : comm_(comm), reach_(reach)
 {
   MPI_Comm_rank(comm, &rank_);
@@ -104,7 +102,9 @@ RankShare::RankShare(const BlockModel& model, double reach, MPI_Comm comm)
                                                std::vector<double>(model.n_blocks(), 1.0),
                                                static_cast<unsigned int>(ranks_));
   blocks_ =
-      decompose_blocks(model, *partition_, static_cast<unsigned int>(rank_), reach, ghost_layers);
+      saved ? *saved
+            : decompose_blocks(model, *partition_, static_cast<unsigned int>(rank_), reach,
+                               ghost_layers);
   local_ = model.subset(blocks_.local);
   exchange_ = std::make_unique<GhostExchange>(blocks_, comm_);
 }
@@ -113,14 +113,25 @@ void RankShare::refresh(RigidSolver& solver)
 {
   exchange_->refresh(solver);
   if (!migration_)
-    migration_ =
-        std::make_unique<BlockMigration>(solver, blocks_, *partition_, reach_, ghost_layers, comm_);
-  migration_->update(solver, blocks_);
+    make_migration(solver);
+  if (migration_->update(solver, blocks_))
+    event_steps_ += solver.steps_done();
+}
+
+void RankShare::make_migration(const RigidSolver& solver)
+{
+  migration_ = std::make_unique<BlockMigration>(solver, blocks_, *partition_, reach_,
+                                                ghost_layers, comm_);
 }
 
 unsigned long RankShare::migrations() const
 {
   return migration_ ? migration_->events() : 0;
+}
+
+unsigned long RankShare::owner_changes() const
+{
+  return migration_ ? migration_->owner_changes() : 0;
 }
 
 std::vector<char> RankShare::ghost_flags() const

@@ -249,7 +249,7 @@ int Simulation::run()
         if (body_alone(scene_, model_))
           cycle = std::make_unique<BodyCycle>(scene_, model_, prefix_);
         else
-          cycle = std::make_unique<BlockCycle>(scene_, model_, prefix_);
+          cycle = std::make_unique<BlockCycle>(scene_, model_, prefix_, restart_from_);
       });
   stages = this->stages();
   const bool staged = !scene_.stages.empty();
@@ -277,12 +277,10 @@ int Simulation::run()
     }
   if (staged)
     columns.push_back("stage");
-  // One rank: checkpoints (on ranks the scene has none, and a stop signal
-  // ends the run as usual); rank 0: the history and the progress line.
-  std::unique_ptr<Checkpoint> checkpoints;
-  if (world_ranks() == 1)
-    checkpoints =
-        std::make_unique<Checkpoint>(scene_, model_, cycle->rigid(), cycle->zones(), restart_from_);
+  // Checkpoints (on ranks, one file per rank: io/rank_checkpoint.h);
+  // rank 0: the history and the progress line.
+  std::unique_ptr<Checkpoint> checkpoints =
+      std::make_unique<Checkpoint>(scene_, model_, cycle->rigid(), cycle->zones(), restart_from_);
   std::unique_ptr<HistoryFile> history;
   if (writes)
     history = std::make_unique<HistoryFile>(prefix_ + "_history.csv", columns, 100,
@@ -297,7 +295,8 @@ int Simulation::run()
   if (checkpoints)
   {
     Checkpoint& checkpoint = *checkpoints;
-    checkpoint.add(*history);
+    if (history)
+      checkpoint.add(*history);
     cycle->register_checkpoint(checkpoint);
     checkpoint.add(stage_index);
     checkpoint.add(stage_begun);
@@ -310,7 +309,9 @@ int Simulation::run()
   }
   if (!restart_from_.empty())
   {
-    const unsigned long step = checkpoints->restore(restart_from_);
+    // On ranks: a rank's file that does not fit its share stops every rank.
+    unsigned long step = 0;
+    agree_on_input_errors([&]() { step = checkpoints->restore(restart_from_); });
     // What the stages begun changed that a checkpoint does not hold (the
     // boundaries, the rock materials), set again in their order.
     for (unsigned int k = 0; k < stage_begun; ++k)

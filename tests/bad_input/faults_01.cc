@@ -145,6 +145,8 @@ void forge_checkpoint(const fs::path& from, const fs::path& to)
     std::uint64_t n = 0;
     std::memcpy(&n, bytes.data() + at, 8);
     at += 8 + n;
+    if (string == 0)
+      at += 2 * 4; // the rank and the number of ranks that wrote it (format 9)
   }
   at += 3 * 8; // scene and geometry fingerprints, step
   std::string payload = bytes.substr(header, at - header);

@@ -14,6 +14,11 @@
 //   5. (with "# restart test: bad checkpoints") feeds talus a truncated
 //      checkpoint, a file that is not one, and the checkpoint of a changed
 //      parameter file: each must be refused with exit code 1.
+// With "# restart test: ranks N" every run is `mpiexec -n N talus ...`: the
+// checkpoint is a set of N files (CHECKPOINT.rank-R-of-N), and
+// "# restart test: rank refusals" restarts it on N + 1 ranks, on one, with
+// a file of the set missing, with files of two steps, and a serial
+// checkpoint on N ranks: each must be refused with exit code 1 (no hang).
 // Prints what it compared; the folder it ran in is removed from messages.
 
 #include <algorithm>
@@ -49,6 +54,9 @@ void write_file(const fs::path& file, const std::string& text)
   std::ofstream(file, std::ios::binary) << text;
 }
 
+/// Empty: talus alone; else mpiexec and its arguments, then talus.
+std::vector<std::string> launcher;
+
 struct Result
 {
   int exit_code = -1; ///< -1: killed by a signal
@@ -75,10 +83,19 @@ Result run_talus(const std::vector<std::string>& args, const std::string& env,
     if (!env.empty())
       putenv(const_cast<char*>(env.c_str()));
     std::vector<char*> argv{const_cast<char*>("talus")};
+    if (!launcher.empty())
+    {
+      // Open MPI refuses root without these.
+      putenv(const_cast<char*>("OMPI_ALLOW_RUN_AS_ROOT=1"));
+      putenv(const_cast<char*>("OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1"));
+      argv.clear();
+      for (const std::string& a : launcher)
+        argv.push_back(const_cast<char*>(a.c_str()));
+    }
     for (const std::string& a : args)
       argv.push_back(const_cast<char*>(a.c_str()));
     argv.push_back(nullptr);
-    execv(TALUS_EXECUTABLE, argv.data());
+    execv(launcher.empty() ? TALUS_EXECUTABLE : launcher[0].c_str(), argv.data());
     _exit(127);
   }
   close(pipe_fd[1]);
@@ -104,6 +121,16 @@ Result run_talus(const std::vector<std::string>& args, const std::string& env = 
 
 std::string here; ///< the folder the test runs in, with a trailing '/'
 
+/// The line of a run on ranks that counts the migration events.
+std::string migration_line(const Result& r)
+{
+  const std::size_t at = r.messages.find("migration events");
+  if (at == std::string::npos)
+    return "";
+  const std::size_t begin = r.messages.rfind('\n', at) + 1;
+  return r.messages.substr(begin, r.messages.find('\n', at) - begin);
+}
+
 void show(const char* what, const Result& r)
 {
   std::string text = r.messages;
@@ -115,8 +142,18 @@ void show(const char* what, const Result& r)
   else
     std::printf("exit code %d\n", r.exit_code);
   std::istringstream lines(text);
+  bool launcher_box = false; // mpiexec's own notes, framed by dashes: left out
   for (std::string line; std::getline(lines, line);)
-    std::printf("  | %s\n", line.c_str());
+  {
+    const bool dashes = line.rfind("--------", 0) == 0;
+    launcher_box ^= dashes;
+    // The migration's figures (compared between runs below) go to a file
+    // of their own: rounding may move them.
+    if (line.find("migration events") != std::string::npos)
+      std::ofstream("migration_events.txt", std::ios::app) << what << ": " << line << "\n";
+    else if (!dashes && !launcher_box)
+      std::printf("  | %s\n", line.c_str());
+  }
 }
 
 /// The value of "set NAME = value" in the parameter text (first match).
@@ -158,12 +195,39 @@ int main(int argc, char** argv)
   if (argc != 2)
     return 2;
   here = fs::current_path().string() + "/";
+  fs::remove("migration_events.txt");
   const std::string source = read_file(argv[1]);
   const fs::path scene = fs::absolute("scene.prm");
   write_file(scene, source);
   const fs::path output = fs::absolute(entry(source, "Directory"));
   const std::string base = entry(source, "Base name");
   const fs::path checkpoint = output / (base + "_checkpoint.bin");
+  const std::size_t ranks_at = source.find("# restart test: ranks ");
+  const int ranks = ranks_at == std::string::npos ? 1 : std::atoi(source.c_str() + ranks_at + 22);
+  const auto on_ranks = [&](int n)
+  {
+    launcher.clear();
+    if (n > 1)
+      launcher = {MPIEXEC_EXECUTABLE, "-n", std::to_string(n), "--oversubscribe", TALUS_EXECUTABLE};
+  };
+  on_ranks(ranks);
+  // The checkpoint's files: itself, or the set of one per rank.
+  const auto files_of = [&](const fs::path& set)
+  {
+    std::vector<fs::path> files;
+    for (int r = 0; r < ranks; ++r)
+      files.push_back(ranks == 1 ? set
+                                 : fs::path(set.string() + ".rank-" + std::to_string(r) + "-of-" +
+                                            std::to_string(ranks)));
+    return files;
+  };
+  const auto exists_all = [&](const fs::path& set)
+  {
+    bool all = true;
+    for (const fs::path& f : files_of(set))
+      all &= fs::exists(f);
+    return all;
+  };
   bool good = true;
   const auto check = [&](bool ok, const std::string& what)
   {
@@ -180,8 +244,10 @@ int main(int argc, char** argv)
   const fs::path last_checkpoint = fs::absolute("last_checkpoint.bin");
   if (std::stoul("0" + entry(source, "Checkpoint interval")) > 0)
   {
-    check(fs::exists(checkpoint), "checkpoint left by 'Checkpoint interval'");
-    fs::copy_file(checkpoint, last_checkpoint, fs::copy_options::overwrite_existing);
+    check(exists_all(checkpoint), "checkpoint left by 'Checkpoint interval'");
+    for (int r = 0; r < ranks; ++r)
+      fs::copy_file(files_of(checkpoint)[r], files_of(last_checkpoint)[r],
+                    fs::copy_options::overwrite_existing);
   }
 
   // 2. The same run, stopped.
@@ -220,12 +286,17 @@ int main(int argc, char** argv)
   }
   show("run stopped by SIGTERM", stopped);
   check(stopped.exit_code == 143, "stopped with exit code 143 (128 + SIGTERM)");
-  check(fs::exists(checkpoint), "checkpoint written");
+  check(exists_all(checkpoint),
+        ranks == 1 ? "checkpoint written" : "checkpoint written: one file per rank");
   bool no_temporary = true;
   for (const fs::directory_entry& e : fs::directory_iterator(output))
     no_temporary &= e.path().filename().string().find(".tmp") == std::string::npos;
   check(no_temporary, "no temporary file left behind");
-  const std::string saved = read_file(checkpoint);
+  const std::string saved = read_file(files_of(checkpoint)[0]);
+  const fs::path stopped_checkpoint = fs::absolute("stopped_checkpoint.bin");
+  for (int r = 0; r < ranks; ++r)
+    fs::copy_file(files_of(checkpoint)[r], files_of(stopped_checkpoint)[r],
+                  fs::copy_options::overwrite_existing);
   std::printf("checkpoint starts with TALUSCKP: %s\n",
               saved.compare(0, 8, "TALUSCKP") == 0 ? "yes" : "NO");
 
@@ -233,6 +304,9 @@ int main(int argc, char** argv)
   const Result continued = run_talus({"--restart", checkpoint.string()});
   show("restarted run", continued);
   check(continued.exit_code == 0, "restarted run finished");
+  if (ranks > 1)
+    check(!migration_line(whole).empty() && migration_line(continued) == migration_line(whole),
+          "migration events at the steps of the run never stopped, as many owner changes");
   const std::map<std::string, std::string> after = folder_files(output);
   for (const auto& [name, text] : reference)
   {
@@ -333,6 +407,45 @@ int main(int argc, char** argv)
     check(r4.exit_code == 1, "refused with exit code 1");
     write_file(scene, source);
     check(folder_files(output) == before, "refused restarts left every output file as it was");
+  }
+  // 6. A set restarted where it does not fit.
+  if (source.find("# restart test: rank refusals") != std::string::npos)
+  {
+    const std::map<std::string, std::string> before = folder_files(output);
+    const auto refused = [&](const char* what, const Result& r)
+    {
+      show(what, r);
+      check(r.exit_code == 1, "refused with exit code 1");
+    };
+    on_ranks(ranks + 1);
+    refused(("restart on " + std::to_string(ranks + 1) + " ranks").c_str(),
+            run_talus({"--restart", checkpoint.string()}));
+    on_ranks(1);
+    refused("restart on one rank", run_talus({"--restart", checkpoint.string()}));
+    on_ranks(ranks);
+    const fs::path last_file = files_of(checkpoint)[ranks - 1];
+    const fs::path aside = fs::absolute("aside.bin");
+    fs::rename(last_file, aside);
+    refused("restart with the last rank's file missing",
+            run_talus({"--restart", checkpoint.string()}));
+    fs::rename(aside, last_file);
+    // Rank 0's file of the stop, the others of the run's end.
+    const fs::path mixed = fs::absolute("mixed_checkpoint.bin");
+    for (int r = 0; r < ranks; ++r)
+      fs::copy_file(r == 0 ? files_of(stopped_checkpoint)[0] : files_of(last_checkpoint)[r],
+                    files_of(mixed)[r], fs::copy_options::overwrite_existing);
+    refused("restart from a set of two steps", run_talus({"--restart", mixed.string()}));
+    check(folder_files(output) == before, "refused restarts left every output file as it was");
+    // A serial checkpoint of the scene, at its last step.
+    fs::remove_all(output);
+    on_ranks(1);
+    const Result serial = run_talus({scene.string()});
+    check(serial.exit_code == 0 && fs::exists(checkpoint), "serial run left a checkpoint");
+    const fs::path single = fs::absolute("serial_checkpoint.bin");
+    fs::copy_file(checkpoint, single, fs::copy_options::overwrite_existing);
+    on_ranks(ranks);
+    refused(("serial checkpoint restarted on " + std::to_string(ranks) + " ranks").c_str(),
+            run_talus({"--restart", single.string()}));
   }
   std::printf("%s\n", good ? "OK" : "FAILED");
   return good ? 0 : 1;

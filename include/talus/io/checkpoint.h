@@ -32,6 +32,7 @@ class BlockModel;
 class DeformableSolver;
 class HistoryFile;
 class PvdSeries;
+class RankShare;
 class RigidSolver;
 struct Scene;
 
@@ -39,8 +40,10 @@ struct Scene;
 /// removed blocks and zones, fixed blocks, mode, joint material rules);
 /// 6: continuously yielding joints' state; 7: a fingerprint per stage and
 /// the stages begun (a stage may be appended to a finished run); 8: the
-/// work of nodal mixed discretization in the zones' energy account.
-constexpr std::uint32_t checkpoint_format_version = 8;
+/// work of nodal mixed discretization in the zones' energy account; 9: the
+/// rank and the number of ranks after the first tag, and on several ranks
+/// each rank's share (io/rank_checkpoint.h) after the step.
+constexpr std::uint32_t checkpoint_format_version = 9;
 
 /// FNV-1a, 64 bits: a fingerprint, not a cryptographic hash.
 std::uint64_t fnv1a(const void* data, std::size_t size,
@@ -51,7 +54,10 @@ std::uint64_t fnv1a(const void* data, std::size_t size,
 /// SIGINT, 143 for SIGTERM), the shells' convention.
 struct RunInterrupted : std::runtime_error
 {
-  RunInterrupted(int signal, unsigned long step, const std::string& checkpoint);
+  /// `restart_with`: the command that continues the run (default: talus
+  /// --restart `checkpoint`).
+  RunInterrupted(int signal, unsigned long step, const std::string& checkpoint,
+                 const std::string& restart_with = "");
   int signal;
   unsigned long step;
   std::string checkpoint;
@@ -65,6 +71,13 @@ void install_stop_signal_handlers();
 void restore_default_signal_handlers();
 /// The signal received since install_stop_signal_handlers() (0: none).
 int stop_signal_received();
+
+/// The payload of a checkpoint file, its header checked, read past its
+/// first tag and the rank and number of ranks that wrote it (returned in
+/// `rank` and `ranks` when given); throws InputError for a file that is not
+/// a talus checkpoint of this format, or is truncated or corrupt.
+CheckpointReader read_checkpoint(const std::string& file, unsigned int* rank = nullptr,
+                                 unsigned int* ranks = nullptr);
 
 /// The parameter file a checkpoint was written for (absolute path), read
 /// from its header; throws InputError for a file that is not a talus
@@ -126,8 +139,12 @@ public:
   /// The run loop's count of stages begun: the stages whose parameters a
   /// restart must find unchanged.
   void set_stages_begun(const unsigned int* begun) { stages_begun_ = begun; }
+  /// On several ranks: this rank's share of the model (its blocks, their
+  /// owners and the migration's state), saved in this rank's file.
+  void add(RankShare& share) { share_ = &share; }
 
-  /// Where checkpoints go: `<Output directory>/<Base name>_checkpoint.bin`.
+  /// Where checkpoints go: `<Output directory>/<Base name>_checkpoint.bin`;
+  /// on N ranks, rank R's file of the set: that name + `.rank-R-of-N`.
   const std::string& path() const { return path_; }
 
   /// Writes a checkpoint when one is due at `step` (the interval, or a stop
@@ -154,6 +171,9 @@ private:
   const unsigned int* stages_begun_ = nullptr;
   unsigned long interval_;
   long signal_test_step_ = -1;
+  unsigned int rank_ = 0, ranks_ = 1;
+  RankShare* share_ = nullptr;
+  std::string set_; ///< `<Output directory>/<Base name>_checkpoint.bin`
   std::string path_;
   std::vector<HistoryFile*> histories_;
   std::vector<PvdSeries*> series_;

@@ -27,8 +27,10 @@ public:
   /// summary's lines on zones and the time step); `prefix` is the output
   /// folder and base name. Started on several MPI ranks, each rank runs its
   /// share of the model (RankShare) and the summary, the history and the
-  /// output are those of the whole model.
-  BlockCycle(Scene& scene, BlockModel& model, const std::string& prefix);
+  /// output are those of the whole model; `restart_from`: this rank's
+  /// checkpoint file, whose blocks the rank holds (on ranks).
+  BlockCycle(Scene& scene, BlockModel& model, const std::string& prefix,
+             const std::string& restart_from = "");
   ~BlockCycle() override;
 
   void step() override;

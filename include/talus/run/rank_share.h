@@ -18,6 +18,8 @@
 namespace talus
 {
 
+class CheckpointReader;
+class CheckpointWriter;
 class RigidSolver;
 
 /// The number of ranks of MPI_COMM_WORLD, 1 when MPI has not been started
@@ -34,7 +36,7 @@ void agree_on_input_errors(const std::function<void()>& build);
 
 /// Refuses, with one message naming the entry, a scene that talus cannot
 /// yet run split among ranks: deformable blocks, water, stages, the factor
-/// of safety, checkpoints, face loads on rigid blocks.
+/// of safety, face loads on rigid blocks.
 void check_runs_on_ranks(const Scene& scene, int ranks);
 
 /// This rank's share of a model of rigid blocks split among the ranks of
@@ -54,8 +56,10 @@ public:
   static constexpr unsigned int ghost_layers = 1;
 
   /// `reach` (m): the contact tolerance plus the motion allowed until the
-  /// ghosts are chosen again.
-  RankShare(const BlockModel& model, double reach, MPI_Comm comm);
+  /// ghosts are chosen again. `saved`: the blocks this rank held at a
+  /// checkpoint (read_rank_blocks), instead of those the partition gives.
+  RankShare(const BlockModel& model, double reach, MPI_Comm comm,
+            const RankBlocks* saved = nullptr);
 
   int rank() const { return rank_; }
   int ranks() const { return ranks_; }
@@ -79,6 +83,10 @@ public:
   void refresh(RigidSolver& solver);
   /// Migration events so far, and the blocks that changed owner in them.
   unsigned long migrations() const;
+  unsigned long owner_changes() const;
+  /// The sum of the steps of the migration events: when they happened, in
+  /// one number (a restart that lost the migration's state moves them).
+  unsigned long event_steps() const { return event_steps_; }
   /// Doubles sent by this rank at the last refresh.
   std::size_t sent() const { return exchange_->sent(); }
 
@@ -89,6 +97,12 @@ public:
   /// (the lowest numbered one of equal values, as a serial loop that keeps
   /// the first largest finds).
   std::pair<double, unsigned int> largest(double value, unsigned int global) const;
+
+  /// This rank's blocks and the migration's state, in a checkpoint; loading
+  /// checks the blocks against those it was made with (`saved`) and makes
+  /// the migration for `solver`. Defined in io/rank_checkpoint.cc.
+  void save_state(CheckpointWriter& out) const;
+  void load_state(CheckpointReader& in, const RigidSolver& solver);
 
   /// The global number of the model's block `local` (a local index).
   unsigned int global_of(unsigned int local) const { return blocks_.local[local]; }
@@ -102,6 +116,8 @@ private:
   BlockModel local_;
   std::unique_ptr<GhostExchange> exchange_;
   std::unique_ptr<BlockMigration> migration_; ///< made at the first refresh
+  unsigned long event_steps_ = 0;
+  void make_migration(const RigidSolver& solver);
 };
 
 } // namespace talus

@@ -10,6 +10,8 @@
 namespace talus
 {
 
+class CheckpointReader;
+class CheckpointWriter;
 class RigidSolver;
 
 /// Ownership that follows the blocks of a rigid model split among ranks
@@ -84,6 +86,11 @@ public:
   /// Blocks this rank received (began to hold) and dropped, over all events.
   unsigned long received() const { return received_; }
   unsigned long dropped() const { return dropped_; }
+
+  /// The paths at the last choice and the counters, in a checkpoint
+  /// (defined in io/rank_checkpoint.cc).
+  void save_state(CheckpointWriter& out) const;
+  void load_state(CheckpointReader& in);
 
 private:
   /// Every per-block array of the solver that outlives a step, in one
