@@ -61,7 +61,7 @@ BlockCycle::BlockCycle(Scene& scene, BlockModel& model, const std::string& prefi
       // as their shapes for the contacts.
       system_(build_block_system(scene, model_)), block_series_(prefix + "_blocks.pvd"),
       contact_series_(prefix + "_contacts.pvd"), zone_series_(prefix + "_zones.pvd"),
-      built_centroid_(model_.centroid)
+      built_centroid_(model.centroid) // the whole model's, by global number
 {
   const double meshing_seconds = now() - meshing_start_;
   check_boundary_selections(scene, model_, system_.mesh);
@@ -119,18 +119,25 @@ namespace
 void apply_boundaries(BlockSystem& system, const BlockModel& built, const BoundarySet& set)
 {
   RigidSolver& solver = *system.solver;
-  std::vector<char> rigid(built.n_blocks(), 1);
-  for (unsigned int b = 0; b < built.n_blocks(); ++b)
-    rigid[b] = !solver.is_deformable(b);
-  solver.set_face_loads(RigidFaceLoads(built, rigid, set.face_pressures));
+  if (set.face_pressures.empty())
+    solver.set_face_loads(RigidFaceLoads()); // (on ranks `built` may not be the blocks held now)
+  else
+  {
+    std::vector<char> rigid(built.n_blocks(), 1);
+    for (unsigned int b = 0; b < built.n_blocks(); ++b)
+      rigid[b] = !solver.is_deformable(b);
+    solver.set_face_loads(RigidFaceLoads(built, rigid, set.face_pressures));
+  }
   if (system.zones)
     system.zones->set_boundaries(set.gridpoint_conditions, set.face_pressures);
 }
 
 /// A stage's 'Rock materials' (of `scene`) into `system`; prints what
-/// changed when `account` (a stage's start, not a restart).
+/// changed when `account` (a stage's start, not a restart). On ranks
+/// (`share`), every rank changes its blocks, ghosts too, and the count is
+/// of the blocks owned, summed.
 void change_rock_materials(const Scene& scene, const BlockModel& model, BlockSystem& system,
-                           const StageSpec& stage, bool account)
+                           const StageSpec& stage, bool account, const RankShare* share = nullptr)
 {
   RigidSolver& solver = *system.solver;
   for (const RockMaterialChange& c : stage.rock_materials)
@@ -143,8 +150,10 @@ void change_rock_materials(const Scene& scene, const BlockModel& model, BlockSys
       if (model.group_names[model.group[b]] == c.group && !solver.removed(b))
       {
         blocks[b] = 1;
-        ++count;
+        count += !share || share->blocks().owned[b];
       }
+    if (share)
+      count = static_cast<unsigned int>(share->sum(static_cast<unsigned long>(count)));
     ZoneMaterial zone = rock ? rock->zone : scene.deformable.material;
     zone.element = scene.deformable.material.element;
     zone.nodal_mixed = scene.deformable.nodal_mixed(c.group);
@@ -416,8 +425,14 @@ void BlockCycle::begin_stage(const StageSpec& stage)
 {
   RigidSolver& solver = *system_.solver;
   // Excavations: the blocks of the groups named, and those whose centroid
-  // (as built) lies in a region, which the model was cut along.
+  // (as built) lies in a region, which the model was cut along. On ranks
+  // each rank removes its blocks so chosen, ghosts too (the same rule
+  // keeps them equal to their owners), and counts those it owns.
+  const auto owned = [&](unsigned int b) { return !share_ || share_->blocks().owned[b]; };
+  const auto global = [&](unsigned int b) { return share_ ? share_->global_of(b) : b; };
   std::vector<unsigned int> gone;
+  std::vector<double> gone_volume(share_ ? built_centroid_.size() : 0, 0.0); // by global number
+  unsigned long n_gone = 0;
   double volume = 0.0;
   const double on_face = 1e-9 * scene_.brick.diagonal();
   for (unsigned int b = 0; b < model_.n_blocks(); ++b)
@@ -427,19 +442,33 @@ void BlockCycle::begin_stage(const StageSpec& stage)
     bool go = std::find(stage.excavate_groups.begin(), stage.excavate_groups.end(),
                         model_.group_names[model_.group[b]]) != stage.excavate_groups.end();
     for (const ExcavationSpec& e : stage.excavations)
-      go |= e.region.contains(built_centroid_[b], on_face);
+      go |= e.region.contains(built_centroid_[global(b)], on_face);
     if (go)
     {
       gone.push_back(b);
+      if (!owned(b))
+        continue;
+      ++n_gone;
       volume += model_.volume[b];
+      if (share_)
+        gone_volume[global(b)] = model_.volume[b];
     }
   }
-  if (!gone.empty())
+  if (share_)
   {
-    solver.remove_blocks(gone);
-    std::printf("  Excavated:  %zu blocks, %.9g m^3\n", gone.size(), volume);
+    // The serial sum, in the order of the blocks' numbers (the others' zeros add nothing).
+    n_gone = share_->sum(n_gone);
+    share_->sum(gone_volume);
+    volume = 0.0;
+    for (double v : gone_volume)
+      volume += v;
   }
-  unsigned int fixed = 0, freed = 0;
+  if (n_gone > 0)
+  {
+    solver.remove_blocks(gone); // on ranks, on every rank (masses and the step are reduced)
+    std::printf("  Excavated:  %lu blocks, %.9g m^3\n", n_gone, volume);
+  }
+  unsigned long fixed = 0, freed = 0;
   for (unsigned int b = 0; b < model_.n_blocks(); ++b)
   {
     const std::string& g = model_.group_names[model_.group[b]];
@@ -447,24 +476,29 @@ void BlockCycle::begin_stage(const StageSpec& stage)
         !solver.fixed[b] && !solver.removed(b))
     {
       solver.set_fixed(b, true);
-      ++fixed;
+      fixed += owned(b);
     }
     if (std::find(stage.free_groups.begin(), stage.free_groups.end(), g) !=
             stage.free_groups.end() &&
         solver.fixed[b] && !solver.removed(b))
     {
       solver.set_fixed(b, false);
-      ++freed;
+      freed += owned(b);
     }
   }
+  if (share_)
+  {
+    fixed = share_->sum(fixed);
+    freed = share_->sum(freed);
+  }
   if (fixed + freed > 0)
-    std::printf("  Fixed:      %u blocks held, %u let go\n", fixed, freed);
+    std::printf("  Fixed:      %lu blocks held, %lu let go\n", fixed, freed);
   if (stage.changes_water)
   {
     solver.set_water(stage.water);
     std::printf("  Water:      as '%s / Water' gives it\n", stage.section.c_str());
   }
-  else if (solver.water().active() && fixed + freed + gone.size() > 0)
+  else if (solver.water().active() && fixed + freed + n_gone > 0)
     solver.set_water(solver.water()); // on the blocks that move now
   for (const JointMaterialChange& c : stage.joint_materials)
     solver.change_joint_material(c.origin, c.material);
@@ -477,7 +511,7 @@ void BlockCycle::begin_stage(const StageSpec& stage)
   if (!stage.group_contacts.empty())
     std::printf("  Joints:     %zu pairs of groups change contact material\n",
                 stage.group_contacts.size());
-  change_rock_materials(scene_, model_, system_, stage, true);
+  change_rock_materials(scene_, model_, system_, stage, true, share_.get());
   if (stage.dynamic != solver.dynamic())
   {
     solver.set_dynamic(stage.dynamic);
@@ -597,6 +631,9 @@ void BlockCycle::print_end()
   if (system_.zones)
     std::printf("Largest gridpoint displacement: %.6g m\n",
                 largest_gridpoint_displacement(*system_.zones));
+  if (share_ && share_->rank() == 0) // on standard error: the summary is the serial run's
+    std::fprintf(stderr, "Migrations:   %lu events, %lu blocks changed rank\n",
+                 share_->migrations(), share_->owner_changes());
   std::printf("Output:       %s_blocks.pvd, %s_contacts.pvd, %s%s_history.csv\n", prefix_.c_str(),
               prefix_.c_str(), system_.zones ? (prefix_ + "_zones.pvd, ").c_str() : "",
               prefix_.c_str());

@@ -310,7 +310,7 @@ void RigidSolver::set_masses_and_step()
 
 void RigidSolver::remove_blocks(const std::vector<unsigned int>& blocks)
 {
-  if (blocks.empty())
+  if (blocks.empty() && !ranks_.sum) // on ranks: collective (masses and the step)
     return;
   // The energy the removed blocks and their joints hold leaves the account
   // with them: its error stays what it was.
@@ -383,12 +383,15 @@ void RigidSolver::set_loads(const std::vector<BlockLoad>& loads)
     if (fixed[b] || is_deformable_[b])
       continue;
     // The support gives or takes the kinetic energy of the change: the
-    // boundaries' work, so that the account stays closed.
-    boundary_work_ += 0.5 * inertial_mass[b] * (v.squaredNorm() - velocity[b].squaredNorm());
+    // boundaries' work, so that the account stays closed (on ranks, the
+    // owner's share).
+    if (!is_ghost(b))
+      boundary_work_ += 0.5 * inertial_mass[b] * (v.squaredNorm() - velocity[b].squaredNorm());
     velocity[b] = v;
     if ((bits & 8u) && !s_.principal_inertia)
     {
-      boundary_work_ -= 0.5 * inertia[b] * spin[b].squaredNorm();
+      if (!is_ghost(b))
+        boundary_work_ -= 0.5 * inertia[b] * spin[b].squaredNorm();
       spin[b].setZero();
     }
   }

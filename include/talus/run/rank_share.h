@@ -73,6 +73,8 @@ public:
   void refresh(RigidSolver& solver);
   /// Migration events so far, and the blocks that changed owner in them.
   unsigned long migrations() const;
+  /// Blocks that changed owner in them (all ranks').
+  unsigned long owner_changes() const { return migration_ ? migration_->owner_changes() : 0; }
   /// Doubles sent by this rank at the last refresh.
   std::size_t sent() const { return exchange_->sent(); }
 
