@@ -88,9 +88,6 @@ void check_runs_on_ranks(const Scene& scene, int ranks)
   if (!scene.face_pressures.empty())
     throw scene_error(scene, scene.face_pressure_sections.front(), "",
                       "face loads: " + on + " without 'Boundary N' face loads", allowed);
-  if (scene.solver.partial_density_scaling)
-    throw scene_error(scene, "Solver", "Partial density scaling",
-                      "partial density scaling: " + on + " without it", allowed);
   if (scene.output.checkpoint_interval > 0)
     throw scene_error(scene, "Output", "Checkpoint interval",
                       "checkpoints: " + on + " without checkpoints", allowed);
