@@ -55,7 +55,8 @@ bool needs_built_model(const Scene& scene)
 BlockCycle::BlockCycle(Scene& scene, BlockModel& model, const std::string& prefix)
     : share_(share_of(scene, model)), scene_(scene), model_(share_ ? share_->local() : model),
       prefix_(prefix), parallel_(prepare(scene, model)),
-      built_model_(needs_built_model(scene) ? std::make_unique<BlockModel>(model_) : nullptr),
+      // (model: the whole model, on ranks too)
+      built_model_(needs_built_model(scene) ? std::make_unique<BlockModel>(model) : nullptr),
       meshing_start_(now()),
       // Deformable blocks among rigid ones: their zones, and their surfaces
       // as their shapes for the contacts.
@@ -64,9 +65,18 @@ BlockCycle::BlockCycle(Scene& scene, BlockModel& model, const std::string& prefi
       built_centroid_(model.centroid) // the whole model's, by global number
 {
   const double meshing_seconds = now() - meshing_start_;
-  check_boundary_selections(scene, model_, system_.mesh);
+  // On ranks, on the whole model: every rank finds what one rank would.
+  check_boundary_selections(scene, share_ ? model : model_, system_.mesh);
   if (share_)
+  {
     system_.solver->split_among_ranks(share_->ghost_flags(), reductions_over(share_->comm()));
+    // 'Boundary N' face loads selected on the whole model, as on one rank.
+    if (!scene.face_pressures.empty())
+      system_.solver->set_face_load_table(
+          RigidFaceLoads(model, std::vector<char>(model.n_blocks(), 1), scene.face_pressures)
+              .relative_to(model),
+          share_->blocks().local);
+  }
   const RigidSolver& solver = *system_.solver;
   const DeformableSolver* zones = system_.zones.get();
   if (zones)
@@ -115,12 +125,19 @@ BlockCycle::BlockCycle(Scene& scene, BlockModel& model, const std::string& prefi
 namespace
 {
 /// A stage's boundaries and loads ('Boundary N' face loads selected on the
-/// blocks as built, `built`) into `system`.
-void apply_boundaries(BlockSystem& system, const BlockModel& built, const BoundarySet& set)
+/// blocks as built, `built`: on ranks (`share`) the whole model, and each
+/// rank takes those of its blocks) into `system`.
+void apply_boundaries(BlockSystem& system, const BlockModel& built, const BoundarySet& set,
+                      const RankShare* share = nullptr)
 {
   RigidSolver& solver = *system.solver;
   if (set.face_pressures.empty())
-    solver.set_face_loads(RigidFaceLoads()); // (on ranks `built` may not be the blocks held now)
+    solver.set_face_loads(RigidFaceLoads());
+  else if (share)
+    solver.set_face_load_table(
+        RigidFaceLoads(built, std::vector<char>(built.n_blocks(), 1), set.face_pressures)
+            .relative_to(built),
+        share->blocks().local);
   else
   {
     std::vector<char> rigid(built.n_blocks(), 1);
@@ -309,8 +326,9 @@ std::vector<double> BlockCycle::history_row()
         row.push_back((b >= 0 ? (*q)[std::size_t(b)] : zero)[d]);
     // At the block's centroid now: the water it stands in.
     if (water)
-      row.push_back(pore_pressure(solver.water(), scene_.solver.gravity.norm(),
-                                  model_.centroid[std::size_t(b)]));
+      row.push_back(b < 0 ? 0.0
+                          : pore_pressure(solver.water(), scene_.solver.gravity.norm(),
+                                          model_.centroid[std::size_t(b)]));
   }
   if (system_.zones)
     points_->add_values(row, *system_.zones);
@@ -525,7 +543,7 @@ void BlockCycle::begin_stage(const StageSpec& stage)
   if (stage.changes_boundaries)
   {
     solver.set_loads(stage.boundaries.loads);
-    apply_boundaries(system_, *built_model_, stage.boundaries);
+    apply_boundaries(system_, *built_model_, stage.boundaries, share_.get());
     std::printf("  Boundaries: ");
     for (std::size_t k = 0; k < stage.boundary_changes.size(); ++k)
       std::printf("%s%s", k == 0 ? "" : ", ", stage.boundary_changes[k].c_str());
@@ -588,7 +606,25 @@ void BlockCycle::print_end()
   }
   std::printf("Steps:        %lu (time %.6g s)\n", r.steps, r.time);
   std::printf("Contacts:     %lu with %lu sub-contacts\n", contacts, subcontacts);
-  if (solver.water().active())
+  if (solver.water().active() && share_)
+  {
+    // The owners' water forces summed in the order of the blocks' numbers,
+    // as on one rank (the others' zeros add nothing).
+    const WaterLoads& w = solver.water_loads();
+    std::vector<double> by_global(3 * built_centroid_.size() + 1, 0.0);
+    for (std::size_t k = 0; k < w.blocks().size(); ++k)
+      for (int d = 0; d < 3; ++d)
+        by_global[3 * share_->global_of(w.blocks()[k]) + d] = w.forces()[k][d];
+    by_global.back() = w.faces_below();
+    share_->sum(by_global);
+    Vec3 force = Vec3::Zero();
+    for (std::size_t g = 0; g < built_centroid_.size(); ++g)
+      force += Vec3(by_global[3 * g], by_global[3 * g + 1], by_global[3 * g + 2]);
+    std::printf("%s\n", water_summary(solver.water(), static_cast<unsigned int>(by_global.back()),
+                                      force)
+                            .c_str());
+  }
+  else if (solver.water().active())
     std::printf("%s\n", solver.water_summary().c_str());
   if (scene_.joint_material_names.size() > 1)
   {

@@ -77,17 +77,9 @@ void check_runs_on_ranks(const Scene& scene, int ranks)
   {
     if (stage.factor_of_safety)
       throw scene_error(scene, stage.section, "Mode", "the factor of safety: " + on, allowed);
-    if (!stage.boundaries.face_pressures.empty())
-      throw scene_error(scene, stage.section, "",
-                        "face loads: " + on + " without 'Boundary N' face loads", allowed);
   }
   if (scene.strength_reduction.enabled)
     throw scene_error(scene, "Solver", "Mode", "the factor of safety: " + on, allowed);
-  if (has_water(scene))
-    throw scene_error(scene, "Water", "", "water: " + on + " without water", allowed);
-  if (!scene.face_pressures.empty())
-    throw scene_error(scene, scene.face_pressure_sections.front(), "",
-                      "face loads: " + on + " without 'Boundary N' face loads", allowed);
   if (scene.output.checkpoint_interval > 0)
     throw scene_error(scene, "Output", "Checkpoint interval",
                       "checkpoints: " + on + " without checkpoints", allowed);

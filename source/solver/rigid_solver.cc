@@ -490,11 +490,33 @@ void RigidSolver::build_water_loads()
   water_loads_ = WaterLoads();
   if (s_.water.active())
   {
-    std::vector<char> wet(m_.n_blocks(), 0); // fixed blocks need no water; zones take theirs
+    // Fixed blocks need no water; zones take theirs; ghosts move with
+    // their owners (on ranks each block's force and work are its owner's).
+    std::vector<char> wet(m_.n_blocks(), 0);
     for (unsigned int b = 0; b < m_.n_blocks(); ++b)
-      wet[b] = !fixed[b] && !is_deformable_[b] && !removed_[b];
+      wet[b] = !fixed[b] && !is_deformable_[b] && !removed_[b] && !is_ghost(b);
     water_loads_ = WaterLoads(s_.water, s_.gravity.norm(), wet);
   }
+}
+
+void RigidSolver::set_face_load_table(RigidFaceLoads table,
+                                      const std::vector<unsigned int>& global_of_local)
+{
+  face_load_table_ = std::move(table);
+  has_face_load_table_ = true;
+  localize_loads(global_of_local);
+}
+
+void RigidSolver::localize_loads(const std::vector<unsigned int>& global_of_local)
+{
+  if (has_face_load_table_)
+  {
+    std::vector<char> owned(m_.n_blocks());
+    for (unsigned int b = 0; b < m_.n_blocks(); ++b)
+      owned[b] = !is_ghost(b) && !is_deformable_[b];
+    face_loads_ = face_load_table_.localized(m_, global_of_local, owned);
+  }
+  build_water_loads();
 }
 
 void RigidSolver::reset_displacements()
@@ -1005,6 +1027,7 @@ void RigidSolver::split_among_ranks(std::vector<char> ghost, RankReductions redu
 {
   ghost_ = std::move(ghost);
   ranks_ = std::move(reductions);
+  build_water_loads(); // on the blocks this rank owns
   set_masses_and_step();
   if (step_ == 0 && zones_ == nullptr)
   {
