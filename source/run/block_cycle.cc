@@ -70,6 +70,7 @@ BlockCycle::BlockCycle(Scene& scene, BlockModel& model, const std::string& prefi
   if (share_)
   {
     system_.solver->split_among_ranks(share_->ghost_flags(), reductions_over(share_->comm()));
+    system_.solver->localize_loads(share_->blocks().local);
     // 'Boundary N' face loads selected on the whole model, as on one rank.
     if (!scene.face_pressures.empty())
       system_.solver->set_face_load_table(
@@ -614,7 +615,7 @@ void BlockCycle::print_end()
     std::vector<double> by_global(3 * built_centroid_.size() + 1, 0.0);
     for (std::size_t k = 0; k < w.blocks().size(); ++k)
       for (int d = 0; d < 3; ++d)
-        by_global[3 * share_->global_of(w.blocks()[k]) + d] = w.forces()[k][d];
+        by_global[3 * solver.water_global()[k] + d] = w.forces()[k][d];
     by_global.back() = w.faces_below();
     share_->sum(by_global);
     Vec3 force = Vec3::Zero();

@@ -487,7 +487,9 @@ void RigidSolver::set_water(const WaterSpec& water)
 
 void RigidSolver::build_water_loads()
 {
+  water_stale_ = false;
   water_loads_ = WaterLoads();
+  water_global_.clear();
   if (s_.water.active())
   {
     // Fixed blocks need no water; zones take theirs; ghosts move with
@@ -496,6 +498,9 @@ void RigidSolver::build_water_loads()
     for (unsigned int b = 0; b < m_.n_blocks(); ++b)
       wet[b] = !fixed[b] && !is_deformable_[b] && !removed_[b] && !is_ghost(b);
     water_loads_ = WaterLoads(s_.water, s_.gravity.norm(), wet);
+    if (!global_of_local_.empty())
+      for (unsigned int b : water_loads_.blocks())
+        water_global_.push_back(global_of_local_[b]);
   }
 }
 
@@ -516,7 +521,10 @@ void RigidSolver::localize_loads(const std::vector<unsigned int>& global_of_loca
       owned[b] = !is_ghost(b) && !is_deformable_[b];
     face_loads_ = face_load_table_.localized(m_, global_of_local, owned);
   }
-  build_water_loads();
+  // The water's blocks at the next step: until then the summary's figures
+  // are those of the last step, of the blocks owned then (water_global).
+  global_of_local_ = global_of_local;
+  water_stale_ = true;
 }
 
 void RigidSolver::reset_displacements()
@@ -1147,6 +1155,8 @@ void RigidSolver::step()
     contact_forces();
   if (!face_loads_.empty())
     face_loads_.add(m_, force, moment, velocity, spin, time_);
+  if (water_stale_)
+    build_water_loads(); // on the blocks owned since a migration
   if (!water_loads_.empty())
     water_loads_.add(m_, force, moment, velocity, spin);
   timing_.seconds_forces += seconds_since(t0);

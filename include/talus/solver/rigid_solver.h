@@ -257,6 +257,8 @@ public:
   /// On ranks, after the blocks held or owned changed (BlockMigration): the
   /// face loads (from the table) and the water on the blocks owned now.
   void localize_loads(const std::vector<unsigned int>& global_of_local);
+  /// On ranks: the global numbers of water_loads().blocks().
+  const std::vector<unsigned int>& water_global() const { return water_global_; }
   /// The largest unbalanced force on a block this rank moves, at the last
   /// step (N): on unbalanced_block().
   double local_unbalanced_force() const { return local_unbalanced_; }
@@ -423,6 +425,9 @@ private:
   RigidFaceLoads face_loads_; ///< pressures and tractions on rigid blocks' faces
   RigidFaceLoads face_load_table_; ///< on ranks: face_loads_ of the whole model, relative
   bool has_face_load_table_ = false;
+  std::vector<unsigned int> global_of_local_; ///< on ranks, from localize_loads
+  std::vector<unsigned int> water_global_;    ///< see water_global()
+  bool water_stale_ = false; ///< water_loads_ to be built again before its next use
   WaterLoads water_loads_;    ///< water on free rigid blocks' faces (none without water)
   unsigned long step_ = 0;
   unsigned long last_output_ = 0; ///< step of the last output in run()
