@@ -621,9 +621,9 @@ void BlockCycle::print_end()
     Vec3 force = Vec3::Zero();
     for (std::size_t g = 0; g < built_centroid_.size(); ++g)
       force += Vec3(by_global[3 * g], by_global[3 * g + 1], by_global[3 * g + 2]);
-    std::printf("%s\n", water_summary(solver.water(), static_cast<unsigned int>(by_global.back()),
-                                      force)
-                            .c_str());
+    std::printf(
+        "%s\n",
+        water_summary(solver.water(), static_cast<unsigned int>(by_global.back()), force).c_str());
   }
   else if (solver.water().active())
     std::printf("%s\n", solver.water_summary().c_str());

@@ -211,8 +211,7 @@ RigidFaceLoads RigidFaceLoads::localized(const BlockModel& model,
   std::vector<unsigned int> slot_of_block(model.n_blocks(), ~0u);
   for (const Load& l : patch_)
   {
-    const auto at =
-        std::lower_bound(global_of_local.begin(), global_of_local.end(), l.patch.block);
+    const auto at = std::lower_bound(global_of_local.begin(), global_of_local.end(), l.patch.block);
     if (at == global_of_local.end() || *at != l.patch.block)
       continue;
     const unsigned int b = static_cast<unsigned int>(at - global_of_local.begin());

@@ -85,7 +85,8 @@ public:
   /// with `take[i]` only (the blocks it owns: ghosts move with their
   /// owners), in the order of the table, so that each block's force is
   /// summed as on one rank.
-  RigidFaceLoads localized(const BlockModel& model, const std::vector<unsigned int>& global_of_local,
+  RigidFaceLoads localized(const BlockModel& model,
+                           const std::vector<unsigned int>& global_of_local,
                            const std::vector<char>& take) const;
   unsigned int n_patches() const { return static_cast<unsigned int>(patch_.size()); }
 

@@ -427,7 +427,7 @@ private:
   bool has_face_load_table_ = false;
   std::vector<unsigned int> global_of_local_; ///< on ranks, from localize_loads
   std::vector<unsigned int> water_global_;    ///< see water_global()
-  bool water_stale_ = false; ///< water_loads_ to be built again before its next use
+  bool water_stale_ = false;  ///< water_loads_ to be built again before its next use
   WaterLoads water_loads_;    ///< water on free rigid blocks' faces (none without water)
   unsigned long step_ = 0;
   unsigned long last_output_ = 0; ///< step of the last output in run()
