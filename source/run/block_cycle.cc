@@ -64,18 +64,29 @@ BlockCycle::BlockCycle(Scene& scene, BlockModel& model, const std::string& prefi
                        const std::string& restart_from)
     : share_(share_of(scene, model, restart_from)), scene_(scene),
       model_(share_ ? share_->local() : model), prefix_(prefix), parallel_(prepare(scene, model)),
-      built_model_(needs_built_model(scene) ? std::make_unique<BlockModel>(model_) : nullptr),
+      // (model: the whole model, on ranks too)
+      built_model_(needs_built_model(scene) ? std::make_unique<BlockModel>(model) : nullptr),
       meshing_start_(now()),
       // Deformable blocks among rigid ones: their zones, and their surfaces
       // as their shapes for the contacts.
       system_(build_block_system(scene, model_)), block_series_(prefix + "_blocks.pvd"),
       contact_series_(prefix + "_contacts.pvd"), zone_series_(prefix + "_zones.pvd"),
-      built_centroid_(model_.centroid)
+      built_centroid_(model.centroid) // the whole model's, by global number
 {
   const double meshing_seconds = now() - meshing_start_;
-  check_boundary_selections(scene, model_, system_.mesh);
+  // On ranks, on the whole model: every rank finds what one rank would.
+  check_boundary_selections(scene, share_ ? model : model_, system_.mesh);
   if (share_)
+  {
     system_.solver->split_among_ranks(share_->ghost_flags(), reductions_over(share_->comm()));
+    system_.solver->localize_loads(share_->blocks().local);
+    // 'Boundary N' face loads selected on the whole model, as on one rank.
+    if (!scene.face_pressures.empty())
+      system_.solver->set_face_load_table(
+          RigidFaceLoads(model, std::vector<char>(model.n_blocks(), 1), scene.face_pressures)
+              .relative_to(model),
+          share_->blocks().local);
+  }
   const RigidSolver& solver = *system_.solver;
   const DeformableSolver* zones = system_.zones.get();
   if (zones)
@@ -124,22 +135,36 @@ BlockCycle::BlockCycle(Scene& scene, BlockModel& model, const std::string& prefi
 namespace
 {
 /// A stage's boundaries and loads ('Boundary N' face loads selected on the
-/// blocks as built, `built`) into `system`.
-void apply_boundaries(BlockSystem& system, const BlockModel& built, const BoundarySet& set)
+/// blocks as built, `built`: on ranks (`share`) the whole model, and each
+/// rank takes those of its blocks) into `system`.
+void apply_boundaries(BlockSystem& system, const BlockModel& built, const BoundarySet& set,
+                      const RankShare* share = nullptr)
 {
   RigidSolver& solver = *system.solver;
-  std::vector<char> rigid(built.n_blocks(), 1);
-  for (unsigned int b = 0; b < built.n_blocks(); ++b)
-    rigid[b] = !solver.is_deformable(b);
-  solver.set_face_loads(RigidFaceLoads(built, rigid, set.face_pressures));
+  if (set.face_pressures.empty())
+    solver.set_face_loads(RigidFaceLoads());
+  else if (share)
+    solver.set_face_load_table(
+        RigidFaceLoads(built, std::vector<char>(built.n_blocks(), 1), set.face_pressures)
+            .relative_to(built),
+        share->blocks().local);
+  else
+  {
+    std::vector<char> rigid(built.n_blocks(), 1);
+    for (unsigned int b = 0; b < built.n_blocks(); ++b)
+      rigid[b] = !solver.is_deformable(b);
+    solver.set_face_loads(RigidFaceLoads(built, rigid, set.face_pressures));
+  }
   if (system.zones)
     system.zones->set_boundaries(set.gridpoint_conditions, set.face_pressures);
 }
 
 /// A stage's 'Rock materials' (of `scene`) into `system`; prints what
-/// changed when `account` (a stage's start, not a restart).
+/// changed when `account` (a stage's start, not a restart). On ranks
+/// (`share`), every rank changes its blocks, ghosts too, and the count is
+/// of the blocks owned, summed.
 void change_rock_materials(const Scene& scene, const BlockModel& model, BlockSystem& system,
-                           const StageSpec& stage, bool account)
+                           const StageSpec& stage, bool account, const RankShare* share = nullptr)
 {
   RigidSolver& solver = *system.solver;
   for (const RockMaterialChange& c : stage.rock_materials)
@@ -152,8 +177,10 @@ void change_rock_materials(const Scene& scene, const BlockModel& model, BlockSys
       if (model.group_names[model.group[b]] == c.group && !solver.removed(b))
       {
         blocks[b] = 1;
-        ++count;
+        count += !share || share->blocks().owned[b];
       }
+    if (share)
+      count = static_cast<unsigned int>(share->sum(static_cast<unsigned long>(count)));
     ZoneMaterial zone = rock ? rock->zone : scene.deformable.material;
     zone.element = scene.deformable.material.element;
     zone.nodal_mixed = scene.deformable.nodal_mixed(c.group);
@@ -309,8 +336,9 @@ std::vector<double> BlockCycle::history_row()
         row.push_back((b >= 0 ? (*q)[std::size_t(b)] : zero)[d]);
     // At the block's centroid now: the water it stands in.
     if (water)
-      row.push_back(pore_pressure(solver.water(), scene_.solver.gravity.norm(),
-                                  model_.centroid[std::size_t(b)]));
+      row.push_back(b < 0 ? 0.0
+                          : pore_pressure(solver.water(), scene_.solver.gravity.norm(),
+                                          model_.centroid[std::size_t(b)]));
   }
   if (system_.zones)
     points_->add_values(row, *system_.zones);
@@ -431,8 +459,14 @@ void BlockCycle::begin_stage(const StageSpec& stage)
 {
   RigidSolver& solver = *system_.solver;
   // Excavations: the blocks of the groups named, and those whose centroid
-  // (as built) lies in a region, which the model was cut along.
+  // (as built) lies in a region, which the model was cut along. On ranks
+  // each rank removes its blocks so chosen, ghosts too (the same rule
+  // keeps them equal to their owners), and counts those it owns.
+  const auto owned = [&](unsigned int b) { return !share_ || share_->blocks().owned[b]; };
+  const auto global = [&](unsigned int b) { return share_ ? share_->global_of(b) : b; };
   std::vector<unsigned int> gone;
+  std::vector<double> gone_volume(share_ ? built_centroid_.size() : 0, 0.0); // by global number
+  unsigned long n_gone = 0;
   double volume = 0.0;
   const double on_face = 1e-9 * scene_.brick.diagonal();
   for (unsigned int b = 0; b < model_.n_blocks(); ++b)
@@ -442,19 +476,33 @@ void BlockCycle::begin_stage(const StageSpec& stage)
     bool go = std::find(stage.excavate_groups.begin(), stage.excavate_groups.end(),
                         model_.group_names[model_.group[b]]) != stage.excavate_groups.end();
     for (const ExcavationSpec& e : stage.excavations)
-      go |= e.region.contains(built_centroid_[b], on_face);
+      go |= e.region.contains(built_centroid_[global(b)], on_face);
     if (go)
     {
       gone.push_back(b);
+      if (!owned(b))
+        continue;
+      ++n_gone;
       volume += model_.volume[b];
+      if (share_)
+        gone_volume[global(b)] = model_.volume[b];
     }
   }
-  if (!gone.empty())
+  if (share_)
   {
-    solver.remove_blocks(gone);
-    std::printf("  Excavated:  %zu blocks, %.9g m^3\n", gone.size(), volume);
+    // The serial sum, in the order of the blocks' numbers (the others' zeros add nothing).
+    n_gone = share_->sum(n_gone);
+    share_->sum(gone_volume);
+    volume = 0.0;
+    for (double v : gone_volume)
+      volume += v;
   }
-  unsigned int fixed = 0, freed = 0;
+  if (n_gone > 0)
+  {
+    solver.remove_blocks(gone); // on ranks, on every rank (masses and the step are reduced)
+    std::printf("  Excavated:  %lu blocks, %.9g m^3\n", n_gone, volume);
+  }
+  unsigned long fixed = 0, freed = 0;
   for (unsigned int b = 0; b < model_.n_blocks(); ++b)
   {
     const std::string& g = model_.group_names[model_.group[b]];
@@ -462,24 +510,29 @@ void BlockCycle::begin_stage(const StageSpec& stage)
         !solver.fixed[b] && !solver.removed(b))
     {
       solver.set_fixed(b, true);
-      ++fixed;
+      fixed += owned(b);
     }
     if (std::find(stage.free_groups.begin(), stage.free_groups.end(), g) !=
             stage.free_groups.end() &&
         solver.fixed[b] && !solver.removed(b))
     {
       solver.set_fixed(b, false);
-      ++freed;
+      freed += owned(b);
     }
   }
+  if (share_)
+  {
+    fixed = share_->sum(fixed);
+    freed = share_->sum(freed);
+  }
   if (fixed + freed > 0)
-    std::printf("  Fixed:      %u blocks held, %u let go\n", fixed, freed);
+    std::printf("  Fixed:      %lu blocks held, %lu let go\n", fixed, freed);
   if (stage.changes_water)
   {
     solver.set_water(stage.water);
     std::printf("  Water:      as '%s / Water' gives it\n", stage.section.c_str());
   }
-  else if (solver.water().active() && fixed + freed + gone.size() > 0)
+  else if (solver.water().active() && fixed + freed + n_gone > 0)
     solver.set_water(solver.water()); // on the blocks that move now
   for (const JointMaterialChange& c : stage.joint_materials)
     solver.change_joint_material(c.origin, c.material);
@@ -492,7 +545,7 @@ void BlockCycle::begin_stage(const StageSpec& stage)
   if (!stage.group_contacts.empty())
     std::printf("  Joints:     %zu pairs of groups change contact material\n",
                 stage.group_contacts.size());
-  change_rock_materials(scene_, model_, system_, stage, true);
+  change_rock_materials(scene_, model_, system_, stage, true, share_.get());
   if (stage.dynamic != solver.dynamic())
   {
     solver.set_dynamic(stage.dynamic);
@@ -506,7 +559,7 @@ void BlockCycle::begin_stage(const StageSpec& stage)
   if (stage.changes_boundaries)
   {
     solver.set_loads(stage.boundaries.loads);
-    apply_boundaries(system_, *built_model_, stage.boundaries);
+    apply_boundaries(system_, *built_model_, stage.boundaries, share_.get());
     std::printf("  Boundaries: ");
     for (std::size_t k = 0; k < stage.boundary_changes.size(); ++k)
       std::printf("%s%s", k == 0 ? "" : ", ", stage.boundary_changes[k].c_str());
@@ -569,7 +622,25 @@ void BlockCycle::print_end()
   }
   std::printf("Steps:        %lu (time %.6g s)\n", r.steps, r.time);
   std::printf("Contacts:     %lu with %lu sub-contacts\n", contacts, subcontacts);
-  if (solver.water().active())
+  if (solver.water().active() && share_)
+  {
+    // The owners' water forces summed in the order of the blocks' numbers,
+    // as on one rank (the others' zeros add nothing).
+    const WaterLoads& w = solver.water_loads();
+    std::vector<double> by_global(3 * built_centroid_.size() + 1, 0.0);
+    for (std::size_t k = 0; k < w.blocks().size(); ++k)
+      for (int d = 0; d < 3; ++d)
+        by_global[3 * solver.water_global()[k] + d] = w.forces()[k][d];
+    by_global.back() = w.faces_below();
+    share_->sum(by_global);
+    Vec3 force = Vec3::Zero();
+    for (std::size_t g = 0; g < built_centroid_.size(); ++g)
+      force += Vec3(by_global[3 * g], by_global[3 * g + 1], by_global[3 * g + 2]);
+    std::printf(
+        "%s\n",
+        water_summary(solver.water(), static_cast<unsigned int>(by_global.back()), force).c_str());
+  }
+  else if (solver.water().active())
     std::printf("%s\n", solver.water_summary().c_str());
   if (scene_.joint_material_names.size() > 1)
   {
@@ -612,6 +683,9 @@ void BlockCycle::print_end()
   if (system_.zones)
     std::printf("Largest gridpoint displacement: %.6g m\n",
                 largest_gridpoint_displacement(*system_.zones));
+  if (share_ && share_->rank() == 0) // on standard error: the summary is the serial run's
+    std::fprintf(stderr, "Migrations:   %lu events, %lu blocks changed rank\n",
+                 share_->migrations(), share_->owner_changes());
   std::printf("Output:       %s_blocks.pvd, %s_contacts.pvd, %s%s_history.csv\n", prefix_.c_str(),
               prefix_.c_str(), system_.zones ? (prefix_ + "_zones.pvd, ").c_str() : "",
               prefix_.c_str());

@@ -66,19 +66,13 @@ void check_runs_on_ranks(const Scene& scene, int ranks)
   const std::string allowed = "run it without mpirun (one rank), or leave this out";
   if (!scene.deformable.groups.empty())
     throw scene_error(scene, "Deformable", "Groups", "deformable blocks: " + on, allowed);
-  if (!scene.stages.empty())
-    throw scene_error(scene, scene.stages.front().section, "",
-                      "stages: " + on + " in one stage ('Solver')", allowed);
+  for (const StageSpec& stage : scene.stages)
+  {
+    if (stage.factor_of_safety)
+      throw scene_error(scene, stage.section, "Mode", "the factor of safety: " + on, allowed);
+  }
   if (scene.strength_reduction.enabled)
     throw scene_error(scene, "Solver", "Mode", "the factor of safety: " + on, allowed);
-  if (has_water(scene))
-    throw scene_error(scene, "Water", "", "water: " + on + " without water", allowed);
-  if (!scene.face_pressures.empty())
-    throw scene_error(scene, scene.face_pressure_sections.front(), "",
-                      "face loads: " + on + " without 'Boundary N' face loads", allowed);
-  if (scene.solver.partial_density_scaling)
-    throw scene_error(scene, "Solver", "Partial density scaling",
-                      "partial density scaling: " + on + " without it", allowed);
 }
 
 RankShare::RankShare(const BlockModel& model, double reach, MPI_Comm comm, const RankBlocks* saved)

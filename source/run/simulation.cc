@@ -421,7 +421,8 @@ int Simulation::run()
       // A checkpoint at each stage's end: a restart from it begins the next
       // stage, or one appended to the file after the run has finished.
       stages_done = stage_index + 1;
-      checkpoints->write(cycle->steps_done());
+      if (checkpoints)
+        checkpoints->write(cycle->steps_done());
     }
   }
   if (staged)

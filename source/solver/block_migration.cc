@@ -238,14 +238,18 @@ bool BlockMigration::update(RigidSolver& solver, RankBlocks& blocks)
   if (!due(solver, blocks))
     return false;
   migrate(solver, blocks);
+  solver.localize_loads(blocks.local); // face loads and water on the blocks owned now
   return true;
 }
 
 void BlockMigration::migrate(RigidSolver& s, RankBlocks& blocks)
 {
-  if (s.zones_ != nullptr || !s.face_loads_.empty() || !s.water_loads_.empty())
-    throw std::logic_error("BlockMigration: blocks with zones, face loads or water do not "
-                           "move between ranks yet");
+  // Face loads move as a table of the whole model (set_face_load_table),
+  // water with the flags that choose its blocks; update() places both again.
+  if (s.zones_ != nullptr || (!s.face_loads_.empty() && !s.has_face_load_table_))
+    throw std::logic_error("BlockMigration: blocks with zones, or face loads without their "
+                           "table (RigidSolver::set_face_load_table), do not move between "
+                           "ranks yet");
   int rank = 0, n_ranks = 1;
   MPI_Comm_rank(comm_, &rank);
   MPI_Comm_size(comm_, &n_ranks);

@@ -189,4 +189,53 @@ void RigidFaceLoads::account(const std::vector<char>& fixed, const std::vector<V
   }
 }
 
+RigidFaceLoads RigidFaceLoads::relative_to(const BlockModel& blocks) const
+{
+  RigidFaceLoads r = *this;
+  for (Load& l : r.patch_)
+  {
+    l.patch.face -= blocks.face_start[l.patch.block];
+    for (unsigned int& v : l.patch.corner)
+      v -= blocks.vertex_start[l.patch.block];
+  }
+  return r;
+}
+
+RigidFaceLoads RigidFaceLoads::localized(const BlockModel& model,
+                                         const std::vector<unsigned int>& global_of_local,
+                                         const std::vector<char>& take) const
+{
+  RigidFaceLoads r;
+  r.functions_ = functions_;
+  r.scale_.assign(functions_.size(), 1.0);
+  std::vector<unsigned int> slot_of_block(model.n_blocks(), ~0u);
+  for (const Load& l : patch_)
+  {
+    const auto at = std::lower_bound(global_of_local.begin(), global_of_local.end(), l.patch.block);
+    if (at == global_of_local.end() || *at != l.patch.block)
+      continue;
+    const unsigned int b = static_cast<unsigned int>(at - global_of_local.begin());
+    if (!take[b])
+      continue;
+    Load here = l;
+    here.patch.block = b;
+    here.patch.face += model.face_start[b];
+    for (unsigned int& v : here.patch.corner)
+      v += model.vertex_start[b];
+    unsigned int& slot = slot_of_block[b];
+    if (slot == ~0u)
+    {
+      slot = static_cast<unsigned int>(r.loaded_block_.size());
+      r.loaded_block_.push_back(b);
+    }
+    here.slot = slot;
+    r.patch_.push_back(here);
+  }
+  r.force_.resize(r.loaded_block_.size());
+  r.moment_.resize(r.loaded_block_.size());
+  r.velocity_before_.resize(r.loaded_block_.size());
+  r.spin_before_.resize(r.loaded_block_.size());
+  return r;
+}
+
 } // namespace talus

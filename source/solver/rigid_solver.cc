@@ -229,6 +229,10 @@ void RigidSolver::set_masses_and_step()
   added_mass_ = AddedMass();
   if (s_.raises_mass() && s_.time_step_fraction > 0.0) // frac 0: no eq. 87 (tests)
   {
+    // The summary's figures by exact sums of the blocks this rank moves
+    // (on ranks reduced: each block counted once, by its owner).
+    std::vector<ExactSum> sums(3); // true mass, mass added, blocks raised
+    double largest_factor = 1.0;
     // Partial density scaling (eq. 89): a free block whose own step of eq.
     // 87 (frac 2 sqrt(m / (k A)), lowered for Rayleigh's beta as in
     // stable_time_step) is below the given one gets the mass that reaches
@@ -247,17 +251,25 @@ void RigidSolver::set_masses_and_step()
       inertia[b] *= scale;
       if (s_.principal_inertia)
         principal_moments[b] *= scale;
-      if (!s_.dynamic || fixed[b])
+      if (!s_.dynamic || fixed[b] || is_ghost(b))
         continue; // static inertia is a device of the solution, not mass added
-      added_mass_.total += mass[b];
+      sums[0] += mass[b];
       if (scale > 1.0)
       {
-        ++added_mass_.blocks;
-        added_mass_.added += inertial_mass[b] - mass[b];
-        added_mass_.largest_factor =
-            std::max(added_mass_.largest_factor, inertial_mass[b] / mass[b]);
+        sums[2] += 1.0;
+        sums[1] += inertial_mass[b] - mass[b];
+        largest_factor = std::max(largest_factor, inertial_mass[b] / mass[b]);
       }
     }
+    if (ranks_.sums && ranks_.max)
+    {
+      ranks_.sums(sums);
+      largest_factor = ranks_.max(largest_factor);
+    }
+    added_mass_.total = sums[0].value();
+    added_mass_.added = sums[1].value();
+    added_mass_.blocks = static_cast<unsigned int>(sums[2].value());
+    added_mass_.largest_factor = largest_factor;
   }
   dt_ = s_.time_step > 0.0 ? s_.time_step : stable_time_step();
   dt_without_stiffness_damping_ = s_.time_step > 0.0 ? s_.time_step : stable_time_step(0.0);
@@ -310,7 +322,7 @@ void RigidSolver::set_masses_and_step()
 
 void RigidSolver::remove_blocks(const std::vector<unsigned int>& blocks)
 {
-  if (blocks.empty())
+  if (blocks.empty() && !ranks_.sum) // on ranks: collective (masses and the step)
     return;
   // The energy the removed blocks and their joints hold leaves the account
   // with them: its error stays what it was.
@@ -383,12 +395,15 @@ void RigidSolver::set_loads(const std::vector<BlockLoad>& loads)
     if (fixed[b] || is_deformable_[b])
       continue;
     // The support gives or takes the kinetic energy of the change: the
-    // boundaries' work, so that the account stays closed.
-    boundary_work_ += 0.5 * inertial_mass[b] * (v.squaredNorm() - velocity[b].squaredNorm());
+    // boundaries' work, so that the account stays closed (on ranks, the
+    // owner's share).
+    if (!is_ghost(b))
+      boundary_work_ += 0.5 * inertial_mass[b] * (v.squaredNorm() - velocity[b].squaredNorm());
     velocity[b] = v;
     if ((bits & 8u) && !s_.principal_inertia)
     {
-      boundary_work_ -= 0.5 * inertia[b] * spin[b].squaredNorm();
+      if (!is_ghost(b))
+        boundary_work_ -= 0.5 * inertia[b] * spin[b].squaredNorm();
       spin[b].setZero();
     }
   }
@@ -472,14 +487,44 @@ void RigidSolver::set_water(const WaterSpec& water)
 
 void RigidSolver::build_water_loads()
 {
+  water_stale_ = false;
   water_loads_ = WaterLoads();
+  water_global_.clear();
   if (s_.water.active())
   {
-    std::vector<char> wet(m_.n_blocks(), 0); // fixed blocks need no water; zones take theirs
+    // Fixed blocks need no water; zones take theirs; ghosts move with
+    // their owners (on ranks each block's force and work are its owner's).
+    std::vector<char> wet(m_.n_blocks(), 0);
     for (unsigned int b = 0; b < m_.n_blocks(); ++b)
-      wet[b] = !fixed[b] && !is_deformable_[b] && !removed_[b];
+      wet[b] = !fixed[b] && !is_deformable_[b] && !removed_[b] && !is_ghost(b);
     water_loads_ = WaterLoads(s_.water, s_.gravity.norm(), wet);
+    if (!global_of_local_.empty())
+      for (unsigned int b : water_loads_.blocks())
+        water_global_.push_back(global_of_local_[b]);
   }
+}
+
+void RigidSolver::set_face_load_table(RigidFaceLoads table,
+                                      const std::vector<unsigned int>& global_of_local)
+{
+  face_load_table_ = std::move(table);
+  has_face_load_table_ = true;
+  localize_loads(global_of_local);
+}
+
+void RigidSolver::localize_loads(const std::vector<unsigned int>& global_of_local)
+{
+  if (has_face_load_table_)
+  {
+    std::vector<char> owned(m_.n_blocks());
+    for (unsigned int b = 0; b < m_.n_blocks(); ++b)
+      owned[b] = !is_ghost(b) && !is_deformable_[b];
+    face_loads_ = face_load_table_.localized(m_, global_of_local, owned);
+  }
+  // The water's blocks at the next step: until then the summary's figures
+  // are those of the last step, of the blocks owned then (water_global).
+  global_of_local_ = global_of_local;
+  water_stale_ = true;
 }
 
 void RigidSolver::reset_displacements()
@@ -576,17 +621,26 @@ double RigidSolver::stable_time_step(double beta) const
   // enter; a model of fixed blocks only takes them all. Rayleigh's
   // stiffness-proportional term lowers each block's step 2 / omega by
   // stiffness_damping_step_factor at its omega = sqrt(k A / m).
+  // On ranks (collective): the least of all ranks', free blocks first.
   const double k = stiffest_joint();
-  double smallest = 1e300;
-  for (int pass = 0; pass < 2 && smallest == 1e300; ++pass)
-    for (unsigned int b = 0; b < m_.n_blocks(); ++b)
-    {
-      if (is_deformable_[b] || (pass == 0 && fixed[b]))
-        continue; // a deformable block's gridpoints have their own limit (eq. 84)
-      const double step = 2.0 * std::sqrt(inertial_mass[b] / (k * largest_face_area(m_, b)));
-      smallest = std::min(
-          smallest, beta > 0.0 ? step * stiffness_damping_step_factor(beta, 2.0 / step) : step);
-    }
+  double smallest_free = 1e300, smallest_any = 1e300;
+  for (unsigned int b = 0; b < m_.n_blocks(); ++b)
+  {
+    if (is_deformable_[b])
+      continue; // a deformable block's gridpoints have their own limit (eq. 84)
+    double step = 2.0 * std::sqrt(inertial_mass[b] / (k * largest_face_area(m_, b)));
+    if (beta > 0.0)
+      step *= stiffness_damping_step_factor(beta, 2.0 / step);
+    smallest_any = std::min(smallest_any, step);
+    if (!fixed[b])
+      smallest_free = std::min(smallest_free, step);
+  }
+  if (ranks_.min)
+  {
+    smallest_free = ranks_.min(smallest_free);
+    smallest_any = ranks_.min(smallest_any);
+  }
+  const double smallest = smallest_free < 1e300 ? smallest_free : smallest_any;
   if (smallest == 1e300)
     return 1e300; // no rigid block
   return s_.time_step_fraction * smallest;
@@ -983,6 +1037,7 @@ void RigidSolver::split_among_ranks(std::vector<char> ghost, RankReductions redu
   ghost_ = std::move(ghost);
   ranks_ = std::move(reductions);
   contacts_.drop_contacts_among(ghost_);
+  build_water_loads(); // on the blocks this rank owns
   set_masses_and_step();
   if (step_ == 0 && zones_ == nullptr)
   {
@@ -1102,6 +1157,8 @@ void RigidSolver::step()
     contact_forces();
   if (!face_loads_.empty())
     face_loads_.add(m_, force, moment, velocity, spin, time_);
+  if (water_stale_)
+    build_water_loads(); // on the blocks owned since a migration
   if (!water_loads_.empty())
     water_loads_.add(m_, force, moment, velocity, spin);
   timing_.seconds_forces += seconds_since(t0);

@@ -64,9 +64,14 @@ int main(int argc, char** argv)
     return 2;
   const std::string prm = argv[1];
   std::vector<int> ranks;
+  // "# parallel test: migrations": blocks must change rank in every split
+  // run (its "Migrations:" line on standard error).
+  bool migrations = false;
   std::ifstream in(prm);
   for (std::string line; std::getline(in, line);)
-    if (line.rfind("# parallel test: ranks", 0) == 0)
+    if (line.rfind("# parallel test: migrations", 0) == 0)
+      migrations = true;
+    else if (line.rfind("# parallel test: ranks", 0) == 0)
     {
       std::istringstream list(line.substr(22));
       for (int n; list >> n;)
@@ -94,6 +99,17 @@ int main(int argc, char** argv)
       std::fprintf(stderr, "--- serial:\n%s--- %d ranks:\n%s", serial.summary.c_str(), n,
                    split.summary.c_str());
     all &= same;
+    if (migrations)
+    {
+      // "Migrations:   E events, C blocks changed rank"
+      std::ifstream err(folder + ".err");
+      unsigned long events = 0, changed = 0; // (the counts: in the .err file)
+      for (std::string line; std::getline(err, line);)
+        if (line.rfind("Migrations:", 0) == 0)
+          std::sscanf(line.c_str(), "Migrations: %lu events, %lu blocks", &events, &changed);
+      std::printf("%d ranks: blocks changed rank: %s\n", n, changed > 0 ? "yes" : "NO");
+      all &= changed > 0;
+    }
   }
   std::printf("%s\n", all ? "OK" : "FAILED");
   return all ? 0 : 1;

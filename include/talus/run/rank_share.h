@@ -35,8 +35,8 @@ int world_rank();
 void agree_on_input_errors(const std::function<void()>& build);
 
 /// Refuses, with one message naming the entry, a scene that talus cannot
-/// yet run split among ranks: deformable blocks, water, stages, the factor
-/// of safety, face loads on rigid blocks.
+/// yet run split among ranks: deformable blocks and the factor of safety
+/// (of 'Solver' or of a stage).
 void check_runs_on_ranks(const Scene& scene, int ranks);
 
 /// This rank's share of a model of rigid blocks split among the ranks of

@@ -44,8 +44,11 @@ class RigidSolver;
 /// old owners for the blocks it newly holds, and they send them. Besides,
 /// one MPI_Allreduce for s and one for the count of owner changes.
 ///
-/// Rigid blocks only: a solver with zones, face loads or water is refused
-/// (std::logic_error) at the first event.
+/// After an event, update() places the face loads (from the solver's table
+/// of the whole model, RigidSolver::set_face_load_table) and the water on
+/// the blocks each rank owns now (RigidSolver::localize_loads). Rigid
+/// blocks only: a solver with zones, or with face loads but no table, is
+/// refused (std::logic_error) at the first event.
 class BlockMigration
 {
 public:

@@ -74,6 +74,20 @@ public:
                  const std::vector<FacePressure>& loads);
 
   bool empty() const { return patch_.empty(); }
+
+  /// A model split among ranks (issue 24): these loads, selected on the
+  /// whole model `blocks`, with each patch's face and corners counted from
+  /// its block's first face and vertex, so that they hold on any copy of
+  /// the block however the blocks are numbered (a table every rank keeps).
+  RigidFaceLoads relative_to(const BlockModel& blocks) const;
+  /// From a table of relative_to: the loads of the blocks a rank holds in
+  /// `model`, whose global numbers are `global_of_local` (ascending), those
+  /// with `take[i]` only (the blocks it owns: ghosts move with their
+  /// owners), in the order of the table, so that each block's force is
+  /// summed as on one rank.
+  RigidFaceLoads localized(const BlockModel& model,
+                           const std::vector<unsigned int>& global_of_local,
+                           const std::vector<char>& take) const;
   unsigned int n_patches() const { return static_cast<unsigned int>(patch_.size()); }
 
   /// Adds the loads in the blocks' current geometry to `force` and

@@ -249,6 +249,16 @@ public:
   /// comes through `reductions`. Masses and the time step are set again.
   void split_among_ranks(std::vector<char> ghost, RankReductions reductions);
   bool is_ghost(unsigned int b) const { return !ghost_.empty() && ghost_[b] != 0; }
+  /// On ranks: 'Boundary N' face loads as a table on the whole model
+  /// (RigidFaceLoads::relative_to), kept to place them again on the blocks
+  /// owned after a migration; `global_of_local`: the global numbers of the
+  /// blocks held now.
+  void set_face_load_table(RigidFaceLoads table, const std::vector<unsigned int>& global_of_local);
+  /// On ranks, after the blocks held or owned changed (BlockMigration): the
+  /// face loads (from the table) and the water on the blocks owned now.
+  void localize_loads(const std::vector<unsigned int>& global_of_local);
+  /// On ranks: the global numbers of water_loads().blocks().
+  const std::vector<unsigned int>& water_global() const { return water_global_; }
   /// The largest unbalanced force on a block this rank moves, at the last
   /// step (N): on unbalanced_block().
   double local_unbalanced_force() const { return local_unbalanced_; }
@@ -413,6 +423,11 @@ private:
   std::vector<std::pair<unsigned int, double>> too_fast_;
   bool warned_fast_ = false;  ///< the warning of check_reach() was given
   RigidFaceLoads face_loads_; ///< pressures and tractions on rigid blocks' faces
+  RigidFaceLoads face_load_table_; ///< on ranks: face_loads_ of the whole model, relative
+  bool has_face_load_table_ = false;
+  std::vector<unsigned int> global_of_local_; ///< on ranks, from localize_loads
+  std::vector<unsigned int> water_global_;    ///< see water_global()
+  bool water_stale_ = false;  ///< water_loads_ to be built again before its next use
   WaterLoads water_loads_;    ///< water on free rigid blocks' faces (none without water)
   unsigned long step_ = 0;
   unsigned long last_output_ = 0; ///< step of the last output in run()

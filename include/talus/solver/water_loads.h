@@ -73,6 +73,10 @@ public:
   /// Of the last add(): faces with a part below the surface, and the sum of
   /// the water forces on the blocks (N).
   unsigned int faces_below() const { return faces_below_; }
+  /// The blocks loaded (ascending) and the water force on each at the last
+  /// add() (N): on ranks, for the summary's sum in the serial order.
+  const std::vector<unsigned int>& blocks() const { return block_; }
+  const std::vector<Vec3>& forces() const { return force_; }
   Vec3 total_force() const;
 
 private:
