@@ -28,7 +28,8 @@ inline ExactSum apply_joint_model(const JointProperties& joint, SubContactBatch&
 /// The same with a joint material per sub-contact (batch.material indexes
 /// `joints`): each model takes its own sub-contacts in one pass over the
 /// batch (and a model no material uses is not run at all).
-inline ExactSum apply_joint_model(const std::vector<JointProperties>& joints, SubContactBatch& batch)
+inline ExactSum apply_joint_model(const std::vector<JointProperties>& joints,
+                                  SubContactBatch& batch)
 {
   bool coulomb = false, yielding = false;
   for (const JointProperties& j : joints)
