@@ -18,41 +18,9 @@ __extension__ using Wide = unsigned __int128;
 
 } // namespace
 
-void ExactSum::add(double x)
+void ExactSum::add_special(double x)
 {
-  if (!std::isfinite(x))
-  {
-    ++special_[std::isnan(x) ? 2 : (x > 0.0 ? 0 : 1)];
-    return;
-  }
-  if (x == 0.0)
-    return;
-  // x = m 2^e with m an integer of at most 53 bits (exact: frexp gives the
-  // fraction in [0.5, 1), and 2^53 times it is an integer).
-  int e = 0;
-  const double fraction = std::frexp(x, &e);
-  std::int64_t m = static_cast<std::int64_t>(std::ldexp(fraction, 53));
-  e -= 53;
-  // Subnormals and the smallest normals: drop trailing zero bits until the
-  // exponent is in range (exact: those bits are zero).
-  while (e < lowest_exponent)
-  {
-    m /= 2;
-    ++e;
-  }
-  const int bit = e - lowest_exponent;
-  const int w = bit / 32, shift = bit % 32;
-  const bool negative = m < 0;
-  const std::uint64_t magnitude = static_cast<std::uint64_t>(negative ? -m : m);
-  // The 53 bits shifted span at most three words.
-  const Wide shifted = static_cast<Wide>(magnitude) << shift;
-  const std::int64_t digits[3] = {static_cast<std::int64_t>(shifted & 0xffffffffu),
-                                  static_cast<std::int64_t>((shifted >> 32) & 0xffffffffu),
-                                  static_cast<std::int64_t>(shifted >> 64)};
-  for (int k = 0; k < 3 && w + k < n_words; ++k)
-    word_[w + k] += negative ? -digits[k] : digits[k];
-  if (++since_normalized_ >= (1u << 30))
-    normalize();
+  ++special_[std::isnan(x) ? 2 : (x > 0.0 ? 0 : 1)];
 }
 
 ExactSum& ExactSum::operator+=(const ExactSum& other)

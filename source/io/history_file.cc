@@ -29,6 +29,15 @@ HistoryFile::HistoryFile(const std::string& path, const std::vector<std::string>
     : path_(path), columns_(columns), n_columns_(columns.size()),
       flush_every_(std::max(flush_every, 1u))
 {
+  // 12 significant digits; TALUS_HISTORY_DIGITS=17 writes every double
+  // exactly (tests/parallel compares runs on ranks to the last bit).
+  if (const char* text = std::getenv("TALUS_HISTORY_DIGITS"); text != nullptr && *text != '\0')
+  {
+    char* end = nullptr;
+    const long given = std::strtol(text, &end, 10);
+    if (*end == '\0' && given >= 1 && given <= 17)
+      digits_ = static_cast<int>(given);
+  }
   for (std::size_t c = 0; c < columns.size(); ++c)
     text_ += (c ? "," : "") + columns[c];
   text_ += '\n';
@@ -68,7 +77,7 @@ void HistoryFile::record(const std::vector<double>& values)
   char number[32];
   for (std::size_t c = 0; c < values.size(); ++c)
   {
-    std::snprintf(number, sizeof number, "%.12g", values[c]);
+    std::snprintf(number, sizeof number, "%.*g", digits_, values[c]);
     text_ += (c ? "," : "");
     text_ += number;
   }

@@ -107,7 +107,7 @@ struct YieldingRow
 };
 } // namespace
 
-double continuously_yielding(const std::vector<JointProperties>& joints, SubContactBatch& s)
+ExactSum continuously_yielding(const std::vector<JointProperties>& joints, SubContactBatch& s)
 {
   YieldingRow rows[256];
   const double deg = M_PI / 180.0;
@@ -120,7 +120,7 @@ double continuously_yielding(const std::vector<JointProperties>& joints, SubCont
       rows[k].phi_i = joints[k].initial_friction_angle * deg;
       rows[k].roughness = joints[k].roughness;
     }
-  double dissipated = 0.0;
+  ExactSum dissipated;
   for (unsigned int i = 0; i < s.size; ++i)
   {
     const unsigned char material = s.material != nullptr ? s.material[i] : 0;

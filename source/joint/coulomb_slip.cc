@@ -27,12 +27,12 @@ CoulombRow row_of(const JointProperties& joint)
 }
 } // namespace
 
-double coulomb_slip(const JointProperties& joint, SubContactBatch& s)
+ExactSum coulomb_slip(const JointProperties& joint, SubContactBatch& s)
 {
   return coulomb_slip(std::vector<JointProperties>{joint}, s);
 }
 
-double coulomb_slip(const std::vector<JointProperties>& joints, SubContactBatch& s)
+ExactSum coulomb_slip(const std::vector<JointProperties>& joints, SubContactBatch& s)
 {
   CoulombRow rows[256];
   bool other_model[256] = {};
@@ -43,7 +43,7 @@ double coulomb_slip(const std::vector<JointProperties>& joints, SubContactBatch&
     other_model[k] = joints[k].model != JointModel::coulomb_slip;
     mixed |= other_model[k];
   }
-  double dissipated = 0.0;
+  ExactSum dissipated;
   for (unsigned int i = 0; i < s.size; ++i)
   {
     const unsigned char material = s.material != nullptr ? s.material[i] : 0;

@@ -344,11 +344,13 @@ std::vector<double> BlockCycle::history_row()
     points_->add_values(row, *system_.zones);
   if (share_)
   {
-    // Every column but the step, the time and the ratio is a sum of the
-    // ranks' shares (energies: each block and contact counted once).
-    std::vector<double> shares(row.begin() + 3, row.end());
+    // The energies are the whole model's on every rank (RigidSolver::
+    // energy_account); every column after them is a sum of the ranks'
+    // shares (the owner's values and zeros).
+    const std::size_t first = 3 + EnergyAccount::column_names().size();
+    std::vector<double> shares(row.begin() + first, row.end());
     share_->sum(shares);
-    std::copy(shares.begin(), shares.end(), row.begin() + 3);
+    std::copy(shares.begin(), shares.end(), row.begin() + first);
   }
   return row;
 }

@@ -175,7 +175,7 @@ void RigidFaceLoads::add(const BlockModel& m, std::vector<Vec3>& force, std::vec
 
 void RigidFaceLoads::account(const std::vector<char>& fixed, const std::vector<Vec3>& velocity,
                              const std::vector<Vec3>& spin, double h, double dt,
-                             double& boundary_work, double& kinetic) const
+                             ExactSum& boundary_work, ExactSum& kinetic) const
 {
   for (std::size_t k = 0; k < loaded_block_.size(); ++k)
   {

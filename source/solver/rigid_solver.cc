@@ -170,29 +170,39 @@ RigidSolver::RigidSolver(BlockModel& blocks, double density, const SolverSetting
   // Energy at the start: the blocks' initial motion (with the masses the
   // cycle moves) and the joints' initial stress; the zones add theirs.
   double weight_size = 0.0;
-  initial_stored_ += start_kinetic_energy((all.hi - all.lo).norm(), weight_size) + joint_energy();
-  kinetic_whole_step_ = initial_stored_ - joint_energy();
+  count_start_energy((all.hi - all.lo).norm(), weight_size);
   build_water_loads();
   energy_floor_ = 1e-9 * weight_size + 1e-6; // J
 }
 
-double RigidSolver::start_kinetic_energy(double size, double& weight_size) const
+ExactSum RigidSolver::start_kinetic_energy(double size, double& weight_size) const
 {
-  double e = 0.0;
+  ExactSum e;
   for (unsigned int b = 0; b < m_.n_blocks(); ++b)
     if (!fixed[b] && !is_deformable_[b] && !is_ghost(b))
     {
-      e += 0.5 * inertial_mass[b] * velocity[b].squaredNorm();
+      double k = 0.5 * inertial_mass[b] * velocity[b].squaredNorm();
       if (s_.principal_inertia)
       {
         const Vec3 p = body_momentum(b); // 1/2 w . I w with the principal moments
-        e += 0.5 * p.dot(p.cwiseQuotient(principal_moments[b]));
+        k += 0.5 * p.dot(p.cwiseQuotient(principal_moments[b]));
       }
       else
-        e += 0.5 * inertia[b] * spin[b].squaredNorm();
+        k += 0.5 * inertia[b] * spin[b].squaredNorm();
+      e += k;
       weight_size += mass[b] * s_.gravity.norm() * size;
     }
   return e;
+}
+
+void RigidSolver::count_start_energy(double size, double& weight_size)
+{
+  std::vector<ExactSum> terms{start_kinetic_energy(size, weight_size), joint_energy_share()};
+  if (ranks_.sums)
+    ranks_.sums(terms);
+  kinetic_whole_step_ = terms[0].value();
+  terms[1] += terms[0];
+  initial_stored_ = terms[1].value();
 }
 
 void RigidSolver::set_masses_and_step()
@@ -367,6 +377,7 @@ void RigidSolver::set_loads(const std::vector<BlockLoad>& loads)
 {
   s_.loads = loads;
   find_timed_loads();
+  ExactSum work; // of the boundaries, on the blocks this rank moves
   for (unsigned int b = 0; b < m_.n_blocks(); ++b)
   {
     if (removed_[b])
@@ -395,18 +406,20 @@ void RigidSolver::set_loads(const std::vector<BlockLoad>& loads)
     if (fixed[b] || is_deformable_[b])
       continue;
     // The support gives or takes the kinetic energy of the change: the
-    // boundaries' work, so that the account stays closed (on ranks, the
-    // owner's share).
+    // boundaries' work, so that the account stays closed.
     if (!is_ghost(b))
-      boundary_work_ += 0.5 * inertial_mass[b] * (v.squaredNorm() - velocity[b].squaredNorm());
+      work += 0.5 * inertial_mass[b] * (v.squaredNorm() - velocity[b].squaredNorm());
     velocity[b] = v;
     if ((bits & 8u) && !s_.principal_inertia)
     {
       if (!is_ghost(b))
-        boundary_work_ -= 0.5 * inertia[b] * spin[b].squaredNorm();
+        work += -0.5 * inertia[b] * spin[b].squaredNorm();
       spin[b].setZero();
     }
   }
+  if (ranks_.sum)
+    ranks_.sum(work);
+  boundary_work_ += work.value();
 }
 
 void RigidSolver::find_timed_loads()
@@ -789,7 +802,7 @@ void RigidSolver::contact_forces()
   batch.yield = cs.sc_yield.empty() ? nullptr : cs.sc_yield.data();
   batch.material = cs.sc_material.data();
   batch.counted = ghost_.empty() ? nullptr : sc_counted_.data();
-  friction_work_ += apply_joint_model(joints_, batch);
+  step_energy_[step_friction] += apply_joint_model(joints_, batch);
 
   // Force and moment sums (eqs. 28-32): A pushes B along +n.
   for (unsigned int i = 0; i < n; ++i)
@@ -869,8 +882,10 @@ void RigidSolver::move_blocks()
   const double h = step_ == 0 ? 0.5 * dt_ : dt_;
   const auto kick = [&](double& v, double f, double f_before, double m)
   { return damper_.kick(v, f, f_before, m, h); };
-  double max_unbalanced = 0.0, kinetic = 0.0;
+  double max_unbalanced = 0.0;
   ExactSum sum_weight, n_free; // exact: the same on any number of ranks
+  ExactSum &gravity_work = step_energy_[step_gravity], &boundary_work = step_energy_[step_boundary],
+           &damping_work = step_energy_[step_damping], &kinetic = step_energy_[step_kinetic];
   too_fast_.clear();
   const bool timed = !timed_loads_.empty();
   if (timed)
@@ -910,7 +925,7 @@ void RigidSolver::move_blocks()
         if ((timed_held_[b] & prescribed[b]) & (1u << d))
         {
           const double v = timed_velocity_[b][d];
-          boundary_work_ += 0.5 * inertial_mass[b] * (v * v - velocity[b][d] * velocity[b][d]);
+          boundary_work += 0.5 * inertial_mass[b] * (v * v - velocity[b][d] * velocity[b][d]);
           velocity[b][d] = v;
         }
     for (int d = 0; d < 3; ++d)
@@ -974,23 +989,26 @@ void RigidSolver::move_blocks()
     // component's support supplies minus the force on it.
     const Vec3 reach = 0.5 * h * (velocity_before + velocity[b]);
     const Vec3 turn = s_.principal_inertia ? spin_turn : Vec3(0.5 * h * (spin_before + spin[b]));
-    gravity_work_ += mass[b] * s_.gravity.dot(reach);
-    boundary_work_ += applied.dot(reach);
+    // Each block's terms go into the step's exact sums (close_energy_step).
+    gravity_work += mass[b] * s_.gravity.dot(reach);
+    double boundary = applied.dot(reach);
     for (int d = 0; d < 3; ++d)
       if (prescribed[b] & (1u << d))
-        boundary_work_ -= f[d] * reach[d];
-    damping_work_ += (damping_force - damping_force_[b]).dot(reach) +
-                     (damping_moment - damping_moment_[b]).dot(turn);
+        boundary -= f[d] * reach[d];
+    boundary_work += boundary;
+    damping_work += (damping_force - damping_force_[b]).dot(reach) +
+                    (damping_moment - damping_moment_[b]).dot(turn);
     // Kinetic energy at the half step less half the contact forces' work
     // over it: the term that makes the account exact for linear joints.
     // With the inertial mass and inertia (any density scaling's included),
     // which the forces accelerate: so the account balances.
-    kinetic += 0.5 * inertial_mass[b] * velocity[b].squaredNorm() - 0.5 * force[b].dot(dx) -
-               0.5 * moment[b].dot(dtheta);
+    double block_kinetic = 0.5 * inertial_mass[b] * velocity[b].squaredNorm() -
+                           0.5 * force[b].dot(dx) - 0.5 * moment[b].dot(dtheta);
     if (s_.principal_inertia)
-      kinetic += rotational_kinetic; // unchanged by the free turn
+      block_kinetic += rotational_kinetic; // unchanged by the free turn
     else
-      kinetic += 0.5 * inertia[b] * spin[b].squaredNorm();
+      block_kinetic += 0.5 * inertia[b] * spin[b].squaredNorm();
+    kinetic += block_kinetic;
     const double angle = dtheta.norm();
     const Eigen::Matrix3d R = angle > 0.0
                                   ? Eigen::AngleAxisd(angle, dtheta / angle).toRotationMatrix()
@@ -1029,7 +1047,6 @@ void RigidSolver::move_blocks()
   }
   const double weight = sum_weight.value(), free = n_free.value();
   ratio_ = free > 0.0 && weight > 0.0 ? max_unbalanced / (weight / free) : 0.0;
-  kinetic_whole_step_ = kinetic;
 }
 
 void RigidSolver::split_among_ranks(std::vector<char> ghost, RankReductions reductions)
@@ -1044,8 +1061,7 @@ void RigidSolver::split_among_ranks(std::vector<char> ghost, RankReductions redu
     // This rank's share of the energy at the start, with the masses of the
     // whole model's density scaling: its blocks and the contacts it counts.
     double weight_size = 0.0;
-    initial_stored_ = start_kinetic_energy(0.0, weight_size) + joint_energy();
-    kinetic_whole_step_ = initial_stored_ - joint_energy();
+    count_start_energy(0.0, weight_size);
   }
   if (ranks_.sum && ranks_.max)
   {
@@ -1124,6 +1140,8 @@ void RigidSolver::step()
   if (zones_ != nullptr)
     zones_->compute_forces(); // zone forces first; contacts add to them
   auto t0 = std::chrono::steady_clock::now();
+  for (ExactSum& term : step_energy_)
+    term.clear();
   // Eq. 1 between updates too: a block that moved more than the tolerance
   // may meet a new neighbour, whose contact must carry force from the step
   // it forms (else a fast block is deep in the other when its sub-contacts
@@ -1166,11 +1184,11 @@ void RigidSolver::step()
   check_finite_forces();
   move_blocks();
   if (!face_loads_.empty()) // their work is the boundaries', as that of 'Load N'
-    face_loads_.account(fixed, velocity, spin, step_ == 0 ? 0.5 * dt_ : dt_, dt_, boundary_work_,
-                        kinetic_whole_step_);
+    face_loads_.account(fixed, velocity, spin, step_ == 0 ? 0.5 * dt_ : dt_, dt_,
+                        step_energy_[step_boundary], step_energy_[step_kinetic]);
   if (!water_loads_.empty())
-    water_loads_.account(velocity, spin, step_ == 0 ? 0.5 * dt_ : dt_, dt_, boundary_work_,
-                         kinetic_whole_step_);
+    water_loads_.account(velocity, spin, step_ == 0 ? 0.5 * dt_ : dt_, dt_,
+                         step_energy_[step_boundary], step_energy_[step_kinetic]);
   if (zones_ != nullptr)
   {
     zones_->move();
@@ -1197,9 +1215,23 @@ void RigidSolver::step()
   timing_.seconds_motion += seconds_since(t0);
   time_ += dt_;
   ++step_;
+  close_energy_step();
   watch_energy_growth();
   if (!too_fast_.empty())
     check_reach();
+}
+
+void RigidSolver::close_energy_step()
+{
+  // One message for the step's terms of the whole model; each total then
+  // takes the same double on every rank as on one.
+  if (ranks_.sums)
+    ranks_.sums(step_energy_);
+  gravity_work_ += step_energy_[step_gravity].value();
+  boundary_work_ += step_energy_[step_boundary].value();
+  damping_work_ += step_energy_[step_damping].value();
+  friction_work_ += step_energy_[step_friction].value();
+  kinetic_whole_step_ = step_energy_[step_kinetic].value();
 }
 
 void RigidSolver::check_reach()
@@ -1320,8 +1352,16 @@ Vec3 RigidSolver::angular_momentum(unsigned int b) const
 
 double RigidSolver::joint_energy() const
 {
+  ExactSum e = joint_energy_share();
+  if (ranks_.sum)
+    ranks_.sum(e);
+  return e.value();
+}
+
+ExactSum RigidSolver::joint_energy_share() const
+{
   const ContactSet& cs = contacts_;
-  double e = 0.0;
+  ExactSum e;
   for (unsigned int i = 0; i < cs.n_subcontacts(); ++i)
   {
     if (!ghost_.empty() && ghost_[cs.block_a[cs.sc_contact[i]]])
@@ -1386,19 +1426,8 @@ void RigidSolver::watch_energy_growth()
     kinetic += z.kinetic;
     sources += std::abs(z.initial_stored) + std::abs(z.gravity_work) + std::abs(z.boundary_work);
   }
-  if (ranks_.sums)
-  {
-    // Split among ranks: the whole model's terms (contacts move energy
-    // between the ranks' blocks), exact, so that every rank decides alike.
-    std::vector<ExactSum> terms(4);
-    terms[0] += kinetic_whole_step_;
-    terms[1] += initial_stored_;
-    terms[2] += gravity_work_;
-    terms[3] += boundary_work_;
-    ranks_.sums(terms);
-    kinetic = terms[0].value();
-    sources = std::abs(terms[1].value()) + std::abs(terms[2].value()) + std::abs(terms[3].value());
-  }
+  // Split among ranks, these are the whole model's (close_energy_step), so
+  // that every rank decides alike.
   if (!growth_watch_.diverging(step_, kinetic, sources, energy_floor_))
     return;
   // Name the rigid block, or the zone, that moves with the most energy.

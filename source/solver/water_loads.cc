@@ -238,7 +238,7 @@ void WaterLoads::add(const BlockModel& m, std::vector<Vec3>& force, std::vector<
 }
 
 void WaterLoads::account(const std::vector<Vec3>& velocity, const std::vector<Vec3>& spin, double h,
-                         double dt, double& boundary_work, double& kinetic) const
+                         double dt, ExactSum& boundary_work, ExactSum& kinetic) const
 {
   for (std::size_t k = 0; k < block_.size(); ++k)
   {

@@ -4,9 +4,18 @@
 // whether each split run's summary is the serial run's, line for line (the
 // "   Time =" lines aside, and the folder's name). The comparison is made in
 // the build that runs it, so its verdicts hold on any machine and build.
+// Every run writes its history with 17 significant digits
+// (TALUS_HISTORY_DIGITS), and each split run's history files must be the
+// serial run's byte for byte: every column, energies included, to the last
+// bit. A difference is shown on standard error: per column, the largest
+// over the rows, relative to the largest energy term of the row (the
+// columns in J) or to the column's largest value (the others).
 
+#include <algorithm>
 #include <array>
+#include <cmath>
 #include <cstdio>
+#include <dirent.h>
 #include <fstream>
 #include <sstream>
 #include <string>
@@ -56,6 +65,105 @@ unsigned int count_lines(const std::string& text)
   return n;
 }
 
+/// The names of the history files in `folder`, sorted.
+std::vector<std::string> history_files(const std::string& folder)
+{
+  std::vector<std::string> names;
+  if (DIR* dir = opendir(folder.c_str()))
+  {
+    const std::string tail = "_history.csv";
+    while (const dirent* entry = readdir(dir))
+    {
+      const std::string name = entry->d_name;
+      if (name.size() > tail.size() &&
+          name.compare(name.size() - tail.size(), tail.size(), tail) == 0)
+        names.push_back(name);
+    }
+    closedir(dir);
+  }
+  std::sort(names.begin(), names.end());
+  return names;
+}
+
+std::string read_file(const std::string& path)
+{
+  std::ifstream in(path);
+  std::stringstream text;
+  text << in.rdbuf();
+  return text.str();
+}
+
+/// A CSV file as its header's names and rows of numbers.
+struct Table
+{
+  std::vector<std::string> columns;
+  std::vector<std::vector<double>> rows;
+};
+
+Table parse(const std::string& text)
+{
+  Table t;
+  std::istringstream lines(text);
+  std::string line;
+  if (std::getline(lines, line))
+  {
+    std::istringstream names(line);
+    for (std::string name; std::getline(names, name, ',');)
+      t.columns.push_back(name);
+  }
+  while (std::getline(lines, line))
+  {
+    std::vector<double> row;
+    std::istringstream values(line);
+    for (std::string value; std::getline(values, value, ',');)
+      row.push_back(std::strtod(value.c_str(), nullptr));
+    t.rows.push_back(row);
+  }
+  return t;
+}
+
+/// Standard error: where two histories differ, per column the largest
+/// difference over the rows, relative as said at the top.
+void show_differences(const std::string& name, const std::string& serial, const std::string& split)
+{
+  const Table a = parse(serial), b = parse(split);
+  if (a.columns != b.columns || a.rows.size() != b.rows.size())
+  {
+    std::fprintf(stderr, "%s: other columns or another number of rows (%zu, %zu)\n", name.c_str(),
+                 a.rows.size(), b.rows.size());
+    return;
+  }
+  const std::size_t n = a.columns.size();
+  std::vector<double> largest(n, 0.0), scale(n, 0.0);
+  for (const std::vector<double>& row : a.rows)
+    for (std::size_t c = 0; c < n && c < row.size(); ++c)
+      scale[c] = std::max(scale[c], std::abs(row[c]));
+  double worst_energy = 0.0;
+  for (std::size_t r = 0; r < a.rows.size(); ++r)
+  {
+    double energy = 0.0; // the row's largest energy term
+    for (std::size_t c = 0; c < n && c < a.rows[r].size(); ++c)
+      if (a.columns[c].find("(J)") != std::string::npos)
+        energy = std::max(energy, std::abs(a.rows[r][c]));
+    for (std::size_t c = 0; c < n && c < a.rows[r].size() && c < b.rows[r].size(); ++c)
+    {
+      const bool is_energy = a.columns[c].find("(J)") != std::string::npos;
+      const double against = is_energy ? energy : scale[c];
+      const double d = std::abs(a.rows[r][c] - b.rows[r][c]);
+      largest[c] = std::max(largest[c], against > 0.0 ? d / against : d);
+      if (is_energy)
+        worst_energy = std::max(worst_energy, largest[c]);
+    }
+  }
+  for (std::size_t c = 0; c < n; ++c)
+    if (largest[c] > 0.0)
+      std::fprintf(stderr, "%s: %s differs by up to %.2g\n", name.c_str(), a.columns[c].c_str(),
+                   largest[c]);
+  std::fprintf(
+      stderr, "%s: largest difference of an energy column: %.2g of the row's largest energy term\n",
+      name.c_str(), worst_energy);
+}
+
 } // namespace
 
 int main(int argc, char** argv)
@@ -78,12 +186,13 @@ int main(int argc, char** argv)
         ranks.push_back(n);
     }
   const std::string talus = TALUS_EXECUTABLE, mpiexec = MPIEXEC_EXECUTABLE;
-  const std::string quiet = "TALUS_PROGRESS_SECONDS=0 ";
+  const std::string quiet = "TALUS_PROGRESS_SECONDS=0 TALUS_HISTORY_DIGITS=17 ";
   const Run serial =
       run(quiet + "TALUS_OUTPUT_DIRECTORY=serial_output " + talus + " " + prm + " 2> serial.err",
           "serial_output");
-  std::printf("serial run: exit code %d, %u summary lines\n", serial.exit_code,
-              count_lines(serial.summary));
+  const std::vector<std::string> histories = history_files("serial_output");
+  std::printf("serial run: exit code %d, %u summary lines, %zu history files\n", serial.exit_code,
+              count_lines(serial.summary), histories.size());
   bool all = !ranks.empty();
   for (int n : ranks)
   {
@@ -98,7 +207,20 @@ int main(int argc, char** argv)
     if (!same)
       std::fprintf(stderr, "--- serial:\n%s--- %d ranks:\n%s", serial.summary.c_str(), n,
                    split.summary.c_str());
-    all &= same;
+    bool same_history = !histories.empty() && history_files(folder) == histories;
+    for (const std::string& name : histories)
+    {
+      const std::string a = read_file("serial_output/" + name), b = read_file(folder + "/" + name);
+      if (a != b)
+      {
+        std::fprintf(stderr, "--- %d ranks:\n", n);
+        show_differences(name, a, b);
+      }
+      same_history &= a == b;
+    }
+    std::printf("%d ranks: history the serial run's to the last bit, every column: %s\n", n,
+                same_history ? "yes" : "NO");
+    all &= same && same_history;
     if (migrations)
     {
       // "Migrations:   E events, C blocks changed rank"

@@ -2,6 +2,7 @@
 
 #include <array>
 #include <cstdint>
+#include <cstring>
 
 namespace talus
 {
@@ -25,7 +26,50 @@ public:
   /// of 2^31 terms.
   static constexpr int n_words = 67;
 
-  void add(double x);
+  /// Inline, from the bits of x (a few integer operations): the energy
+  /// account adds several terms per block and step.
+  void add(double x)
+  {
+    std::uint64_t bits;
+    std::memcpy(&bits, &x, sizeof bits);
+    const unsigned int biased = static_cast<unsigned int>(bits >> 52) & 0x7ffu;
+    if (biased == 0x7ffu)
+    {
+      add_special(x);
+      return;
+    }
+    // |x| = m 2^(bit - 1074): a normal number's 53-bit significand at
+    // biased exponent - 1, a subnormal's at bit 0.
+    std::uint64_t m = bits & ((std::uint64_t(1) << 52) - 1);
+    unsigned int bit = 0;
+    if (biased != 0)
+    {
+      m |= std::uint64_t(1) << 52;
+      bit = biased - 1;
+    }
+    else if (m == 0)
+      return; // a zero
+    const unsigned int w = bit / 32, shift = bit % 32;
+    // m shifted spans at most three words (53 + 31 bits); the top one is
+    // word 65 at most.
+    const std::int64_t d0 = static_cast<std::int64_t>((m << shift) & 0xffffffffu);
+    const std::int64_t d1 = static_cast<std::int64_t>((m >> (32 - shift)) & 0xffffffffu);
+    const std::int64_t d2 = static_cast<std::int64_t>((m >> 32) >> (32 - shift));
+    if (bits >> 63)
+    {
+      word_[w] -= d0;
+      word_[w + 1] -= d1;
+      word_[w + 2] -= d2;
+    }
+    else
+    {
+      word_[w] += d0;
+      word_[w + 1] += d1;
+      word_[w + 2] += d2;
+    }
+    if (++since_normalized_ >= (1u << 30))
+      normalize();
+  }
   ExactSum& operator+=(double x)
   {
     add(x);
@@ -47,7 +91,13 @@ public:
   std::array<std::int64_t, n_words>& words() { return word_; }
   std::array<std::int64_t, 3>& special() { return special_; }
 
+  /// Zero again.
+  void clear() { *this = ExactSum(); }
+
 private:
+  /// An infinite or NaN term.
+  void add_special(double x);
+
   std::array<std::int64_t, n_words> word_{};
   /// Terms that were +infinity, -infinity and NaN.
   std::array<std::int64_t, 3> special_{};

@@ -53,6 +53,7 @@ private:
   std::vector<std::string> columns_;
   std::size_t n_columns_;
   unsigned int flush_every_;
+  int digits_ = 12; ///< significant digits of each number (TALUS_HISTORY_DIGITS)
   unsigned int rows_ = 0;
   unsigned int rows_on_disk_ = 0;
   double last_write_ = 0.0;    ///< s, wall clock at the end of the last write

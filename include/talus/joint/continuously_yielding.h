@@ -87,8 +87,8 @@ double cy_shear_stiffness(const JointProperties& joint, double sigma_n);
 /// The model above on the sub-contacts of the batch whose material
 /// (batch.material, an index into `joints`) is continuously yielding;
 /// the others are left alone. Needs batch.yield. Returns the work
-/// dissipated by yielding this step (J).
-double continuously_yielding(const std::vector<JointProperties>& joints, SubContactBatch& batch);
+/// dissipated by yielding this step (J), an exact sum.
+ExactSum continuously_yielding(const std::vector<JointProperties>& joints, SubContactBatch& batch);
 
 /// Elastic energy (J) a sub-contact of a continuously yielding joint
 /// holds: normal force fn, squared shear force fs2, area.

@@ -1,5 +1,6 @@
 #pragma once
 
+#include <talus/base/exact_sum.h>
 #include <talus/joint/joint_properties.h>
 
 #include <vector>
@@ -47,11 +48,11 @@ struct SubContactBatch
 /// Coulomb slip with tension cut-off, cohesion, dilation and loss of
 /// strength at failure (eqs. 24-43), applied to every sub-contact of the
 /// batch. Returns the frictional work done this step (J), for the energy
-/// balance.
-double coulomb_slip(const JointProperties& joint, SubContactBatch& batch);
+/// balance: an exact sum, the same however the sub-contacts are split.
+ExactSum coulomb_slip(const JointProperties& joint, SubContactBatch& batch);
 /// The same with a joint material per sub-contact (batch.material), each
 /// an index into `joints`; sub-contacts of materials of other models are
 /// left alone.
-double coulomb_slip(const std::vector<JointProperties>& joints, SubContactBatch& batch);
+ExactSum coulomb_slip(const std::vector<JointProperties>& joints, SubContactBatch& batch);
 
 } // namespace talus

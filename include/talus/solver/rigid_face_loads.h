@@ -1,5 +1,6 @@
 #pragma once
 
+#include <talus/base/exact_sum.h>
 #include <talus/geometry/plane.h>
 #include <talus/geometry/region.h>
 #include <talus/model/block_model.h>
@@ -105,8 +106,8 @@ public:
   /// the kinetic term took off with the contact forces (it is not a
   /// contact force). Blocks that are `fixed` take no work.
   void account(const std::vector<char>& fixed, const std::vector<Vec3>& velocity,
-               const std::vector<Vec3>& spin, double h, double dt, double& boundary_work,
-               double& kinetic) const;
+               const std::vector<Vec3>& spin, double h, double dt, ExactSum& boundary_work,
+               ExactSum& kinetic) const;
 
 private:
   struct Load

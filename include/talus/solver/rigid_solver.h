@@ -282,7 +282,12 @@ public:
   /// inertia), at the last whole step with the principal inertia.
   Vec3 angular_momentum(unsigned int b) const;
   /// Energy bookkeeping (J): work done by gravity, elastic energy stored in
-  /// the joints, dissipated by friction and by damping.
+  /// the joints, dissipated by friction and by damping. Of the whole model
+  /// when split among ranks, the same double on every rank and in a serial
+  /// run: each step's terms are exact sums (over blocks and sub-contacts,
+  /// and across ranks), rounded once and added to the totals, and the
+  /// joints' energy is an exact sum (a reduction across the ranks: every
+  /// rank must ask for it at once, as for energy_account()).
   double gravity_work() const { return gravity_work_; }
   double joint_energy() const;
   /// The joint materials, 'Joint properties' first.
@@ -399,7 +404,27 @@ private:
   /// The kinetic energy of the free blocks this rank moves, with the masses
   /// the cycle moves (J); adds each one's weight times `size` (N m) to
   /// `weight_size`.
-  double start_kinetic_energy(double size, double& weight_size) const;
+  ExactSum start_kinetic_energy(double size, double& weight_size) const;
+  /// initial_stored_ and kinetic_whole_step_ at the start (the whole
+  /// model's, exact), with start_kinetic_energy's `size` and `weight_size`.
+  void count_start_energy(double size, double& weight_size);
+  /// The joints' stored energy of the sub-contacts this rank counts.
+  ExactSum joint_energy_share() const;
+  /// This step's energy terms, summed exactly over the blocks and
+  /// sub-contacts (in any order, on any rank); close_energy_step() reduces
+  /// them across the ranks (one message with the divergence watch's) and
+  /// rounds them once into the totals below.
+  enum StepTerm
+  {
+    step_gravity,
+    step_boundary,
+    step_damping,
+    step_friction,
+    step_kinetic,
+    n_step_terms
+  };
+  std::vector<ExactSum> step_energy_ = std::vector<ExactSum>(n_step_terms);
+  void close_energy_step();
   /// water_loads_ from s_.water, on the rigid blocks that move.
   void build_water_loads();
   std::vector<char> removed_;             ///< per block: excavated by a stage

@@ -1,5 +1,6 @@
 #pragma once
 
+#include <talus/base/exact_sum.h>
 #include <talus/model/block_model.h>
 #include <talus/model/water_table.h>
 
@@ -68,7 +69,7 @@ public:
            const std::vector<Vec3>& velocity, const std::vector<Vec3>& spin);
   /// As RigidFaceLoads::account.
   void account(const std::vector<Vec3>& velocity, const std::vector<Vec3>& spin, double h,
-               double dt, double& boundary_work, double& kinetic) const;
+               double dt, ExactSum& boundary_work, ExactSum& kinetic) const;
 
   /// Of the last add(): faces with a part below the surface, and the sum of
   /// the water forces on the blocks (N).
