@@ -5,10 +5,13 @@
 // (latency, bandwidth, one MPI_Allreduce), the inputs of their models of
 // larger runs.
 
+#include <malloc.h>
 #include <mpi.h>
 
 #include <chrono>
 #include <cstddef>
+#include <cstdlib>
+#include <cstring>
 #include <fstream>
 #include <string>
 #include <vector>
@@ -28,6 +31,18 @@ inline std::string cpu_model()
 inline double seconds_since(std::chrono::steady_clock::time_point t)
 {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - t).count();
+}
+
+/// Resident memory of this process now (bytes), after handing freed heap
+/// back to the system.
+inline double resident_bytes()
+{
+  malloc_trim(0);
+  std::ifstream status("/proc/self/status");
+  for (std::string line; std::getline(status, line);)
+    if (line.rfind("VmRSS:", 0) == 0)
+      return 1024.0 * std::strtod(line.c_str() + 6, nullptr);
+  return 0.0;
 }
 
 struct MpiFigures
