@@ -45,6 +45,24 @@ inline double resident_bytes()
   return 0.0;
 }
 
+/// Every rank's `mine`, one after the other in rank order, on rank 0
+/// (empty elsewhere; collective).
+inline std::vector<double> gather_on_rank_0(const std::vector<double>& mine, MPI_Comm comm)
+{
+  int rank = 0, ranks = 1;
+  MPI_Comm_rank(comm, &rank);
+  MPI_Comm_size(comm, &ranks);
+  int count = static_cast<int>(mine.size());
+  std::vector<int> counts(ranks), starts(ranks, 0);
+  MPI_Gather(&count, 1, MPI_INT, counts.data(), 1, MPI_INT, 0, comm);
+  for (int r = 1; r < ranks; ++r)
+    starts[r] = starts[r - 1] + counts[r - 1];
+  std::vector<double> all(rank == 0 ? starts.back() + counts.back() : 0);
+  MPI_Gatherv(mine.data(), count, MPI_DOUBLE, all.data(), counts.data(), starts.data(), MPI_DOUBLE,
+              0, comm);
+  return all;
+}
+
 struct MpiFigures
 {
   double latency = 0.0;   ///< s, one way, 8 bytes

@@ -114,14 +114,7 @@ int main(int argc, char** argv)
       for (const Vec3* v : {&local.centroid[i], &solver.velocity[i], &solver.spin[i]})
         state.insert(state.end(), v->data(), v->data() + 3);
     }
-  int count = static_cast<int>(state.size());
-  std::vector<int> counts(ranks), starts(ranks, 0);
-  MPI_Gather(&count, 1, MPI_INT, counts.data(), 1, MPI_INT, 0, comm);
-  for (int r = 1; r < ranks; ++r)
-    starts[r] = starts[r - 1] + counts[r - 1];
-  std::vector<double> all_state(rank == 0 ? starts.back() + counts.back() : 0);
-  MPI_Gatherv(state.data(), count, MPI_DOUBLE, all_state.data(), counts.data(), starts.data(),
-              MPI_DOUBLE, 0, comm);
+  const std::vector<double> all_state = rank_figures::gather_on_rank_0(state, comm);
   unsigned long differ = 0, compared = 0;
   if (rank == 0)
     for (std::size_t k = 0; k < all_state.size(); k += 10, ++compared)

@@ -62,6 +62,7 @@
 // the sizes increase.
 
 #include "benchmark_arguments.h"
+#include "gravity_cube.h"
 
 #include <talus/base/parallel_environment.h>
 #include <talus/solver/deformable_solver.h>
@@ -159,25 +160,13 @@ int main(int argc, char** argv)
   if (sizes.empty())
     sizes = {20, 40, 60, 80, 100};
 
-  const double side = 10.0, density = 2650.0, g = 9.81;
-  ZoneMaterial elastic;
-  elastic.density = density;
-  elastic.set_young_poisson(1e10, 0.25);
-  ZoneMaterial plastic = elastic;
-  plastic.model = ZoneModel::mohr_coulomb;
-  plastic.cohesion = 4e4;
-  plastic.friction_angle = 30.0;
-  plastic.dilation_angle = 0.0;
-  plastic.tensile_strength = 1e4;
-
-  SolverSettings settings;
-  settings.dynamic = false;
-  settings.gravity = Vec3(0, 0, -g);
-  GridpointCondition base;
-  base.region = Box{Vec3(-1, -1, -1e-9), Vec3(side + 1, side + 1, 1e-9)};
-  InitialStress initial;
-  initial.base[2] = -density * g * side;
-  initial.gradient[2] = density * g;
+  const GravityCube cube;
+  const double side = cube.side;
+  const ZoneMaterial& elastic = cube.elastic;
+  const ZoneMaterial& plastic = cube.plastic;
+  const SolverSettings& settings = cube.settings;
+  const GridpointCondition& base = cube.base;
+  const InitialStress& initial = cube.initial;
 
   std::printf("%-6s %4s %8s %8s %5s %8s %10s %10s %9s %8s %7s %8s %8s %8s %8s %7s %7s\n", "model",
               "n", "zones", "gridpts", "runs", "seconds", "Mzone-u/s", "Mgp-u/s", "zone/gp%",

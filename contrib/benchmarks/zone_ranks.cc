@@ -24,15 +24,15 @@
 // Defaults: n = 59 (1,026,895 zones), 100 steps.
 
 #include "benchmark_arguments.h"
+#include "gravity_cube.h"
 #include "rank_figures.h"
 
 #include <talus/base/memory.h>
 #include <talus/base/parallel_environment.h>
-#include <talus/contact/cell_partition.h>
 #include <talus/solver/deformable_solver.h>
+#include <talus/solver/mesh_share.h>
 #include <talus/zone/block_mesher.h>
 #include <talus/zone/gridpoint_share.h>
-#include <talus/zone/mesh_share.h>
 
 #include <mpi.h>
 
@@ -61,18 +61,12 @@ int main(int argc, char** argv)
       argc > 2 ? whole_argument(argv[0], argv[2], "the step count (second argument)", 1, 100000)
                : 100;
 
-  const double side = 10.0, density = 2650.0, g = 9.81;
-  ZoneMaterial elastic;
-  elastic.density = density;
-  elastic.set_young_poisson(1e10, 0.25);
-  SolverSettings settings;
-  settings.dynamic = false;
-  settings.gravity = Vec3(0, 0, -g);
-  GridpointCondition base;
-  base.region = Box{Vec3(-1, -1, -1e-9), Vec3(side + 1, side + 1, 1e-9)};
-  InitialStress initial;
-  initial.base[2] = -density * g * side;
-  initial.gradient[2] = density * g;
+  const GravityCube cube;
+  const double side = cube.side;
+  const ZoneMaterial& elastic = cube.elastic;
+  const SolverSettings& settings = cube.settings;
+  const GridpointCondition& base = cube.base;
+  const InitialStress& initial = cube.initial;
 
   // Every rank meshes the cube (the mesher is deterministic).
   BlockModel blocks;
@@ -98,19 +92,8 @@ int main(int argc, char** argv)
 
   // 2. Split among the ranks: owners from a partition of the gridpoints
   // weighed by their zones, on cells of a tenth of the side.
-  std::vector<Vec3> point(ng);
-  std::vector<double> work(ng, 0.0);
-  for (unsigned int p = 0; p < ng; ++p)
-    point[p] = Vec3(mesh.position[3 * p], mesh.position[3 * p + 1], mesh.position[3 * p + 2]);
-  for (const auto& zone : mesh.zone_gridpoint)
-    for (unsigned int p : zone)
-      work[p] += 0.25;
-  const Box domain{Vec3::Zero(), Vec3::Constant(side)};
-  const CellPartition partition(domain, domain.lo, Vec3::Constant(side / n), point, work,
-                                static_cast<unsigned int>(ranks));
-  std::vector<unsigned int> owner(ng);
-  for (unsigned int p = 0; p < ng; ++p)
-    owner[p] = partition.owner(point[p]);
+  const std::vector<unsigned int> owner = gridpoint_owners(
+      mesh, Box{Vec3::Zero(), Vec3::Constant(side)}, side / n, static_cast<unsigned int>(ranks));
   const double memory_before = rank_figures::resident_bytes();
   const MeshShare mine = share_mesh(mesh, owner, static_cast<unsigned int>(rank),
                                     static_cast<unsigned int>(ranks), comm);
@@ -133,14 +116,7 @@ int main(int argc, char** argv)
     state.push_back(mine.gridpoint[i]);
     state.insert(state.end(), &x[3 * i], &x[3 * i] + 3);
   }
-  int count = static_cast<int>(state.size());
-  std::vector<int> counts(ranks), starts(ranks, 0);
-  MPI_Gather(&count, 1, MPI_INT, counts.data(), 1, MPI_INT, 0, comm);
-  for (int r = 1; r < ranks; ++r)
-    starts[r] = starts[r - 1] + counts[r - 1];
-  std::vector<double> all_state(rank == 0 ? starts.back() + counts.back() : 0);
-  MPI_Gatherv(state.data(), count, MPI_DOUBLE, all_state.data(), counts.data(), starts.data(),
-              MPI_DOUBLE, 0, comm);
+  const std::vector<double> all_state = rank_figures::gather_on_rank_0(state, comm);
 
   double split_seconds = 0.0, memory = 0.0;
   MPI_Reduce(&mine_seconds, &split_seconds, 1, MPI_DOUBLE, MPI_MAX, 0, comm);

@@ -685,9 +685,6 @@ void BlockCycle::print_end()
   if (system_.zones)
     std::printf("Largest gridpoint displacement: %.6g m\n",
                 largest_gridpoint_displacement(*system_.zones));
-  if (share_ && share_->rank() == 0) // on standard error: the summary is the serial run's
-    std::fprintf(stderr, "Migrations:   %lu events, %lu blocks changed rank\n",
-                 share_->migrations(), share_->owner_changes());
   std::printf("Output:       %s_blocks.pvd, %s_contacts.pvd, %s%s_history.csv\n", prefix_.c_str(),
               prefix_.c_str(), system_.zones ? (prefix_ + "_zones.pvd, ").c_str() : "",
               prefix_.c_str());

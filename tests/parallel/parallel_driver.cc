@@ -173,7 +173,7 @@ int main(int argc, char** argv)
   const std::string prm = argv[1];
   std::vector<int> ranks;
   // "# parallel test: migrations": blocks must change rank in every split
-  // run (its "Migrations:" line on standard error).
+  // run (its "migration events" line on standard error).
   bool migrations = false;
   std::ifstream in(prm);
   for (std::string line; std::getline(in, line);)
@@ -223,12 +223,16 @@ int main(int argc, char** argv)
     all &= same && same_history;
     if (migrations)
     {
-      // "Migrations:   E events, C blocks changed rank"
+      // "talus: on N ranks: E migration events (the sum of their steps S), C owner changes"
       std::ifstream err(folder + ".err");
-      unsigned long events = 0, changed = 0; // (the counts: in the .err file)
+      unsigned long events = 0, steps = 0, changed = 0; // (the counts: in the .err file)
+      int on = 0;
       for (std::string line; std::getline(err, line);)
-        if (line.rfind("Migrations:", 0) == 0)
-          std::sscanf(line.c_str(), "Migrations: %lu events, %lu blocks", &events, &changed);
+        if (line.find("migration events") != std::string::npos)
+          std::sscanf(line.c_str(),
+                      "talus: on %d ranks: %lu migration events (the sum of their steps %lu), "
+                      "%lu owner changes",
+                      &on, &events, &steps, &changed);
       std::printf("%d ranks: blocks changed rank: %s\n", n, changed > 0 ? "yes" : "NO");
       all &= changed > 0;
     }

@@ -1,4 +1,5 @@
-#include <talus/zone/mesh_share.h>
+#include <talus/contact/cell_partition.h>
+#include <talus/solver/mesh_share.h>
 
 #include <algorithm>
 #include <stdexcept>
@@ -6,6 +7,24 @@
 
 namespace talus
 {
+
+std::vector<unsigned int> gridpoint_owners(const TetMesh& mesh, const Box& domain, double cell_size,
+                                           unsigned int ranks)
+{
+  const unsigned int ng = mesh.n_gridpoints();
+  std::vector<Vec3> point(ng);
+  std::vector<double> work(ng, 0.0);
+  for (unsigned int p = 0; p < ng; ++p)
+    point[p] = Vec3(mesh.position[3 * p], mesh.position[3 * p + 1], mesh.position[3 * p + 2]);
+  for (const auto& zone : mesh.zone_gridpoint)
+    for (unsigned int p : zone)
+      work[p] += 0.25;
+  const CellPartition partition(domain, domain.lo, Vec3::Constant(cell_size), point, work, ranks);
+  std::vector<unsigned int> owner(ng);
+  for (unsigned int p = 0; p < ng; ++p)
+    owner[p] = partition.owner(point[p]);
+  return owner;
+}
 
 MeshShare share_mesh(const TetMesh& whole, const std::vector<unsigned int>& owner,
                      unsigned int rank, unsigned int ranks, MPI_Comm comm)

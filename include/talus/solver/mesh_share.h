@@ -1,5 +1,6 @@
 #pragma once
 
+#include <talus/geometry/plane.h>
 #include <talus/zone/gridpoint_share.h>
 #include <talus/zone/tet_mesh.h>
 
@@ -23,6 +24,12 @@ struct MeshShare
   GridpointShare share;
   std::vector<unsigned int> gridpoint; ///< per local gridpoint: its number in the whole mesh
 };
+
+/// The rank of each gridpoint of `mesh` among `ranks`: the region of a
+/// CellPartition of `domain` (cells of `cell_size`, m) that holds it,
+/// balanced by the zones around the gridpoints (a quarter of a zone each).
+std::vector<unsigned int> gridpoint_owners(const TetMesh& mesh, const Box& domain, double cell_size,
+                                           unsigned int ranks);
 
 /// The part of `whole` that rank `rank` of `ranks` holds, with `owner[g]`
 /// the rank of each gridpoint. Every rank must pass the same `owner`.

@@ -17,10 +17,9 @@
 // exceeds the uniaxial strength of 139 kPa there).
 
 #include <talus/base/parallel_environment.h>
-#include <talus/contact/cell_partition.h>
 #include <talus/solver/deformable_solver.h>
+#include <talus/solver/mesh_share.h>
 #include <talus/zone/block_mesher.h>
-#include <talus/zone/mesh_share.h>
 
 #include <mpi.h>
 
@@ -135,19 +134,8 @@ int main(int argc, char** argv)
   MeshReport report;
   const TetMesh mesh = mesh_blocks(blocks, {0}, 1.0, report, ZoneElement::tet4);
   const unsigned int ng = mesh.n_gridpoints();
-  std::vector<Vec3> point(ng);
-  std::vector<double> work(ng, 0.0);
-  for (unsigned int p = 0; p < ng; ++p)
-    point[p] = Vec3(mesh.position[3 * p], mesh.position[3 * p + 1], mesh.position[3 * p + 2]);
-  for (const auto& zone : mesh.zone_gridpoint)
-    for (unsigned int p : zone)
-      work[p] += 0.25;
-  const Box domain{Vec3::Zero(), Vec3::Constant(side)};
-  const CellPartition partition(domain, domain.lo, Vec3::Ones(), point, work,
-                                static_cast<unsigned int>(ranks));
-  std::vector<unsigned int> owner(ng);
-  for (unsigned int p = 0; p < ng; ++p)
-    owner[p] = partition.owner(point[p]);
+  const std::vector<unsigned int> owner = gridpoint_owners(
+      mesh, Box{Vec3::Zero(), Vec3::Constant(side)}, 1.0, static_cast<unsigned int>(ranks));
   const MeshShare mine = share_mesh(mesh, owner, static_cast<unsigned int>(rank),
                                     static_cast<unsigned int>(ranks), MPI_COMM_WORLD);
   long ghosts = mine.mesh.n_gridpoints() - mine.share.n_owned, all_ghosts = 0;
