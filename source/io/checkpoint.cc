@@ -7,9 +7,9 @@
 #include <talus/io/history_file.h>
 #include <talus/io/rank_checkpoint.h>
 #include <talus/joint/continuously_yielding.h>
-#include <talus/scene/scene.h>
 #include <talus/model/block_model.h>
 #include <talus/run/rank_share.h>
+#include <talus/scene/scene.h>
 #include <talus/solver/damper.h>
 #include <talus/solver/deformable_solver.h>
 #include <talus/solver/rigid_solver.h>

@@ -1,12 +1,12 @@
-#include <talus/base/memory.h>
 #include <talus/base/exceptions.h>
+#include <talus/base/memory.h>
 #include <talus/io/checkpoint.h>
-#include <talus/io/rank_checkpoint.h>
 #include <talus/io/factor_of_safety_run.h>
-#include <talus/scene/factor_of_safety.h>
+#include <talus/io/rank_checkpoint.h>
 #include <talus/io/scene_checks.h>
 #include <talus/run/block_cycle.h>
 #include <talus/scene/build_blocks.h>
+#include <talus/scene/factor_of_safety.h>
 
 #include <algorithm>
 #include <chrono>

@@ -95,10 +95,9 @@ RankShare::RankShare(const BlockModel& model, double reach, MPI_Comm comm, const
   partition_ = std::make_unique<CellPartition>(domain, domain.lo, cells.cell_size(), model.centroid,
                                                std::vector<double>(model.n_blocks(), 1.0),
                                                static_cast<unsigned int>(ranks_));
-  blocks_ =
-      saved ? *saved
-            : decompose_blocks(model, *partition_, static_cast<unsigned int>(rank_), reach,
-                               ghost_layers);
+  blocks_ = saved ? *saved
+                  : decompose_blocks(model, *partition_, static_cast<unsigned int>(rank_), reach,
+                                     ghost_layers);
   local_ = model.subset(blocks_.local);
   exchange_ = std::make_unique<GhostExchange>(blocks_, comm_);
 }
@@ -114,8 +113,8 @@ void RankShare::refresh(RigidSolver& solver)
 
 void RankShare::make_migration(const RigidSolver& solver)
 {
-  migration_ = std::make_unique<BlockMigration>(solver, blocks_, *partition_, reach_,
-                                                ghost_layers, comm_);
+  migration_ =
+      std::make_unique<BlockMigration>(solver, blocks_, *partition_, reach_, ghost_layers, comm_);
 }
 
 unsigned long RankShare::migrations() const

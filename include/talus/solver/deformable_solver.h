@@ -2,9 +2,9 @@
 
 #include <talus/geometry/plane.h>
 #include <talus/model/initial_stress.h>
-#include <talus/zone/gridpoint_share.h>
 #include <talus/solver/rigid_face_loads.h> // FacePressure
 #include <talus/solver/rigid_solver.h>
+#include <talus/zone/gridpoint_share.h>
 #include <talus/zone/implicit_elastic.h>
 #include <talus/zone/stress_batch.h>
 #include <talus/zone/tet10_kernel.h>
@@ -58,8 +58,8 @@ public:
   DeformableSolver(const TetMesh& mesh, std::vector<ZoneMaterial> materials,
                    std::vector<unsigned int> material_of_zone, const SolverSettings& settings,
                    std::vector<GridpointCondition> conditions = {},
-                   std::vector<FacePressure> pressures = {},
-                   const InitialStress* initial = nullptr, const GridpointShare* share = nullptr);
+                   std::vector<FacePressure> pressures = {}, const InitialStress* initial = nullptr,
+                   const GridpointShare* share = nullptr);
   ~DeformableSolver();
 
   /// Time step of eqs. 84-86 with the true masses (s), with the joint

@@ -4,8 +4,8 @@
 #include <talus/geometry/plane.h>
 #include <talus/geometry/region.h>
 #include <talus/model/block_model.h>
-#include <talus/model/wave_signal.h>
 #include <talus/model/time_history.h>
+#include <talus/model/wave_signal.h>
 
 #include <array>
 #include <vector>
