@@ -175,6 +175,26 @@ std::string entry(const std::string& prm, const std::string& name)
   return "";
 }
 
+/// The parameter text with each line "include FILE" replaced by that
+/// file's text (FILE relative to `folder`, the including file's), so that
+/// the copy the runs read stands alone.
+std::string with_includes(const std::string& prm, const fs::path& folder)
+{
+  std::istringstream lines(prm);
+  std::string text;
+  for (std::string line; std::getline(lines, line);)
+    if (line.rfind("include ", 0) == 0)
+    {
+      std::string name = line.substr(8);
+      name.erase(name.find_last_not_of(" \r") + 1);
+      const fs::path file = folder / name;
+      text += with_includes(read_file(file), file.parent_path());
+    }
+    else
+      text += line + "\n";
+  return text;
+}
+
 /// Every file of a folder, by name (checkpoints and temporary files left out).
 std::map<std::string, std::string> folder_files(const fs::path& folder)
 {
@@ -196,7 +216,8 @@ int main(int argc, char** argv)
     return 2;
   here = fs::current_path().string() + "/";
   fs::remove("migration_events.txt");
-  const std::string source = read_file(argv[1]);
+  const std::string source =
+      with_includes(read_file(argv[1]), fs::absolute(argv[1]).parent_path());
   const fs::path scene = fs::absolute("scene.prm");
   write_file(scene, source);
   const fs::path output = fs::absolute(entry(source, "Directory"));
