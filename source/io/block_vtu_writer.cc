@@ -79,7 +79,8 @@ void write_blocks_vtu(const std::string& path, const BlockModel& m,
         write_data_array<std::int32_t>(out, encoding, "group", 1, groups);
         write_data_array<double>(out, encoding, "volume", 1, pick(m.volume, 1));
         for (const BlockField& f : fields)
-          write_data_array<double>(out, encoding, f.name, f.components, pick(f.values, f.components));
+          write_data_array<double>(out, encoding, f.name, f.components,
+                                   pick(f.values, f.components));
         out << "      </CellData>\n    </Piece>\n  </UnstructuredGrid>\n</VTKFile>\n";
       });
 }
@@ -123,7 +124,9 @@ void write_pvtu(const std::string& path, const std::string& like,
         declared += "    </P" + section + ">\n";
       section = "Cells";
     }
-    if (tag.rfind("<DataArray", 0) == 0 && section != "Cells")
+    // (The time, a field of the whole file before the sections, is not
+    // declared per piece.)
+    if (tag.rfind("<DataArray", 0) == 0 && !section.empty() && section != "Cells")
       declared += "      <PDataArray type=\"" + attribute(tag, "type") + "\" Name=\"" +
                   attribute(tag, "Name") + "\" NumberOfComponents=\"" +
                   attribute(tag, "NumberOfComponents") + "\"/>\n";
@@ -156,16 +159,19 @@ void PvdSeries::rewrite() const
 {
   if (entries_.empty()) // a series never added to has no file
     return;
-  write_file_atomically(path_, [&](std::ostream& out) {
-    out.precision(12);
-    out << "<?xml version=\"1.0\"?>\n"
-        << "<VTKFile type=\"Collection\" version=\"0.1\" byte_order=\"LittleEndian\">\n"
-        << "  <Collection>\n";
-    for (const auto& [t, file] : entries_)
-      out << "    <DataSet timestep=\"" << t << "\" group=\"\" part=\"0\" file=\"" << file
-          << "\"/>\n";
-    out << "  </Collection>\n</VTKFile>\n";
-  });
+  write_file_atomically(
+      path_,
+      [&](std::ostream& out)
+      {
+        out.precision(12);
+        out << "<?xml version=\"1.0\"?>\n"
+            << "<VTKFile type=\"Collection\" version=\"0.1\" byte_order=\"LittleEndian\">\n"
+            << "  <Collection>\n";
+        for (const auto& [t, file] : entries_)
+          out << "    <DataSet timestep=\"" << t << "\" group=\"\" part=\"0\" file=\"" << file
+              << "\"/>\n";
+        out << "  </Collection>\n</VTKFile>\n";
+      });
 }
 
 } // namespace talus

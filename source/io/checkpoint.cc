@@ -255,19 +255,21 @@ void compare_fingerprints(const std::string& checkpoint, const Scene& scene,
                             "'Checkpoint interval' may change); allowed: the parameter file the "
                             "checkpoint was written with");
   if (now.base != written.scene.base)
-    throw InputError(what + " has changed outside its stages since the checkpoint was written; "
-                            "allowed: " +
+    throw InputError(what +
+                     " has changed outside its stages since the checkpoint was written; "
+                     "allowed: " +
                      allowed);
   if (written.scene.stages.empty() != now.stages.empty())
-    throw InputError(what + (now.stages.empty() ? " has no 'Stage N', and the run had stages"
-                                                : " has 'Stage N', and the run had none") +
+    throw InputError(what +
+                     (now.stages.empty() ? " has no 'Stage N', and the run had stages"
+                                         : " has 'Stage N', and the run had none") +
                      "; allowed: " + allowed);
   for (unsigned int k = 0; k < written.stages_begun && !now.stages.empty(); ++k)
   {
     if (k >= now.stages.size())
       throw InputError(what + " has " + std::to_string(now.stages.size()) +
-                       " stages, and the run had begun " +
-                       std::to_string(written.stages_begun) + "; allowed: " + allowed);
+                       " stages, and the run had begun " + std::to_string(written.stages_begun) +
+                       "; allowed: " + allowed);
     if (now.stages[k] != written.scene.stages[k])
       throw InputError(what + ": '" + scene.stages[k].section +
                        "' has changed since the checkpoint was written, and the run had begun "
@@ -296,8 +298,7 @@ void check_checkpoint_scene(const std::string& checkpoint, const Scene& scene)
     limit += stage.steps;
   if (limit < step)
     throw InputError(checkpoint + ": the checkpoint is at step " + std::to_string(step) +
-                     ", beyond 'Steps' = " + std::to_string(limit) + " of " +
-                     scene.parameter_file +
+                     ", beyond 'Steps' = " + std::to_string(limit) + " of " + scene.parameter_file +
                      (scene.stages.empty() ? "" : " (the sum over its stages)") +
                      "; allowed: 'Steps' of at least " + std::to_string(step) +
                      " to continue the run");
@@ -449,8 +450,11 @@ unsigned long Checkpoint::restore(const std::string& file)
                      std::to_string(ranks) + ", read by rank " + std::to_string(rank_) + " of " +
                      std::to_string(ranks_) + "; allowed: " + restart_command(file, ranks));
   const unsigned long step = check_fingerprints(in, file);
-  if ((share_ != nullptr) != (ranks > 1))
-    in.mismatch("ranks' shares", ranks > 1, share_ != nullptr);
+  // Blocks split among ranks keep their share (RankShare); a deformable
+  // body alone keeps its gridpoints' share in the zones' state.
+  const bool split_blocks = ranks > 1 && rigid_ != nullptr;
+  if ((share_ != nullptr) != split_blocks)
+    in.mismatch("ranks' shares", split_blocks, share_ != nullptr);
   if (share_ != nullptr)
     share_->load_state(in, *rigid_);
   std::uint64_t n = 0;

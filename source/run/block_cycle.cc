@@ -103,7 +103,7 @@ BlockCycle::BlockCycle(Scene& scene, BlockModel& model, const std::string& prefi
       std::printf("Hexahedra:    %u (mixed discretization: the tetrahedra are their two overlays "
                   "of five)\n",
                   system_.mesh_report.hexes);
-    print_mesh_quality(system_.mesh_report, system_.mesh, *zones, model_);
+    print_mesh_quality(system_.mesh_report, system_.mesh, zones->time_step_gridpoint(), model_);
     print_nodal_mixed(*zones);
   }
   if (scene.solver.time_step > 0.0 && solver.stable_time_step() < 1e300)
@@ -329,8 +329,8 @@ std::vector<double> BlockCycle::history_row()
   for (unsigned int global : scene_.solver.history_blocks)
   {
     // On ranks: the owner's values, zeros elsewhere (summed below).
-    const int b = share_ ? (share_->owns(global) ? share_->local_of(global) : -1)
-                         : static_cast<int>(global);
+    const int b =
+        share_ ? (share_->owns(global) ? share_->local_of(global) : -1) : static_cast<int>(global);
     for (const std::vector<Vec3>* q : {&solver.displacement, &solver.velocity})
       for (int d = 0; d < 3; ++d)
         row.push_back((b >= 0 ? (*q)[std::size_t(b)] : zero)[d]);
@@ -355,8 +355,9 @@ std::vector<double> BlockCycle::history_row()
   return row;
 }
 
-std::string BlockCycle::write_pieces(
-    const std::string& name, const std::function<void(const std::string&)>& write_piece) const
+std::string
+BlockCycle::write_pieces(const std::string& name,
+                         const std::function<void(const std::string&)>& write_piece) const
 {
   const std::string& folder = scene_.output.directory;
   std::vector<std::string> pieces;
@@ -393,13 +394,13 @@ void BlockCycle::write_frame(bool diverged)
     std::vector<char> gone = solver.removed_blocks();
     for (std::size_t b = 0; b < gone.size(); ++b)
       gone[b] |= !share_->blocks().owned[b];
-    vtu = write_pieces(blocks,
-                       [&](const std::string& piece)
-                       {
-                         write_blocks_vtu(scene_.output.directory + "/" + piece, model_, fields,
-                                          scene_.output.vtu_encoding, &gone,
-                                          &share_->blocks().local);
-                       });
+    vtu =
+        write_pieces(blocks,
+                     [&](const std::string& piece)
+                     {
+                       write_blocks_vtu(scene_.output.directory + "/" + piece, model_, fields,
+                                        scene_.output.vtu_encoding, &gone, &share_->blocks().local);
+                     });
   }
   else
     write_blocks_vtu(scene_.output.directory + "/" + vtu, model_, fields,
@@ -424,14 +425,14 @@ void BlockCycle::write_frame(bool diverged)
     for (unsigned int i = 0; i < cs.n_subcontacts(); ++i)
       if (share_->blocks().owned[cs.block_a[cs.sc_contact[i]]])
         counted.push_back(i);
-    contacts_vtu = write_pieces(contacts,
-                                [&](const std::string& piece)
-                                {
-                                  write_contacts_vtu(scene_.output.directory + "/" + piece, cs,
-                                                     model_, joint_numbers_,
-                                                     scene_.output.vtu_encoding, &solver.water(),
-                                                     scene_.solver.gravity.norm(), &counted);
-                                });
+    contacts_vtu =
+        write_pieces(contacts,
+                     [&](const std::string& piece)
+                     {
+                       write_contacts_vtu(scene_.output.directory + "/" + piece, cs, model_,
+                                          joint_numbers_, scene_.output.vtu_encoding,
+                                          &solver.water(), scene_.solver.gravity.norm(), &counted);
+                     });
   }
   else
     write_contacts_vtu(scene_.output.directory + "/" + contacts_vtu, cs, model_, joint_numbers_,
@@ -542,8 +543,7 @@ void BlockCycle::begin_stage(const StageSpec& stage)
     std::printf("  Joints:     %zu joint sets or joints change material\n",
                 stage.joint_materials.size());
   for (const GroupContactChange& c : stage.group_contacts)
-    solver.change_group_pair_material(model_.group_index(c.a), model_.group_index(c.b),
-                                      c.material);
+    solver.change_group_pair_material(model_.group_index(c.a), model_.group_index(c.b), c.material);
   if (!stage.group_contacts.empty())
     std::printf("  Joints:     %zu pairs of groups change contact material\n",
                 stage.group_contacts.size());
@@ -667,8 +667,8 @@ void BlockCycle::print_end()
   for (unsigned int global : scene_.solver.history_blocks)
   {
     std::vector<double> u(3, 0.0);
-    const int b = share_ ? (share_->owns(global) ? share_->local_of(global) : -1)
-                         : static_cast<int>(global);
+    const int b =
+        share_ ? (share_->owns(global) ? share_->local_of(global) : -1) : static_cast<int>(global);
     if (b >= 0)
       for (int d = 0; d < 3; ++d)
         u[std::size_t(d)] = solver.displacement[std::size_t(b)][d];
@@ -717,8 +717,7 @@ std::string BlockCycle::unbalanced_where() const
     share_->sum(where);
     char text[200];
     std::snprintf(text, sizeof text, "block %u (group %s, centroid %.4g, %.4g, %.4g m)", global,
-                  model_.group_names[std::size_t(where[3])].c_str(), where[0], where[1],
-                  where[2]);
+                  model_.group_names[std::size_t(where[3])].c_str(), where[0], where[1], where[2]);
     return text;
   }
   const Vec3& c = model_.centroid[b];

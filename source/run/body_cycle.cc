@@ -1,13 +1,16 @@
 #include <talus/io/checkpoint.h>
 #include <talus/io/scene_checks.h>
 #include <talus/run/body_cycle.h>
+#include <talus/run/rank_share.h>
 #include <talus/scene/block_system.h>
 #include <talus/solver/implicit_check.h>
+#include <talus/solver/mesh_share.h>
 #include <talus/zone/tet10_mesh.h>
 
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
+#include <limits>
 
 namespace talus
 {
@@ -30,6 +33,8 @@ void implicit_check(const Scene& scene, DeformableSolver& solver)
     return refuse("the zones have an initial stress");
   if (!scene.stages.empty())
     return refuse("the run has stages");
+  if (solver.share() != nullptr)
+    return refuse("the body is split among MPI ranks");
   for (const GridpointCondition& c : scene.gridpoint_conditions)
     if (c.velocity.norm() > 0.0 || c.velocity_gradient.norm() > 0.0)
       return refuse("a boundary moves at a velocity");
@@ -95,28 +100,6 @@ BodyCycle::BodyCycle(Scene& scene, BlockModel& model, const std::string& prefix)
     std::printf("Hexahedra:    %u (mixed discretization: the tetrahedra are their two overlays of "
                 "five)\n",
                 report_.hexes);
-  parallel_ = ParallelEnvironment::unless_running();
-  ZoneMaterials materials = zone_materials(scene, model, mesh_);
-  solver_ = std::make_unique<DeformableSolver>(
-      mesh_, std::move(materials.materials), std::move(materials.of_zone), scene.solver,
-      scene.gridpoint_conditions, scene.face_pressures,
-      scene.has_initial_stress ? &scene.initial_stress : nullptr);
-  print_mesh_quality(report_, mesh_, *solver_, model);
-  print_nodal_mixed(*solver_);
-  std::printf("Time step:    %.6g s (eq. 84%s)\n", solver_->dt(),
-              !scene.solver.dynamic && scene.solver.density_scaling ? ", density scaling: unit step"
-                                                                    : "");
-  print_dynamic_damping(scene.solver, solver_->dt(),
-                        scene.solver.time_step > 0.0 ? solver_->dt()
-                                                     : solver_->stable_time_step({}, 0.0));
-  print_added_mass(scene.solver, solver_->added_mass());
-  writer_ = std::make_unique<ZoneWriter>(mesh_, scene.output.vtu_encoding);
-  points_ = std::make_unique<PointHistory>(mesh_, scene.solver.history_points);
-  points_->water = has_water(scene);
-  points_->gravity = scene.solver.gravity.norm();
-  for (const GridpointCondition& c : scene.gridpoint_conditions)
-    if (std::isfinite(c.velocity_until))
-      moving_until_ = std::max(moving_until_, c.velocity_until);
   // Before anything is written: a stage's region must hold zones.
   for (const StageSpec& stage : scene.stages)
     for (const ExcavationSpec& e : stage.excavations)
@@ -129,6 +112,158 @@ BodyCycle::BodyCycle(Scene& scene, BlockModel& model, const std::string& prefix)
                           "removes no zone (no zone's centroid lies in the region)",
                           "a region that holds zones of the body");
     }
+  points_ = std::make_unique<PointHistory>(mesh_, scene.solver.history_points);
+  points_->water = has_water(scene);
+  points_->gravity = scene.solver.gravity.norm();
+  whole_zones_ = mesh_.n_zones();
+  // Split among ranks, the whole mesh stays until the summary has named
+  // the gridpoint of the time step.
+  TetMesh whole;
+  if (world_ranks() > 1)
+  {
+    whole = std::move(mesh_);
+    split_among_ranks(whole);
+  }
+  parallel_ = ParallelEnvironment::unless_running();
+  ZoneMaterials materials = zone_materials(scene, model, mesh_);
+  solver_ = std::make_unique<DeformableSolver>(
+      mesh_, std::move(materials.materials), std::move(materials.of_zone), scene.solver,
+      scene.gridpoint_conditions, scene.face_pressures,
+      scene.has_initial_stress ? &scene.initial_stress : nullptr, split_ ? &share_ : nullptr);
+  print_mesh_quality(report_, split_ ? whole : mesh_, solver_->time_step_gridpoint(), model);
+  whole = TetMesh();
+  print_nodal_mixed(*solver_);
+  std::printf("Time step:    %.6g s (eq. 84%s)\n", solver_->dt(),
+              !scene.solver.dynamic && scene.solver.density_scaling ? ", density scaling: unit step"
+                                                                    : "");
+  print_dynamic_damping(scene.solver, solver_->dt(),
+                        scene.solver.time_step > 0.0 ? solver_->dt()
+                                                     : solver_->stable_time_step({}, 0.0));
+  print_added_mass(scene.solver, solver_->added_mass());
+  writer_ = std::make_unique<ZoneWriter>(split_ ? piece_ : mesh_, scene.output.vtu_encoding);
+  for (const GridpointCondition& c : scene.gridpoint_conditions)
+    if (std::isfinite(c.velocity_until))
+      moving_until_ = std::max(moving_until_, c.velocity_until);
+}
+
+void BodyCycle::check_runs_on_ranks(const Scene& scene)
+{
+  const std::string on = "a deformable body split among MPI ranks";
+  const ZoneMaterial& m = scene.deformable.material;
+  if (m.element != ZoneElement::tet4)
+    throw scene_error(scene, "Deformable", "Element",
+                      "10-node and hexahedral zones: " + on + " has 4-node zones only so far",
+                      "4-node zones (tet4), or run without mpirun");
+  if (m.nodal_mixed || !scene.deformable.nodal_mixed_groups.empty())
+    throw scene_error(scene, "Deformable", "Nodal mixed discretization",
+                      "nodal mixed discretization: not yet on " + on,
+                      "false, or run without mpirun");
+  if (scene.solver.damping == Damping::adaptive_global)
+    throw scene_error(scene, "Solver", "Damping", "global adaptive damping: not yet on " + on,
+                      "local or combined damping, or run without mpirun");
+  if (has_water(scene))
+    throw scene_error(scene, "Water", "", "water: not yet on " + on,
+                      "no water on a deformable body, or run without mpirun");
+}
+
+void BodyCycle::split_among_ranks(const TetMesh& whole)
+{
+  // Owners from a partition of the body's box into cells, balanced by the
+  // zones around the gridpoints (gridpoint_owners).
+  Box box{Vec3(whole.position[0], whole.position[1], whole.position[2]), Vec3::Zero()};
+  box.hi = box.lo;
+  for (unsigned int g = 0; g < whole.n_gridpoints(); ++g)
+  {
+    const Vec3 p(whole.position[3 * g], whole.position[3 * g + 1], whole.position[3 * g + 2]);
+    box.lo = box.lo.cwiseMin(p);
+    box.hi = box.hi.cwiseMax(p);
+  }
+  const unsigned int rank = static_cast<unsigned int>(world_rank()),
+                     ranks = static_cast<unsigned int>(world_ranks());
+  // About 64 cells along the longest side: fine enough to balance.
+  const double cell = std::max((box.hi - box.lo).maxCoeff() / 64.0, 1e-12);
+  owner_ = gridpoint_owners(whole, box, cell, ranks);
+  MeshShare part = share_mesh(whole, owner_, rank, ranks, MPI_COMM_WORLD);
+  mesh_ = std::move(part.mesh);
+  share_ = std::move(part.share);
+  split_ = true;
+  // The history points: a gridpoint reported by its owner, a zone by the
+  // owner of its first corner (the rank that counts it).
+  for (std::size_t k = 0; k < points_->gridpoint.size(); ++k)
+  {
+    const unsigned int g = points_->gridpoint[k], z = points_->zone[k];
+    int local_g = -1, local_z = -1;
+    if (owner_[g] == rank)
+      local_g = static_cast<int>(
+          std::lower_bound(part.gridpoint.begin(), part.gridpoint.begin() + share_.n_owned, g) -
+          part.gridpoint.begin());
+    if (owner_[whole.zone_gridpoint[z][0]] == rank)
+      local_z = static_cast<int>(std::lower_bound(part.zone.begin(), part.zone.end(), z) -
+                                 part.zone.begin());
+    point_gridpoint_.push_back(local_g);
+    point_zone_.push_back(local_z);
+  }
+  // This rank's output piece: the zones it counts.
+  piece_.position = mesh_.position;
+  piece_.gridpoint_block = mesh_.gridpoint_block;
+  for (unsigned int z = 0; z < mesh_.n_zones(); ++z)
+    if (mesh_.zone_gridpoint[z][0] < share_.n_owned)
+    {
+      piece_zone_.push_back(z);
+      piece_.zone_gridpoint.push_back(mesh_.zone_gridpoint[z]);
+      piece_.zone_block.push_back(mesh_.zone_block[z]);
+    }
+}
+
+double BodyCycle::sum_over_ranks(double value) const
+{
+  if (split_)
+    MPI_Allreduce(MPI_IN_PLACE, &value, 1, MPI_DOUBLE, MPI_SUM, MPI_COMM_WORLD);
+  return value;
+}
+
+Vec3 BodyCycle::whole_gridpoint_position(unsigned int g) const
+{
+  const std::vector<double> x = solver_->positions();
+  if (!split_)
+    return Vec3(x[3 * g], x[3 * g + 1], x[3 * g + 2]);
+  Vec3 p = Vec3::Zero();
+  if (owner_[g] == static_cast<unsigned int>(world_rank()))
+  {
+    const auto& whole = share_.whole_gridpoint;
+    const std::size_t i =
+        std::lower_bound(whole.begin(), whole.begin() + share_.n_owned, g) - whole.begin();
+    p = Vec3(x[3 * i], x[3 * i + 1], x[3 * i + 2]);
+  }
+  MPI_Bcast(p.data(), 3, MPI_DOUBLE, static_cast<int>(owner_[g]), MPI_COMM_WORLD);
+  return p;
+}
+
+void BodyCycle::add_point_values(std::vector<double>& row) const
+{
+  if (!split_)
+  {
+    points_->add_values(row, *solver_);
+    return;
+  }
+  // Every rank fills what it reports and -infinity elsewhere: the maximum
+  // over the ranks is the reporting rank's value, bit for bit (a sign of
+  // zero included).
+  const double none = -std::numeric_limits<double>::infinity();
+  const std::vector<double> u = solver_->displacements(), v = solver_->velocities();
+  std::vector<double> values;
+  for (std::size_t k = 0; k < points_->gridpoint.size(); ++k)
+  {
+    const int g = point_gridpoint_[k], z = point_zone_[k];
+    for (const std::vector<double>* q : {&u, &v})
+      for (int d = 0; d < 3; ++d)
+        values.push_back(g >= 0 ? (*q)[3 * std::size_t(g) + d] : none);
+    for (int c = 0; c < 6; ++c)
+      values.push_back(z >= 0 ? solver_->stress()[6 * std::size_t(z) + c] : none);
+  }
+  MPI_Allreduce(MPI_IN_PLACE, values.data(), static_cast<int>(values.size()), MPI_DOUBLE, MPI_MAX,
+                MPI_COMM_WORLD);
+  row.insert(row.end(), values.begin(), values.end());
 }
 
 Vec3 BodyCycle::zone_centroid(unsigned int z) const
@@ -164,7 +299,7 @@ std::vector<double> BodyCycle::history_row()
   const DeformableSolver& solver = *solver_;
   std::vector<double> row{double(solver.steps_done()), solver.time(), solver.unbalanced_ratio(),
                           largest_gridpoint_displacement(solver)};
-  points_->add_values(row, solver);
+  add_point_values(row);
   for (const ReactionReport& r : scene_.reactions)
   {
     const Vec3 f = -solver.support_force(r.region, r.held);
@@ -179,8 +314,30 @@ std::vector<double> BodyCycle::history_row()
 
 void BodyCycle::write_frame(bool diverged)
 {
-  if (scene_.output.write_vtu)
+  if (!scene_.output.write_vtu)
+    return;
+  if (!split_)
+  {
     write_zone_frame(scene_, mesh_, *solver_, *writer_, series_, frame_++, !diverged);
+    return;
+  }
+  // A piece per rank (the zones it counts) and, by rank 0, the .pvtu that
+  // joins them and the series.
+  char name[64];
+  std::snprintf(name, sizeof name, "_zones_%05u", frame_++);
+  const std::string base = scene_.output.base_name + name, &folder = scene_.output.directory;
+  std::vector<std::string> pieces;
+  for (int r = 0; r < world_ranks(); ++r)
+    pieces.push_back(base + "_" + std::to_string(r) + ".vtu");
+  const int rank = world_rank();
+  write_zone_file(folder + "/" + pieces[std::size_t(rank)], piece_, *solver_, *writer_, !diverged,
+                  &piece_zone_);
+  if (rank == 0)
+  {
+    write_pvtu(folder + "/" + base + ".pvtu", folder + "/" + pieces[0], pieces);
+    series_.add(solver_->time(), base + ".pvtu");
+  }
+  MPI_Barrier(MPI_COMM_WORLD); // the frame whole before the run goes on
 }
 
 void BodyCycle::register_checkpoint(Checkpoint& checkpoint)
@@ -203,6 +360,7 @@ void BodyCycle::begin_stage(const StageSpec& stage)
     {
       if (solver_->zone_removed(z))
         continue;
+      const bool counted = counts(z);
       const auto& t = mesh_.zone_gridpoint[z];
       Vec3 c = Vec3::Zero(), p[4];
       for (int a = 0; a < 4; ++a)
@@ -214,13 +372,15 @@ void BodyCycle::begin_stage(const StageSpec& stage)
       for (const ExcavationSpec& e : stage.excavations)
         if (e.region.contains(c, 0.0))
           gone[z] = 1;
-      if (gone[z])
+      if (gone[z] && counted)
       {
         ++count;
         volume += std::abs((p[1] - p[0]).dot((p[2] - p[0]).cross(p[3] - p[0]))) / 6.0;
       }
     }
     solver_->remove_zones(gone);
+    count = static_cast<unsigned int>(sum_over_ranks(count));
+    volume = sum_over_ranks(volume);
     // Hexahedral zones count twice, once per overlay.
     std::printf("  Excavated:  %u zones, %.9g m^3\n", count,
                 report_.hexes > 0 ? 0.5 * volume : volume);
@@ -287,8 +447,7 @@ void BodyCycle::restore_stage(const StageSpec& stage)
   if (stage.changes_water)
     solver_->set_water(stage.water);
   if (stage.changes_boundaries)
-    solver_->set_boundaries(stage.boundaries.gridpoint_conditions,
-                            stage.boundaries.face_pressures);
+    solver_->set_boundaries(stage.boundaries.gridpoint_conditions, stage.boundaries.face_pressures);
 }
 
 std::string BodyCycle::displacement_text() const
@@ -303,9 +462,9 @@ void BodyCycle::print_end()
   const DeformableSolver& solver = *solver_;
   std::printf("Steps:        %lu (time %.6g s)\n", solver.steps_done(), solver.time());
   if (solver.water().active())
-    std::printf("%s\n",
-                water_summary(solver.water(), solver.water_faces_below(), solver.water_force())
-                    .c_str());
+    std::printf(
+        "%s\n",
+        water_summary(solver.water(), solver.water_faces_below(), solver.water_force()).c_str());
   std::printf("Unbalanced force ratio: %.3g\n", solver.unbalanced_ratio());
   std::printf("Largest displacement: %.6g m\n", largest_gridpoint_displacement(solver));
   {
@@ -322,10 +481,11 @@ void BodyCycle::print_end()
     bool any = false;
     for (unsigned int q = 0; q < per_zone; ++q)
       any |= solver.plastic_state()[per_zone * z + q] != 0;
-    yielding += any;
+    yielding += any && counts(z);
   }
+  yielding = static_cast<unsigned int>(sum_over_ranks(yielding));
   if (scene_.deformable.material.model == ZoneModel::mohr_coulomb)
-    std::printf("Plastic zones: %u of %u\n", yielding, mesh_.n_zones());
+    std::printf("Plastic zones: %u of %u\n", yielding, whole_zones_);
   for (const ReactionReport& r : scene_.reactions)
   {
     const Vec3 f = -solver.support_force(r.region, r.held);
@@ -340,10 +500,9 @@ void BodyCycle::print_end()
 std::string BodyCycle::unbalanced_where() const
 {
   const unsigned int g = solver_->unbalanced_gridpoint();
-  const std::vector<double> x = solver_->positions();
+  const Vec3 x = whole_gridpoint_position(g);
   char where[160];
-  std::snprintf(where, sizeof where, "gridpoint %u at %.4g, %.4g, %.4g m", g, x[3 * g],
-                x[3 * g + 1], x[3 * g + 2]);
+  std::snprintf(where, sizeof where, "gridpoint %u at %.4g, %.4g, %.4g m", g, x[0], x[1], x[2]);
   return where;
 }
 

@@ -62,10 +62,11 @@ void agree_on_input_errors(const std::function<void()>& build)
 void check_runs_on_ranks(const Scene& scene, int ranks)
 {
   const std::string on = "talus runs on " + std::to_string(ranks) +
-                         " MPI ranks only scenes of rigid blocks so far";
+                         " MPI ranks only scenes of rigid blocks and of one deformable body "
+                         "alone so far";
   const std::string allowed = "run it without mpirun (one rank), or leave this out";
-  if (!scene.deformable.groups.empty())
-    throw scene_error(scene, "Deformable", "Groups", "deformable blocks: " + on, allowed);
+  // Deformable blocks among others: refused once the blocks are built
+  // (check_runs_on_ranks with the model).
   for (const StageSpec& stage : scene.stages)
   {
     if (stage.factor_of_safety)
@@ -73,6 +74,16 @@ void check_runs_on_ranks(const Scene& scene, int ranks)
   }
   if (scene.strength_reduction.enabled)
     throw scene_error(scene, "Solver", "Mode", "the factor of safety: " + on, allowed);
+}
+
+void check_runs_on_ranks(const Scene& scene, const BlockModel& model, int ranks)
+{
+  if (!scene.deformable.groups.empty() && model.n_blocks() != 1)
+    throw scene_error(scene, "Deformable", "Groups",
+                      "deformable blocks among other blocks: talus runs on " +
+                          std::to_string(ranks) +
+                          " MPI ranks a deformable body alone (a scene of one block) so far",
+                      "run it without mpirun (one rank), or rigid blocks");
 }
 
 RankShare::RankShare(const BlockModel& model, double reach, MPI_Comm comm, const RankBlocks* saved)

@@ -22,13 +22,31 @@ void write_zone_frame(const Scene& scene, const TetMesh& mesh, const DeformableS
   char file[64];
   std::snprintf(file, sizeof file, "_zones_%05u.vtu", frame);
   const std::string vtu = scene.output.base_name + file;
+  write_zone_file(scene.output.directory + "/" + vtu, mesh, solver, writer, with_stress);
+  series.add(solver.time(), vtu);
+}
+
+void write_zone_file(const std::string& path, const TetMesh& mesh, const DeformableSolver& solver,
+                     ZoneWriter& writer, bool with_stress, const std::vector<unsigned int>* zones)
+{
   // One cell per shown tetrahedron: a hexahedral zone shows its averaged
   // stress on its first overlay; a 10-node zone is eight sub-tetrahedra
   // with the Gauss-point stresses and states carried over (tet10_mesh.h).
   const std::vector<double> x = solver.positions();
   std::vector<double> stress;
   std::vector<unsigned char> state;
-  if (mesh.quadratic())
+  if (zones != nullptr) // a piece: 4-node zones, each the solver's zones[k]
+  {
+    std::vector<double> piece_stress;
+    std::vector<unsigned char> piece_state;
+    for (unsigned int z : *zones)
+    {
+      piece_stress.insert(piece_stress.end(), &solver.stress()[6 * z], &solver.stress()[6 * z + 6]);
+      piece_state.push_back(solver.plastic_state()[z]);
+    }
+    shown_zone_values(mesh, x, piece_stress, piece_state, stress, state);
+  }
+  else if (mesh.quadratic())
   {
     stress = tet10_subcell_values(solver.stress(), 6);
     state = tet10_subcell_flags(solver.plastic_state());
@@ -48,10 +66,9 @@ void write_zone_frame(const Scene& scene, const TetMesh& mesh, const DeformableS
     principal_stresses(&stress[6 * c], &cells[1].values[3 * c]);
     cells[2].values.push_back(state[c]);
   }
-  writer.write(scene.output.directory + "/" + vtu, x,
+  writer.write(path, x,
                {{"displacement", 3, solver.displacements()}, {"velocity", 3, solver.velocities()}},
                cells, solver.time());
-  series.add(solver.time(), vtu);
 }
 
 void print_added_mass(const SolverSettings& s, const AddedMass& added, const char* indent)
@@ -74,8 +91,7 @@ void print_added_mass(const SolverSettings& s, const AddedMass& added, const cha
     return;
   const std::string text = "partial density scaling to the 'Time step' " + number(s.time_step) +
                            " s adds " + percent(added.fraction()) +
-                           " of the total mass, above the limit of " +
-                           percent(s.added_mass_limit);
+                           " of the total mass, above the limit of " + percent(s.added_mass_limit);
   if (!s.added_mass_warn)
     throw InputError::at(s.source, 0, "Solver", "Added mass limit", text,
                          "a larger limit (at most 1), a smaller 'Time step', or 'Added mass over "
@@ -103,9 +119,11 @@ double largest_gridpoint_displacement(const DeformableSolver& solver)
 {
   const std::vector<double> u = solver.displacements();
   double largest = 0.0;
-  for (std::size_t g = 0; g < u.size() / 3; ++g)
+  for (std::size_t g = 0; g < solver.owned_gridpoints(); ++g) // split: each rank its own
     largest = std::max(largest, std::sqrt(u[3 * g] * u[3 * g] + u[3 * g + 1] * u[3 * g + 1] +
                                           u[3 * g + 2] * u[3 * g + 2]));
+  if (const GridpointShare* share = solver.share())
+    MPI_Allreduce(MPI_IN_PLACE, &largest, 1, MPI_DOUBLE, MPI_MAX, share->comm);
   return largest;
 }
 
@@ -121,7 +139,7 @@ std::string edge_length_text(const EdgeLengthField& f)
 /// The summary's lines on the zones' shapes: the radius ratio (1 for a
 /// regular tetrahedron), where the poor zones are, and the gridpoint that
 /// sets the stable step of eq. 84 with its worst zone.
-void print_mesh_quality(const MeshReport& r, const TetMesh& mesh, const DeformableSolver& zones,
+void print_mesh_quality(const MeshReport& r, const TetMesh& mesh, unsigned int g,
                         const BlockModel& model)
 {
   if (r.zones == 0)
@@ -136,7 +154,6 @@ void print_mesh_quality(const MeshReport& r, const TetMesh& mesh, const Deformab
       std::printf("%s %u (%u)", i == 0 ? "" : ",", r.poor_blocks[i].first, r.poor_blocks[i].second);
   }
   std::printf("\n");
-  const unsigned int g = zones.time_step_gridpoint();
   double worst = 2.0, height = 1e300;
   const auto P = [&](unsigned int i)
   { return Vec3(mesh.position[3 * i], mesh.position[3 * i + 1], mesh.position[3 * i + 2]); };
@@ -285,7 +302,8 @@ void PointHistory::add_values(std::vector<double>& row, const DeformableSolver& 
     {
       const std::vector<double> x = zones.positions();
       const unsigned int g = gridpoint[k];
-      row.push_back(pore_pressure(zones.water(), gravity, Vec3(x[3 * g], x[3 * g + 1], x[3 * g + 2])));
+      row.push_back(
+          pore_pressure(zones.water(), gravity, Vec3(x[3 * g], x[3 * g + 1], x[3 * g + 2])));
     }
   }
 }

@@ -1,5 +1,5 @@
-#include <talus/base/exceptions.h>
 #include <talus/base/archive.h>
+#include <talus/base/exceptions.h>
 #include <talus/solver/deformable_solver.h>
 #include <talus/solver/water_loads.h>
 #include <talus/zone/hex_mixed.h>
@@ -14,11 +14,11 @@
 #include <petscvec.h>
 
 #include <algorithm>
-#include <map>
 #include <array>
 #include <chrono>
 #include <cmath>
 #include <limits>
+#include <map>
 #include <tuple>
 
 namespace talus
@@ -276,6 +276,17 @@ DeformableSolver::DeformableSolver(const TetMesh& mesh, std::vector<ZoneMaterial
     for (int d = 0; d < 3; ++d)
       gravity_force_[3 * g + d] = mass[g] * s_.gravity[d]; // eq. 56
 
+  n_moved_ = ng;
+  if (share != nullptr)
+  {
+    share_ = std::make_unique<GridpointShare>(*share);
+    if (nodal_mixed_ || mesh_.quadratic() || mesh_.n_hexes() > 0 ||
+        s_.damping == Damping::adaptive_global)
+      throw std::logic_error("DeformableSolver: only 4-node zones without global adaptive "
+                             "damping are split among ranks yet");
+    n_moved_ = share_->n_owned;
+  }
+
   // Time step (eq. 84); statics with density scaling: unit time step and
   // each gridpoint's inertial mass set from its stiffness, m = k dt^2 / 4.
   const bool scaled = !s_.dynamic && s_.density_scaling;
@@ -283,28 +294,21 @@ DeformableSolver::DeformableSolver(const TetMesh& mesh, std::vector<ZoneMaterial
   if (s_.time_step > 0.0)
   {
     dt_ = s_.time_step;
-    if (!scaled && !s_.raises_mass() && dt_ > stable_time_step_of(mass, stiffness, beta))
+    if (!scaled && !s_.raises_mass() && dt_ > step_of(mass, stiffness, beta))
       throw InputError(s_.source + ": entry 'Time step' in subsection 'Solver': " + number(dt_) +
                        " s is larger than the stable step of the zones, " +
-                       number(stable_time_step_of(mass, stiffness, beta)) + " s (eq. 84" +
+                       number(step_of(mass, stiffness, beta)) + " s (eq. 84" +
                        (beta > 0.0 ? " with Rayleigh beta" : "") +
                        "); allowed: at most that, 0 for the automatic step, or 'Partial density "
                        "scaling = true' to add mass where the step needs it");
   }
   else
-    dt_ = scaled ? 1.0 : stable_time_step_of(mass, stiffness, beta);
+    dt_ = scaled ? 1.0 : step_of(mass, stiffness, beta);
   petsc_ = std::make_unique<PetscState>();
-  n_moved_ = ng;
   if (share != nullptr)
   {
     // Split among ranks: vectors of the whole model, this rank's
     // gridpoints as its range and the ghosts as ghost entries.
-    share_ = std::make_unique<GridpointShare>(*share);
-    if (nodal_mixed_ || mesh_.quadratic() || mesh_.n_hexes() > 0 ||
-        s_.damping == Damping::adaptive_global)
-      throw std::logic_error("DeformableSolver: only 4-node zones without global adaptive "
-                             "damping are split among ranks yet");
-    n_moved_ = share_->n_owned;
     unsigned long mine = n_moved_, before = 0, all = 0;
     MPI_Exscan(&mine, &before, 1, MPI_UNSIGNED_LONG, MPI_SUM, share_->comm);
     MPI_Allreduce(&mine, &all, 1, MPI_UNSIGNED_LONG, MPI_SUM, share_->comm);
@@ -320,12 +324,6 @@ DeformableSolver::DeformableSolver(const TetMesh& mesh, std::vector<ZoneMaterial
       throw std::logic_error("DeformableSolver: one ghost index per ghost gridpoint is needed");
     for (auto* v : {&petsc_->position, &petsc_->velocity, &petsc_->force, &petsc_->inertial_mass})
       v->reinit(owned, ghosts, share_->comm);
-    // The step of the whole model: ghosts' masses and stiffnesses are
-    // partial (some of their zones are elsewhere), so the owners' alone.
-    if (s_.time_step <= 0.0 && !scaled)
-      dt_ = least_over_ranks(stable_time_step_of(
-          std::vector<double>(mass.begin(), mass.begin() + n_moved_),
-          std::vector<double>(stiffness.begin(), stiffness.begin() + n_moved_), beta));
   }
   else // this rank's own (a collective on the world would wait for the other ranks)
     for (auto* v : {&petsc_->position, &petsc_->velocity, &petsc_->force, &petsc_->inertial_mass})
@@ -360,7 +358,7 @@ DeformableSolver::DeformableSolver(const TetMesh& mesh, std::vector<ZoneMaterial
   {
     // Held velocities are there from the start: energy at the start.
     LocalArray m(petsc_->inertial_mass);
-    for (unsigned int i = 0; i < 3 * ng; ++i)
+    for (unsigned int i = 0; i < 3 * n_moved_; ++i)
       initial_elastic_ += 0.5 * m[i] * held_velocity_at(i, 0.0) * held_velocity_at(i, 0.0);
   }
   damper_ = damper_for(s_, dt_);
@@ -730,13 +728,15 @@ void DeformableSolver::set_nodal_mixed_ring_limit(unsigned int batches)
     plan_nodal_mixed();
 }
 
-double DeformableSolver::stable_time_step_of(const std::vector<double>& mass,
-                                             const std::vector<double>& stiffness, double beta)
+double DeformableSolver::step_of(const std::vector<double>& mass,
+                                 const std::vector<double>& stiffness, double beta) const
 {
   // Eq. 84: dt = 2 min sqrt(m_i / k_i); with Rayleigh's stiffness term,
   // each gridpoint's 2 / omega_i lowered at its own omega_i = sqrt(k_i / m_i).
+  // Split among ranks: the owned gridpoints of every rank (a ghost's mass
+  // and stiffness are partial: some of its zones are elsewhere).
   double ratio = 1e300, step = 1e300;
-  for (std::size_t g = 0; g < mass.size(); ++g)
+  for (std::size_t g = 0; g < std::min<std::size_t>(mass.size(), n_moved_); ++g)
     if (stiffness[g] > 0.0)
     {
       ratio = std::min(ratio, mass[g] / stiffness[g]);
@@ -745,7 +745,8 @@ double DeformableSolver::stable_time_step_of(const std::vector<double>& mass,
                         2.0 * std::sqrt(mass[g] / stiffness[g]) *
                             stiffness_damping_step_factor(beta, std::sqrt(stiffness[g] / mass[g])));
     }
-  return beta > 0.0 ? std::min(step, 2.0 * std::sqrt(ratio)) : 2.0 * std::sqrt(ratio);
+  return least_over_ranks(beta > 0.0 ? std::min(step, 2.0 * std::sqrt(ratio))
+                                     : 2.0 * std::sqrt(ratio));
 }
 
 double DeformableSolver::stable_time_step(const std::vector<double>& joint_stiffness,
@@ -754,7 +755,7 @@ double DeformableSolver::stable_time_step(const std::vector<double>& joint_stiff
   std::vector<double> k = nodal_stiffness_;
   for (std::size_t g = 0; g < k.size() && g < joint_stiffness.size(); ++g)
     k[g] += joint_stiffness[g];
-  return stable_time_step_of(true_mass_, k, beta);
+  return step_of(true_mass_, k, beta);
 }
 
 ViscousModuli DeformableSolver::viscous_moduli(const ZoneMaterial& mat, double strain_dt) const
@@ -766,13 +767,25 @@ unsigned int DeformableSolver::time_step_gridpoint() const
 {
   unsigned int found = 0;
   double ratio = 1e300;
-  for (std::size_t g = 0; g < true_mass_.size(); ++g)
+  for (std::size_t g = 0; g < n_moved_; ++g)
     if (nodal_stiffness_[g] > 0.0 && true_mass_[g] / nodal_stiffness_[g] < ratio)
     {
       ratio = true_mass_[g] / nodal_stiffness_[g];
       found = static_cast<unsigned int>(g);
     }
-  return found;
+  if (!share_)
+    return found;
+  // The whole mesh's first gridpoint of the least m / k (MPI_MINLOC keeps
+  // the lowest index of equal values).
+  struct
+  {
+    double value;
+    int index;
+  } mine{ratio, static_cast<int>(share_->whole_gridpoint.empty() ? found
+                                                                 : share_->whole_gridpoint[found])},
+      all{0.0, 0};
+  MPI_Allreduce(&mine, &all, 1, MPI_DOUBLE_INT, MPI_MINLOC, share_->comm);
+  return static_cast<unsigned int>(all.index);
 }
 
 void DeformableSolver::external_forces(const double* x, double* f)
@@ -999,7 +1012,7 @@ void DeformableSolver::zone_forces(const double* x, const double* v, double* f, 
       if (hex) // eqs. 60-63
         hex_mixed_average_strain(n, scratch_.strain_increment.data(), scratch_.volume.data());
       StressBatch batch = tet4_batch(first, n, scratch_);
-      update_tet4_stresses(mat, batch, scratch_.volume.data());
+      update_tet4_stresses(mat, batch, scratch_.volume.data(), first);
       if (hex) // each overlay's forces weighted 1/2
         hex_mixed_overlay_weight(n, scratch_.volume.data());
       // With Rayleigh's viscous stress, both forces in one pass.
@@ -1014,7 +1027,7 @@ void DeformableSolver::zone_forces(const double* x, const double* v, double* f, 
 }
 
 void DeformableSolver::update_tet4_stresses(const ZoneMaterial& mat, StressBatch& batch,
-                                            const double* volume)
+                                            const double* volume, unsigned int first)
 {
   // Plastic materials: the stress work of the step, V (s_old + s_new) / 2
   // : d(eps), from which the plastic dissipation follows (elastic ones
@@ -1023,15 +1036,25 @@ void DeformableSolver::update_tet4_stresses(const ZoneMaterial& mat, StressBatch
   const bool hex = mat.element == ZoneElement::hex_mixed;
   const bool plastic = mat.model != ZoneModel::elastic;
   const double overlay = hex ? 0.5 : 1.0;
+  // Split among ranks, the work of the zones this rank counts alone (each
+  // zone once over the ranks): the others' volumes taken as zero.
+  const double* work_volume = volume;
+  if (plastic && share_)
+  {
+    counted_volume_.resize(batch.size);
+    for (unsigned int k = 0; k < batch.size; ++k)
+      counted_volume_[k] = share_->counts(mesh_.zone_gridpoint[first + k][0]) ? volume[k] : 0.0;
+    work_volume = counted_volume_.data();
+  }
   if (plastic)
     plastic_stress_work_ +=
-        0.5 * overlay * stress_power(batch.size, batch.strain_increment, batch.stress, volume);
+        0.5 * overlay * stress_power(batch.size, batch.strain_increment, batch.stress, work_volume);
   apply_zone_model(mat, batch);
   if (hex) // eqs. 64-67
     hex_mixed_average_mean_stress(batch.size, batch.stress, volume);
   if (plastic)
     plastic_stress_work_ +=
-        0.5 * overlay * stress_power(batch.size, batch.strain_increment, batch.stress, volume);
+        0.5 * overlay * stress_power(batch.size, batch.strain_increment, batch.stress, work_volume);
 }
 
 StressBatch DeformableSolver::tet4_batch(unsigned int first, unsigned int n, Tet4Scratch& scratch)
@@ -1287,7 +1310,7 @@ void DeformableSolver::nodal_mixed_zone_forces(const double* x, const double* v,
         own != nullptr && !elastic
             ? replaced_strain_work(n, own, batch.strain_increment, stress, scratch.volume.data())
             : 0.0;
-    update_tet4_stresses(mat, batch, scratch.volume.data());
+    update_tet4_stresses(mat, batch, scratch.volume.data(), first);
     if (own != nullptr)
     {
       const double taken_after =
@@ -1460,6 +1483,26 @@ void DeformableSolver::move_gridpoints()
     for (int d = 0; d < 3; ++d)
       x[3 * g + d] += v[3 * g + d] * dt_;
   }
+  if (share_)
+  {
+    // The whole model's ratio: the largest force of any rank (the lowest
+    // whole-mesh gridpoint of equal ones) over the mean of all.
+    struct
+    {
+      double value;
+      int index;
+    } mine{largest, static_cast<int>(share_->whole_gridpoint.empty()
+                                         ? ratio_gridpoint_
+                                         : share_->whole_gridpoint[ratio_gridpoint_])},
+        all{0.0, 0};
+    double sums[2] = {size_sum, double(n_free)};
+    MPI_Allreduce(&mine, &all, 1, MPI_DOUBLE_INT, MPI_MAXLOC, share_->comm);
+    MPI_Allreduce(MPI_IN_PLACE, sums, 2, MPI_DOUBLE, MPI_SUM, share_->comm);
+    largest = all.value;
+    ratio_whole_gridpoint_ = static_cast<unsigned int>(all.index);
+    size_sum = sums[0];
+    n_free = static_cast<unsigned int>(sums[1]);
+  }
   ratio_ = n_free > 0 && size_sum > 0.0 ? largest / (size_sum / n_free) : 0.0;
   gravity_work_ += gravity_work;
   boundary_work_ += boundary_work;
@@ -1489,6 +1532,35 @@ void DeformableSolver::step()
 
 void DeformableSolver::add_work(EnergyAccount& e) const
 {
+  EnergyAccount mine;
+  add_own_work(mine);
+  add_over_ranks(mine, e);
+}
+
+void DeformableSolver::add_energy(EnergyAccount& e) const
+{
+  EnergyAccount mine;
+  add_own_energy(mine);
+  add_over_ranks(mine, e);
+}
+
+void DeformableSolver::add_over_ranks(const EnergyAccount& mine, EnergyAccount& e) const
+{
+  double terms[7] = {mine.gravity_work,   mine.boundary_work, mine.damping, mine.kinetic,
+                     mine.initial_stored, mine.zone_elastic,  mine.plastic};
+  if (share_)
+    MPI_Allreduce(MPI_IN_PLACE, terms, 7, MPI_DOUBLE, MPI_SUM, share_->comm);
+  e.gravity_work += terms[0];
+  e.boundary_work += terms[1];
+  e.damping += terms[2];
+  e.kinetic += terms[3];
+  e.initial_stored += terms[4];
+  e.zone_elastic += terms[5];
+  e.plastic += terms[6];
+}
+
+void DeformableSolver::add_own_work(EnergyAccount& e) const
+{
   e.gravity_work += gravity_work_;
   e.boundary_work += boundary_work_;
   e.damping += damping_work_;
@@ -1496,9 +1568,9 @@ void DeformableSolver::add_work(EnergyAccount& e) const
   e.initial_stored += initial_elastic_;
 }
 
-void DeformableSolver::add_energy(EnergyAccount& e) const
+void DeformableSolver::add_own_energy(EnergyAccount& e) const
 {
-  add_work(e);
+  add_own_work(e);
   LocalArray x(petsc_->position);
   const auto [elastic, plastic_elastic] = elastic_energy(x.data());
   e.zone_elastic += elastic;
@@ -1520,6 +1592,8 @@ std::pair<double, double> DeformableSolver::elastic_energy(const double* x) cons
   for (unsigned int z = 0; z < mesh_.n_zones(); ++z)
   {
     if (zone_removed(z)) // no stress, no stiffness
+      continue;
+    if (share_ && !share_->counts(mesh_.zone_gridpoint[z][0])) // another rank's to count
       continue;
     const ZoneMaterial& mat = materials_[material_of_zone_[z]];
     double volume[4];
@@ -1692,10 +1766,9 @@ void DeformableSolver::use_time_step(double dt, const std::vector<double>& joint
     k[g] += joint_stiffness[g];
   const bool scaled = !s_.dynamic && s_.density_scaling;
   const double beta = s_.stiffness_damping();
-  if (!scaled && !s_.raises_mass() &&
-      dt > stable_time_step_of(true_mass_, k, beta) * (1.0 + 1e-12))
+  if (!scaled && !s_.raises_mass() && dt > step_of(true_mass_, k, beta) * (1.0 + 1e-12))
     throw InputError("the time step " + number(dt) + " s exceeds the stable step of the zones, " +
-                     number(stable_time_step_of(true_mass_, k, beta)) + " s (eq. 84" +
+                     number(step_of(true_mass_, k, beta)) + " s (eq. 84" +
                      (beta > 0.0 ? " with Rayleigh beta" : "") +
                      "); allowed: a smaller 'Time step', or 'Partial density scaling = true'");
   dt_ = dt;
@@ -1721,12 +1794,15 @@ void DeformableSolver::set_inertial_masses()
   added_mass_ = AddedMass();
   for (unsigned int g = 0; g < ng; ++g)
   {
-    const double k = nodal_stiffness_[g] + (g < joint_stiffness_.size() ? joint_stiffness_[g] : 0.0);
+    const double k =
+        nodal_stiffness_[g] + (g < joint_stiffness_.size() ? joint_stiffness_[g] : 0.0);
     const double inertial = inertial_mass_of(g, k);
     for (int d = 0; d < 3; ++d)
       m[3 * g + d] = inertial;
     if (!s_.dynamic)
       continue; // static inertia is a device of the solution, not mass added
+    if (g >= n_moved_)
+      continue; // a ghost: its owner counts it
     added_mass_.total += true_mass_[g];
     if (inertial > true_mass_[g])
     {
@@ -1734,6 +1810,15 @@ void DeformableSolver::set_inertial_masses()
       added_mass_.added += inertial - true_mass_[g];
       added_mass_.largest_factor = std::max(added_mass_.largest_factor, inertial / true_mass_[g]);
     }
+  }
+  if (share_ && s_.dynamic)
+  {
+    double sums[3] = {double(added_mass_.gridpoints), added_mass_.added, added_mass_.total};
+    MPI_Allreduce(MPI_IN_PLACE, sums, 3, MPI_DOUBLE, MPI_SUM, share_->comm);
+    MPI_Allreduce(MPI_IN_PLACE, &added_mass_.largest_factor, 1, MPI_DOUBLE, MPI_MAX, share_->comm);
+    added_mass_.gridpoints = static_cast<unsigned int>(sums[0]);
+    added_mass_.added = sums[1];
+    added_mass_.total = sums[2];
   }
   damper_ = damper_for(s_, dt_);
   if (!s_.dynamic && s_.damping == Damping::combined)
@@ -1748,9 +1833,7 @@ void DeformableSolver::set_dynamic(bool dynamic)
     // Alone (no block solver sets the step): eq. 84, or the unit step of
     // density scaling.
     std::vector<double> k = nodal_stiffness_;
-    dt_ = !dynamic && s_.density_scaling
-              ? 1.0
-              : stable_time_step_of(true_mass_, k, s_.stiffness_damping());
+    dt_ = !dynamic && s_.density_scaling ? 1.0 : step_of(true_mass_, k, s_.stiffness_damping());
   }
   set_inertial_masses();
 }
@@ -1774,7 +1857,7 @@ void DeformableSolver::remove_zones(std::vector<char> gone)
   }
   // The energy the zones hold leaves the account with them.
   EnergyAccount before;
-  add_energy(before);
+  add_own_energy(before);
   const std::vector<double> mass_before = true_mass_;
   null_zones(gone);
   {
@@ -1794,7 +1877,7 @@ void DeformableSolver::remove_zones(std::vector<char> gone)
   }
   set_inertial_masses();
   EnergyAccount after;
-  add_energy(after);
+  add_own_energy(after);
   initial_elastic_ -= after.error() - before.error();
 }
 
@@ -1861,7 +1944,7 @@ void DeformableSolver::change_material(const std::vector<char>& zones, const Zon
   // was (as for an excavation).
   EnergyAccount before;
   if (account)
-    add_energy(before);
+    add_own_energy(before);
   const unsigned int index = static_cast<unsigned int>(materials_.size());
   materials_.push_back(material);
   for (unsigned int z = 0; z < mesh_.n_zones(); ++z)
@@ -1873,13 +1956,13 @@ void DeformableSolver::change_material(const std::vector<char>& zones, const Zon
     // Alone (no block solver sets the step): eq. 84, or the unit step of
     // density scaling.
     std::vector<double> k = nodal_stiffness_;
-    dt_ = !s_.dynamic && s_.density_scaling ? 1.0 : stable_time_step_of(true_mass_, k);
+    dt_ = !s_.dynamic && s_.density_scaling ? 1.0 : step_of(true_mass_, k);
   }
   set_inertial_masses();
   if (!account)
     return;
   EnergyAccount after;
-  add_energy(after);
+  add_own_energy(after);
   initial_elastic_ -= after.error() - before.error();
 }
 
@@ -1933,11 +2016,13 @@ Vec3 DeformableSolver::support_force(const ConvexRegion& region, const bool held
   // support must supply, reversed.
   LocalArray f(petsc_->force);
   Vec3 sum = Vec3::Zero();
-  for (unsigned int g = 0; g < mesh_.n_gridpoints(); ++g)
+  for (unsigned int g = 0; g < n_moved_; ++g) // split: each rank its own
     if (held_[g] != 0 && inside(region, &mesh_.position[3 * g]))
       for (int d = 0; d < 3; ++d)
         if (held[d] && (held_[g] & (1u << d)))
           sum[d] += f[3 * g + d];
+  if (share_)
+    MPI_Allreduce(MPI_IN_PLACE, sum.data(), 3, MPI_DOUBLE, MPI_SUM, share_->comm);
   return sum;
 }
 

@@ -67,6 +67,7 @@ MeshShare share_mesh(const TetMesh& whole, const std::vector<unsigned int>& owne
     s.share.ghost_index.push_back(n);
     s.gridpoint.push_back(g);
   }
+  s.share.whole_gridpoint = s.gridpoint;
   std::vector<int> local(ng, -1);
   for (unsigned int i = 0; i < s.gridpoint.size(); ++i)
   {
@@ -83,6 +84,7 @@ MeshShare share_mesh(const TetMesh& whole, const std::vector<unsigned int>& owne
         corners[k] = static_cast<unsigned int>(local[whole.zone_gridpoint[z][k]]);
       s.mesh.zone_gridpoint.push_back(corners);
       s.mesh.zone_block.push_back(whole.zone_block[z]);
+      s.zone.push_back(z);
     }
   std::vector<int> local_zone(nz, -1);
   for (unsigned int z = 0, k = 0; z < nz; ++z)

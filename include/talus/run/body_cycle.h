@@ -7,6 +7,7 @@
 #include <talus/run/run_summary.h>
 #include <talus/solver/deformable_solver.h>
 #include <talus/zone/block_mesher.h>
+#include <talus/zone/gridpoint_share.h>
 
 #include <memory>
 #include <string>
@@ -16,7 +17,10 @@ namespace talus
 {
 
 /// The zones of one deformable body alone (a scene of one deformable
-/// block, meshed or read from a mesh file): no contacts.
+/// block, meshed or read from a mesh file): no contacts. Started on several
+/// MPI ranks, every rank meshes the body and keeps its share of it
+/// (share_mesh: the zones around the gridpoints it owns, with ghosts); the
+/// summary, the history and the output are the whole body's.
 class BodyCycle : public Cycle
 {
 public:
@@ -50,7 +54,29 @@ public:
   /// mesh file (then ordered and made quadratic as the scene asks).
   static TetMesh zones_of(const Scene& scene, const BlockModel& model, MeshReport& report);
 
+  /// Refuses, with one message naming the entry, what a body cannot yet
+  /// do split among ranks: 10-node, hexahedral and nodal mixed zones,
+  /// global adaptive damping, water.
+  static void check_runs_on_ranks(const Scene& scene);
+
 private:
+  /// On ranks: this rank's share of `whole` as the mesh the solver runs,
+  /// and what the whole body's numbers need (owners, the zones counted).
+  void split_among_ranks(const TetMesh& whole);
+  /// The zones this rank counts (each zone once over the ranks), of a
+  /// stage's excavation and the summary.
+  bool counts(unsigned int z) const
+  {
+    return !split_ || mesh_.zone_gridpoint[z][0] < solver_->owned_gridpoints();
+  }
+  /// The history points' values (PointHistory::add_values) of the whole
+  /// body: each from the rank that holds its gridpoint or zone.
+  void add_point_values(std::vector<double>& row) const;
+  /// Sums over the ranks (one rank: the value itself).
+  double sum_over_ranks(double value) const;
+  /// The position now of gridpoint `g` of the whole mesh, from its owner (m).
+  Vec3 whole_gridpoint_position(unsigned int g) const;
+
   /// A stage's 'Rock materials' into the solver; prints what changed
   /// unless restoring (`account` false).
   void change_rock_materials(const StageSpec& stage, bool account);
@@ -67,6 +93,17 @@ private:
   PvdSeries series_;
   std::unique_ptr<ZoneWriter> writer_;
   std::unique_ptr<PointHistory> points_;
+  /// On ranks (split_): the rank of each gridpoint of the whole mesh; per
+  /// history point, its gridpoint's and zone's local index on the rank
+  /// that reports it (-1 elsewhere); the zones of this rank's output piece
+  /// (those it counts) and the mesh of that piece.
+  bool split_ = false;
+  GridpointShare share_;
+  std::vector<unsigned int> owner_;
+  std::vector<int> point_gridpoint_, point_zone_;
+  std::vector<unsigned int> piece_zone_;
+  TetMesh piece_;
+  unsigned int whole_zones_ = 0;
   unsigned int frame_ = 0;
   double moving_until_ = 0.0; ///< s: the last end time of a boundary velocity
 };

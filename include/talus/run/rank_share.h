@@ -35,9 +35,12 @@ int world_rank();
 void agree_on_input_errors(const std::function<void()>& build);
 
 /// Refuses, with one message naming the entry, a scene that talus cannot
-/// yet run split among ranks: deformable blocks and the factor of safety
-/// (of 'Solver' or of a stage).
+/// yet run split among ranks: the factor of safety (of 'Solver' or of a
+/// stage).
 void check_runs_on_ranks(const Scene& scene, int ranks);
+/// The same, once the blocks are built: deformable blocks among other
+/// blocks (a deformable body alone runs split among ranks: BodyCycle).
+void check_runs_on_ranks(const Scene& scene, const BlockModel& model, int ranks);
 
 /// This rank's share of a model of rigid blocks split among the ranks of
 /// `comm` (issue 24): the blocks it owns, whose centroids lie in its region

@@ -4,9 +4,9 @@
 // the records they share: zone frames for ParaView and history points.
 
 #include <talus/io/block_vtu_writer.h>
-#include <talus/scene/scene.h>
 #include <talus/io/zone_vtu_writer.h>
 #include <talus/model/block_model.h>
+#include <talus/scene/scene.h>
 #include <talus/solver/deformable_solver.h>
 #include <talus/zone/block_mesher.h>
 
@@ -21,8 +21,9 @@ std::string edge_length_text(const EdgeLengthField& f);
 
 /// The summary's lines on the zones' shapes: the radius ratio (1 for a
 /// regular tetrahedron), where the poor zones are, and the gridpoint that
-/// sets the stable step of eq. 84 with its worst zone.
-void print_mesh_quality(const MeshReport& r, const TetMesh& mesh, const DeformableSolver& zones,
+/// sets the stable step of eq. 84 (`step_gridpoint`, of `mesh`: see
+/// DeformableSolver::time_step_gridpoint) with its worst zone.
+void print_mesh_quality(const MeshReport& r, const TetMesh& mesh, unsigned int step_gridpoint,
                         const BlockModel& model);
 
 /// The summary's line on the zones about to be meshed: how many and how much
@@ -58,6 +59,12 @@ double largest_gridpoint_displacement(const DeformableSolver& solver);
 void write_zone_frame(const Scene& scene, const TetMesh& mesh, const DeformableSolver& solver,
                       ZoneWriter& writer, PvdSeries& series, unsigned int frame,
                       bool with_stress = true);
+/// Writes the zones' VTU file at `path`: those of `mesh`, the solver's; or,
+/// with `zones`, a piece: `mesh` holds 4-node zones on the solver's
+/// gridpoints, its zone k being the solver's zones[k] (split among ranks).
+void write_zone_file(const std::string& path, const TetMesh& mesh, const DeformableSolver& solver,
+                     ZoneWriter& writer, bool with_stress,
+                     const std::vector<unsigned int>* zones = nullptr);
 
 /// History columns of deformable blocks at chosen points: the nearest
 /// gridpoint's displacement and velocity, the nearest zone's stress.

@@ -129,8 +129,17 @@ public:
   /// Largest unbalanced gridpoint force over the mean gravity force of a
   /// gridpoint (or, without gravity, over the mean zone force magnitude).
   double unbalanced_ratio() const { return ratio_; }
-  /// The gridpoint whose unbalanced force sets that ratio (of the last step).
-  unsigned int unbalanced_gridpoint() const { return ratio_gridpoint_; }
+  /// The gridpoint whose unbalanced force sets that ratio (of the last
+  /// step); split among ranks, its number in the whole mesh.
+  unsigned int unbalanced_gridpoint() const
+  {
+    return share_ ? ratio_whole_gridpoint_ : ratio_gridpoint_;
+  }
+  /// The rank's share of the gridpoints (null: the solver has them all).
+  const GridpointShare* share() const { return share_.get(); }
+  /// The gridpoints this rank moves: the first ones of the mesh (all of
+  /// them unless split among ranks).
+  unsigned int owned_gridpoints() const { return n_moved_; }
   /// Boundary faces of the zones with a part below the phreatic surface at
   /// the last step (0 without water).
   unsigned int water_faces_below() const { return water_faces_below_; }
@@ -171,6 +180,10 @@ public:
   /// The same without the pass over the zones: works, kinetic and initial
   /// energy only (for the divergence watch).
   void add_work(EnergyAccount& e) const;
+  /// The same of this rank's gridpoints and zones alone (split among ranks;
+  /// the whole model's otherwise).
+  void add_own_energy(EnergyAccount& e) const;
+  void add_own_work(EnergyAccount& e) const;
   /// Throws DivergenceError if a gridpoint force is not finite (before
   /// anything moves), naming the zone; `step` and `dt` for the message.
   void check_finite_forces(unsigned long step, double dt) const;
@@ -263,8 +276,8 @@ private:
   struct PetscState;
   /// Eq. 84, each gridpoint's step 2 sqrt(m / k) lowered by
   /// stiffness_damping_step_factor for Rayleigh's `beta` (s).
-  static double stable_time_step_of(const std::vector<double>& mass,
-                                    const std::vector<double>& stiffness, double beta = 0.0);
+  double step_of(const std::vector<double>& mass, const std::vector<double>& stiffness,
+                 double beta = 0.0) const;
   /// Dynamics with Rayleigh beta: the moduli of the viscous stress
   /// (viscous_stress.h) of material `mat` over a motion of strain_dt, for
   /// the kernels' passes that take it with the nodal forces.
@@ -288,7 +301,8 @@ private:
   /// volumes `volume`, m^3), with the mean stress averaged over each
   /// hexahedron of hex-mixed zones (eqs. 64-67) and the stress work of
   /// plastic materials added up.
-  void update_tet4_stresses(const ZoneMaterial& mat, StressBatch& batch, const double* volume);
+  void update_tet4_stresses(const ZoneMaterial& mat, StressBatch& batch, const double* volume,
+                            unsigned int first);
   /// Elastic strain energy of the zones (J) and of those of plastic
   /// materials alone, with the current volumes.
   std::pair<double, double> elastic_energy(const double* x) const;
@@ -310,14 +324,16 @@ private:
   void refresh_ghosts();
   /// The least of `value` over the ranks (itself in one run).
   double least_over_ranks(double value) const;
+  /// Adds `mine` summed over the ranks (split among ranks) to `e`.
+  void add_over_ranks(const EnergyAccount& mine, EnergyAccount& e) const;
   /// Runs of consecutive zones with one material (the mesher keeps each
   /// block's zones together): batch k is [batch_start_[k], batch_start_[k+1]).
   std::vector<unsigned int> batch_start_;
-  std::vector<double> stress_;          ///< 6 per zone, Pa
-  std::vector<unsigned char> state_;    ///< per zone
-  std::vector<double> gravity_force_;   ///< 3 per gridpoint, N: gravity and gridpoint loads
-  std::vector<double> true_mass_;       ///< kg, per gridpoint
-  AddedMass added_mass_;                ///< by set_inertial_masses
+  std::vector<double> stress_;        ///< 6 per zone, Pa
+  std::vector<unsigned char> state_;  ///< per zone
+  std::vector<double> gravity_force_; ///< 3 per gridpoint, N: gravity and gridpoint loads
+  std::vector<double> true_mass_;     ///< kg, per gridpoint
+  AddedMass added_mass_;              ///< by set_inertial_masses
   /// Gridpoint g's inertial mass (kg) at the step dt_ for its stiffness k
   /// (N/m, with the joints'): static density scaling, and partial density
   /// scaling's mass for the given step (eq. 89).
@@ -456,6 +472,8 @@ private:
   /// (3 each, N) of this step.
   std::vector<double> damping_force_;
   unsigned int ratio_gridpoint_ = 0;
+  unsigned int ratio_whole_gridpoint_ = 0; ///< split among ranks: of the whole mesh
+  std::vector<double> counted_volume_;     ///< split: zone volumes, 0 where not counted
   double dt_ = 0.0, time_ = 0.0, ratio_ = 1.0;
   double seconds_zones_ = 0.0, seconds_gridpoints_ = 0.0;
   unsigned long step_ = 0;

@@ -23,6 +23,7 @@ struct MeshShare
   TetMesh mesh;
   GridpointShare share;
   std::vector<unsigned int> gridpoint; ///< per local gridpoint: its number in the whole mesh
+  std::vector<unsigned int> zone;      ///< per local zone: its number in the whole mesh
 };
 
 /// The rank of each gridpoint of `mesh` among `ranks`: the region of a

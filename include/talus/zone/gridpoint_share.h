@@ -20,14 +20,25 @@ namespace talus
 /// model's vectors (offsets in rank order), and `ghost_index[k]` is that
 /// number of the mesh's gridpoint n_owned + k, ascending.
 ///
-/// Not split yet (DeformableSolver refuses or keeps a rank's part): nodal
-/// mixed, 10-node and hexahedral zones and global adaptive damping are
-/// refused; the unbalanced ratio and the energy account are this rank's.
+/// Sums over the whole mesh (the unbalanced ratio, the energy account, a
+/// support's reaction) add each rank's owned gridpoints and counted zones
+/// and are reduced; their order of addition is not the one of one run, so
+/// they match it to rounding. Not split yet (DeformableSolver refuses):
+/// nodal mixed, 10-node and hexahedral zones and global adaptive damping.
 struct GridpointShare
 {
   MPI_Comm comm = MPI_COMM_WORLD;
   unsigned int n_owned = 0;
   std::vector<unsigned int> ghost_index;
+  /// Per local gridpoint, its number in the whole mesh: what a summary
+  /// names, and the order in which ties between ranks are broken (the
+  /// lowest number, as a loop over the whole mesh keeps the first).
+  std::vector<unsigned int> whole_gridpoint;
+
+  /// Whether this rank counts a zone whose first corner is local gridpoint
+  /// `first_corner` in a sum over the whole mesh: each zone once, by the
+  /// owner of its first corner (which holds it).
+  bool counts(unsigned int first_corner) const { return first_corner < n_owned; }
 };
 
 } // namespace talus
