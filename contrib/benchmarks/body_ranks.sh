@@ -9,12 +9,12 @@
 # every rank does whole. Prints zone-cycles per second and the speed-up.
 #
 # Usage: contrib/benchmarks/body_ranks.sh [talus executable] [edge length, m]
-#   (defaults: build/talus, 0.1: about 330,000 zones)
+#   (defaults: build/talus, 0.1 m: 640,000 zones)
 set -euo pipefail
 talus=${1:-build/talus}
 edge=${2:-0.1}
 s1=50
-s2=350
+s2=1050
 export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 TALUS_PROGRESS_SECONDS=0
 work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT

@@ -1,6 +1,8 @@
 #include <talus/base/archive.h>
+#include <talus/base/exact_sum.h>
 #include <talus/base/exceptions.h>
 #include <talus/solver/deformable_solver.h>
+#include <talus/solver/ghost_exchange.h>
 #include <talus/solver/water_loads.h>
 #include <talus/zone/hex_mixed.h>
 #include <talus/zone/nodal_mixed.h>
@@ -2014,16 +2016,18 @@ Vec3 DeformableSolver::support_force(const ConvexRegion& region, const bool held
 {
   // The unbalanced force of the last step at held gridpoints is what the
   // support must supply, reversed.
+  // Exact sums: the same on any number of ranks, to the last bit (a
+  // component the supports barely take is a sum of round-off).
   LocalArray f(petsc_->force);
-  Vec3 sum = Vec3::Zero();
+  std::vector<ExactSum> sum(3);
   for (unsigned int g = 0; g < n_moved_; ++g) // split: each rank its own
     if (held_[g] != 0 && inside(region, &mesh_.position[3 * g]))
       for (int d = 0; d < 3; ++d)
         if (held[d] && (held_[g] & (1u << d)))
           sum[d] += f[3 * g + d];
   if (share_)
-    MPI_Allreduce(MPI_IN_PLACE, sum.data(), 3, MPI_DOUBLE, MPI_SUM, share_->comm);
-  return sum;
+    reductions_over(share_->comm).sums(sum);
+  return Vec3(sum[0].value(), sum[1].value(), sum[2].value());
 }
 
 Vec3 DeformableSolver::face_load(std::size_t k, const double* x) const

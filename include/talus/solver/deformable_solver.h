@@ -263,7 +263,8 @@ public:
   /// whose motion is held (N); equal and opposite to what the support takes.
   /// Only the components `held` counts (a boundary's own 'Held components';
   /// another boundary's roller in the region holds the others); a component
-  /// not held is zero.
+  /// not held is zero. Summed exactly (ExactSum): a body split among ranks
+  /// gives the serial run's bits.
   Vec3 support_force(const ConvexRegion& region, const bool held[3]) const;
 
   /// Checkpoints: gridpoint positions, velocities, forces and inertial
