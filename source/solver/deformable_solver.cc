@@ -941,9 +941,10 @@ void DeformableSolver::zone_forces()
   else if (!damping_force_.empty())
     damping_force_.clear();
   external_forces(x.data(), f.data());
-  // The velocities are those of the last motion (x - v dt -> x); before the
-  // first motion there is none, so no strain.
-  zone_forces(x.data(), v.data(), f.data(), step_ == 0 ? 0.0 : dt_);
+  // The velocities are those of the last motion (x - v dt -> x), over the
+  // step it took (a stage's change of mode changes dt_ after it); before
+  // the first motion there is none, so no strain.
+  zone_forces(x.data(), v.data(), f.data(), step_ == 0 ? 0.0 : motion_dt_);
 }
 
 void DeformableSolver::zone_forces(const double* x, const double* v, double* f, double strain_dt)
@@ -1411,6 +1412,14 @@ void DeformableSolver::move_gridpoints()
   // its middle (velocities live at half steps).
   for (unsigned int c = 0; c < conditions_.size(); ++c)
     motion_scale_[c] = conditions_[c].motion.scale(time_ + 0.5 * dt_);
+  if (rest_at_next_motion_) // from dynamics into density-scaled statics
+  {
+    for (unsigned int g = 0; g < n_moved_; ++g)
+      for (int d = 0; d < 3; ++d)
+        if (!(held_[g] & (1u << d)))
+          v[3 * g + d] = 0.0;
+    rest_at_next_motion_ = false;
+  }
   for (unsigned int g = 0; g < n_moved_; ++g)
   {
     double f2 = 0.0, size2 = 0.0;
@@ -1506,6 +1515,7 @@ void DeformableSolver::move_gridpoints()
     n_free = static_cast<unsigned int>(sums[1]);
   }
   ratio_ = n_free > 0 && size_sum > 0.0 ? largest / (size_sum / n_free) : 0.0;
+  motion_dt_ = dt_;
   gravity_work_ += gravity_work;
   boundary_work_ += boundary_work;
   damping_work_ += damping_work + quiet_work;
@@ -1829,6 +1839,24 @@ void DeformableSolver::set_inertial_masses()
 
 void DeformableSolver::set_dynamic(bool dynamic)
 {
+  if (s_.dynamic && !dynamic && s_.density_scaling)
+  {
+    // Statics with density scaling runs in a time of its own (a unit step,
+    // masses to suit): velocities of the dynamics before would carry into
+    // it as jumps (1 cm/s moves a gridpoint 1 cm in the first step). Free
+    // components start again from rest at the next motion (the zones take
+    // the strain of the last one first); the kinetic energy they held
+    // leaves the account as damping now. Held components keep theirs.
+    LocalArray v(petsc_->velocity), m(petsc_->inertial_mass);
+    double kinetic = 0.0; // of the dynamic masses, at the last half step
+    for (unsigned int g = 0; g < n_moved_; ++g)
+      for (int d = 0; d < 3; ++d)
+        if (!(held_[g] & (1u << d)))
+          kinetic += 0.5 * m[3 * g + d] * v[3 * g + d] * v[3 * g + d];
+    damping_work_ += kinetic;
+    kinetic_whole_step_ = 0.0;
+    rest_at_next_motion_ = true;
+  }
   s_.dynamic = dynamic;
   if (joint_stiffness_.empty() && s_.time_step <= 0.0)
   {
@@ -2224,6 +2252,7 @@ void DeformableSolver::load_state(CheckpointReader& in)
   in.get(last_force_, last_force_.size(), "gridpoint forces of the last step");
   damper_.load_state(in);
   in.get(dt_);
+  motion_dt_ = dt_; // checkpoints are written between steps of one mode
   in.get(time_);
   in.get(ratio_);
   in.get(step_);

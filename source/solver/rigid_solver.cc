@@ -552,6 +552,22 @@ void RigidSolver::set_dynamic(bool dynamic)
 {
   if (dynamic == s_.dynamic)
     return;
+  if (!dynamic && s_.density_scaling)
+  {
+    // Statics with density scaling moves in a time of its own (scaled
+    // masses; with zones a unit step): the velocities of the dynamics
+    // before would carry into it as jumps. Free blocks start again from
+    // rest (those with a prescribed motion keep it); the kinetic energy
+    // they held leaves the account as damping. Ghosts alike (same rule).
+    damping_work_ += kinetic_whole_step_;
+    kinetic_whole_step_ = 0.0;
+    for (unsigned int b = 0; b < m_.n_blocks(); ++b)
+      if (!fixed[b] && prescribed[b] == 0)
+      {
+        velocity[b].setZero();
+        spin[b].setZero();
+      }
+  }
   s_.dynamic = dynamic;
   if (zones_ != nullptr)
     zones_->set_dynamic(dynamic);
@@ -721,7 +737,7 @@ void RigidSolver::contact_forces()
   // as they are; the gridpoints' velocities are those of their last
   // motion, none before the first.
   const std::vector<Vec3>&motion = motion_dx_, &turn = motion_dtheta_;
-  const double moved_dt = step_ == 0 ? 0.0 : dt_;
+  const double moved_dt = step_ == 0 ? 0.0 : zones_ != nullptr ? zones_->motion_dt() : dt_;
   // Relative displacement increments (eqs. 15, 20-22).
   for (unsigned int i = 0; i < n; ++i)
   {

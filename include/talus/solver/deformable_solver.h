@@ -117,6 +117,9 @@ public:
   unsigned long run_to_ratio(double ratio, unsigned long max_steps);
 
   double dt() const { return dt_; }
+  /// The step of the gridpoints' last motion (s): their velocities times it
+  /// is that motion, though a stage's change of mode has changed dt().
+  double motion_dt() const { return motion_dt_; }
   /// What partial density scaling added to the gridpoints (dynamics;
   /// nothing in static stages).
   const AddedMass& added_mass() const { return added_mass_; }
@@ -476,6 +479,10 @@ private:
   unsigned int ratio_whole_gridpoint_ = 0; ///< split among ranks: of the whole mesh
   std::vector<double> counted_volume_;     ///< split: zone volumes, 0 where not counted
   double dt_ = 0.0, time_ = 0.0, ratio_ = 1.0;
+  /// s: the step of the last motion of the gridpoints (their velocities
+  /// are its), and whether free velocities start from rest at the next.
+  double motion_dt_ = 0.0;
+  bool rest_at_next_motion_ = false;
   double seconds_zones_ = 0.0, seconds_gridpoints_ = 0.0;
   unsigned long step_ = 0;
   // Energy account (J), see EnergyAccount.
