@@ -35,8 +35,8 @@ int world_rank();
 void agree_on_input_errors(const std::function<void()>& build);
 
 /// Refuses, with one message naming the entry, a scene that talus cannot
-/// yet run split among ranks: deformable blocks and the factor of safety
-/// (of 'Solver' or of a stage).
+/// yet run on ranks: deformable blocks and a stage's factor of safety
+/// ('Solver / Mode = factor of safety' runs on ranks: run_factor_of_safety).
 void check_runs_on_ranks(const Scene& scene, int ranks);
 
 /// This rank's share of a model of rigid blocks split among the ranks of
