@@ -184,8 +184,9 @@ int run_factor_of_safety(Scene& scene, BlockModel& model, const std::string& pre
         out.put(static_cast<std::uint64_t>(rows.size()));
         for (const std::vector<double>& row : rows)
           out.put(row);
-        CheckpointWriter state;
-        view.system.solver->save_state(state);
+        CheckpointWriter state; // for the mechanism's VTU files
+        if (scene.output.write_vtu)
+          view.system.solver->save_state(state);
         out.put(state.bytes());
       }
       payload = out.bytes();

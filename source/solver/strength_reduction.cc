@@ -126,7 +126,6 @@ std::string record_bytes(const RankTrial* t)
   out.put(r.displacement);
   out.put(r.late_growth);
   out.put(r.note);
-  out.put(t->payload);
   return out.bytes();
 }
 
@@ -149,7 +148,6 @@ RankTrial read_record(const std::string& bytes)
   in.get(r.displacement);
   in.get(r.late_growth);
   in.get(r.note);
-  in.get(t.payload);
   return t;
 }
 
@@ -170,18 +168,30 @@ void wait_for_all(MPI_Comm comm)
   }
 }
 
-/// Every rank's bytes, on every rank.
-std::vector<std::string> gather_all(const std::string& mine, MPI_Comm comm)
+/// Every rank's bytes, on every rank (`to` < 0) or on rank `to` alone
+/// (empty elsewhere).
+std::vector<std::string> gather(const std::string& mine, MPI_Comm comm, int to = -1)
 {
-  int ranks = 1;
+  int ranks = 1, rank = 0;
   MPI_Comm_size(comm, &ranks);
+  MPI_Comm_rank(comm, &rank);
   std::vector<int> sizes(static_cast<std::size_t>(ranks)), at(sizes.size(), 0);
   const int size = static_cast<int>(mine.size());
   MPI_Allgather(&size, 1, MPI_INT, sizes.data(), 1, MPI_INT, comm);
   for (std::size_t r = 1; r < sizes.size(); ++r)
     at[r] = at[r - 1] + sizes[r - 1];
-  std::string all(static_cast<std::size_t>(at.back() + sizes.back()), '\0');
-  MPI_Allgatherv(mine.data(), size, MPI_CHAR, all.data(), sizes.data(), at.data(), MPI_CHAR, comm);
+  std::string all(to < 0 || rank == to ? static_cast<std::size_t>(at.back() + sizes.back()) : 0,
+                  '\0');
+  if (to < 0)
+    MPI_Allgatherv(mine.data(), size, MPI_CHAR, all.data(), sizes.data(), at.data(), MPI_CHAR,
+                   comm);
+  else
+  {
+    MPI_Gatherv(mine.data(), size, MPI_CHAR, all.data(), sizes.data(), at.data(), MPI_CHAR, to,
+                comm);
+    if (rank != to)
+      return std::vector<std::string>(sizes.size());
+  }
   std::vector<std::string> each;
   for (std::size_t r = 0; r < sizes.size(); ++r)
     each.push_back(all.substr(static_cast<std::size_t>(at[r]), static_cast<std::size_t>(sizes[r])));
@@ -244,13 +254,16 @@ StrengthReductionResult find_factor_of_safety_on_ranks(
       mine.trial.factor = run->factor;
     }
     wait_for_all(comm);
-    const std::vector<std::string> records = gather_all(record_bytes(run ? &mine : nullptr), comm);
+    // The records to every rank; the payloads (for the output) to rank 0.
+    const std::vector<std::string> records = gather(record_bytes(run ? &mine : nullptr), comm);
+    const std::vector<std::string> payloads = gather(mine.payload, comm, 0);
     // The trials the serial search runs, as far as this round ran them.
     unsigned int took = 0;
     for (int n = 0; n >= 0 && tree[static_cast<std::size_t>(n)].rank >= 0;)
     {
       const Node& node = tree[static_cast<std::size_t>(n)];
-      const RankTrial t = node.rank == rank ? mine : read_record(records[node.rank]);
+      RankTrial t = node.rank == rank ? mine : read_record(records[node.rank]);
+      t.payload = payloads[node.rank];
       search.add(t.trial);
       ++took;
       if (taken)

@@ -105,8 +105,9 @@ struct RankTrial
 /// record, and the search takes the trials it would have run in turn, as
 /// far as they go. The trials taken, their order and the result are those
 /// of the serial search; `taken` is called on every rank for each, in
-/// order, with the rank that ran it and its payload; the others are
-/// dropped. `rounds`, if given, gets the number of trials taken per round.
+/// order, with the rank that ran it and its payload (on rank 0; empty on
+/// the others); the others are dropped. `rounds`, if given, gets the number of trials taken per
+/// round.
 StrengthReductionResult find_factor_of_safety_on_ranks(
     const std::function<RankTrial(double factor)>& trial, const StrengthReductionSettings& settings,
     MPI_Comm comm,
