@@ -1,3 +1,4 @@
+#include <talus/base/archive.h>
 #include <talus/base/exceptions.h>
 #include <talus/base/parallel_environment.h>
 #include <talus/io/block_vtu_writer.h>
@@ -11,6 +12,7 @@
 #include <talus/zone/tet10_mesh.h>
 
 #include <cmath>
+#include <cstdint>
 #include <cstdio>
 #include <memory>
 
@@ -70,8 +72,14 @@ namespace
 
 } // namespace
 
-int run_factor_of_safety(Scene& scene, BlockModel& model, const std::string& prefix)
+int run_factor_of_safety(Scene& scene, BlockModel& model, const std::string& prefix, MPI_Comm comm)
 {
+  int rank = 0, ranks = 1;
+  if (comm != MPI_COMM_NULL)
+  {
+    MPI_Comm_rank(comm, &rank);
+    MPI_Comm_size(comm, &ranks);
+  }
   resolve_group_names(scene, model);
   // PETSc and MPI for the zones (talus is serial: this process alone).
   std::unique_ptr<ParallelEnvironment> parallel;
@@ -127,6 +135,18 @@ int run_factor_of_safety(Scene& scene, BlockModel& model, const std::string& pre
   };
   double mechanism_factor = 0.0;
   std::string water_line; // of the last stable trial: the water the model stands in
+  const auto write_history = [&](const std::vector<std::vector<double>>& trial_rows)
+  {
+    HistoryFile history(prefix + "_history.csv", columns);
+    for (const std::vector<double>& row : trial_rows)
+    {
+      bool finite = true;
+      for (double v : row)
+        finite &= std::isfinite(v);
+      if (finite) // a diverged trial's last rows may not be
+        history.record(row);
+    }
+  };
   hooks.finished = [&](const TrialView& view, const StrengthReductionTrial& t)
   {
     if (t.stable && scene.solver.water.active())
@@ -136,23 +156,99 @@ int run_factor_of_safety(Scene& scene, BlockModel& model, const std::string& pre
     if (t.stable)
       return;
     mechanism_factor = t.factor;
-    {
-      HistoryFile history(prefix + "_history.csv", columns);
-      for (const std::vector<double>& row : rows)
-      {
-        bool finite = true;
-        for (double v : row)
-          finite &= std::isfinite(v);
-        if (finite) // a diverged trial's last rows may not be
-          history.record(row);
-      }
-    }
+    write_history(rows);
     if (scene.output.write_vtu)
       write_mechanism(scene, view, prefix);
   };
-  const StrengthReductionResult r = factor_of_safety(
-      scene, model, hooks,
-      [](const StrengthReductionTrial& t) { std::printf("%s\n", trial_line(t).c_str()); });
+  const auto print_trial = [](const StrengthReductionTrial& t)
+  { std::printf("%s\n", trial_line(t).c_str()); };
+  StrengthReductionResult r;
+  if (ranks == 1)
+    r = factor_of_safety(scene, model, hooks, print_trial);
+  else
+  {
+    // Rank 0 always runs the round's first trial, which the search takes:
+    // it writes as on one rank. Another rank's trial, if the search takes
+    // it, comes as its water line (stable) or its history and end state
+    // (unstable), from which rank 0 writes what the serial run would.
+    std::string payload;
+    TrialHooks other;
+    other.record = hooks.record;
+    other.finished = [&](const TrialView& view, const StrengthReductionTrial& t)
+    {
+      CheckpointWriter out;
+      if (t.stable)
+        out.put(scene.solver.water.active() ? view.system.solver->water_summary() : std::string());
+      else
+      {
+        out.put(static_cast<std::uint64_t>(rows.size()));
+        for (const std::vector<double>& row : rows)
+          out.put(row);
+        CheckpointWriter state; // for the mechanism's VTU files
+        if (scene.output.write_vtu)
+          view.system.solver->save_state(state);
+        out.put(state.bytes());
+      }
+      payload = out.bytes();
+    };
+    std::vector<unsigned int> rounds;
+    int stable_by = -1, unstable_by = -1; // the ranks that ran the last of each
+    r = factor_of_safety(
+        scene, model,
+        [&](const StrengthReductionTrials& trials)
+        {
+          return find_factor_of_safety_on_ranks(
+              [&](double factor)
+              {
+                payload.clear();
+                const StrengthReductionTrial t = trials.run(factor, rank == 0 ? hooks : other);
+                return RankTrial{t, payload};
+              },
+              scene.strength_reduction, comm,
+              [&](const StrengthReductionTrial& t, int by, const std::string& bytes)
+              {
+                print_trial(t);
+                (t.stable ? stable_by : unstable_by) = by;
+                if (rank != 0 || by == 0)
+                  return;
+                CheckpointReader in(bytes,
+                                    "a strength reduction trial from rank " + std::to_string(by));
+                if (t.stable)
+                {
+                  std::string water;
+                  in.get(water);
+                  if (!water.empty())
+                    water_line = water;
+                  return;
+                }
+                mechanism_factor = t.factor;
+                std::uint64_t n = 0;
+                in.get(n);
+                std::vector<std::vector<double>> trial_rows(n);
+                for (std::vector<double>& row : trial_rows)
+                  in.get(row);
+                write_history(trial_rows);
+                std::string state;
+                in.get(state);
+                if (scene.output.write_vtu)
+                  trials.show(t.factor, state,
+                              [&](const TrialView& view) { write_mechanism(scene, view, prefix); });
+              },
+              &rounds);
+        });
+    if (rank == 0) // the search's figures, beside the summary
+    {
+      std::string per_round;
+      for (unsigned int n : rounds)
+        per_round += (per_round.empty() ? "" : " ") + std::to_string(n);
+      std::fprintf(stderr,
+                   "talus: factor of safety on %d ranks: %zu trials in %zu rounds (trials the "
+                   "search took per round: %s); the last stable trial ran on rank %d, the last "
+                   "unstable one (the mechanism) on rank %d\n",
+                   ranks, r.trials.size(), rounds.size(), per_round.c_str(), stable_by,
+                   unstable_by);
+    }
+  }
   if (!r.found)
   {
     const auto line = scene.lines.find("Solver / Mode");

@@ -67,13 +67,17 @@ void check_runs_on_ranks(const Scene& scene, int ranks)
   const std::string allowed = "run it without mpirun (one rank), or leave this out";
   // Deformable blocks among others: refused once the blocks are built
   // (check_runs_on_ranks with the model).
+  // 'Solver / Mode = factor of safety' runs its trials on ranks
+  // (run_factor_of_safety); a stage's would need the stage's state of the
+  // whole model on every rank.
   for (const StageSpec& stage : scene.stages)
   {
     if (stage.factor_of_safety)
-      throw scene_error(scene, stage.section, "Mode", "the factor of safety: " + on, allowed);
+      throw scene_error(scene, stage.section, "Mode",
+                        "a stage's factor of safety: talus runs it on one rank only so far "
+                        "('Solver / Mode = factor of safety' runs on ranks)",
+                        allowed);
   }
-  if (scene.strength_reduction.enabled)
-    throw scene_error(scene, "Solver", "Mode", "the factor of safety: " + on, allowed);
 }
 
 void check_runs_on_ranks(const Scene& scene, const BlockModel& model, int ranks)

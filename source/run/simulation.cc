@@ -217,7 +217,8 @@ int Simulation::run()
   print_model();
   if (scene_.strength_reduction.enabled)
   {
-    const int code = run_factor_of_safety(scene_, model_, prefix_);
+    const int code = run_factor_of_safety(scene_, model_, prefix_,
+                                          world_ranks() > 1 ? MPI_COMM_WORLD : MPI_COMM_NULL);
     std::printf("   Time = %.3f s (blocks and the search)\n", seconds_since(start));
     return code;
   }

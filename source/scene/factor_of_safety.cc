@@ -1,6 +1,6 @@
 #include <talus/base/archive.h>
-#include <talus/solver/energy_account.h>
 #include <talus/scene/factor_of_safety.h>
+#include <talus/solver/energy_account.h>
 
 #include <algorithm>
 #include <cmath>
@@ -218,9 +218,46 @@ StrengthReductionTrial StrengthReductionTrials::run(double factor, const TrialHo
   return run_to_target(reduced, view, hooks);
 }
 
+void StrengthReductionTrials::show(double factor, const std::string& state,
+                                   const std::function<void(const TrialView&)>& show) const
+{
+  // As run() builds a trial, with its end state in place of the initial one.
+  Scene reduced = scene_;
+  reduce_strengths(reduced, factor);
+  reduced.solver.dynamic = false;
+  BlockModel copy = model_;
+  BlockSystem system = build_block_system(reduced, copy);
+  CheckpointReader in(state, "the end of a strength reduction trial from another rank");
+  system.solver->load_state(in);
+  if (prepare_)
+    prepare_(reduced, system);
+  system.solver->set_dynamic(false);
+  show(TrialView{factor, system, copy, start_step_, start_time_, start_displacement_,
+                 start_gridpoint_displacement_});
+}
+
 StrengthReductionResult
 factor_of_safety(const Scene& scene, const BlockModel& model, const TrialHooks& hooks,
                  const std::function<void(const StrengthReductionTrial&)>& trial_done)
+{
+  return factor_of_safety(scene, model,
+                          [&](const StrengthReductionTrials& trials)
+                          {
+                            return find_factor_of_safety(
+                                [&](double factor)
+                                {
+                                  const StrengthReductionTrial t = trials.run(factor, hooks);
+                                  if (trial_done)
+                                    trial_done(t);
+                                  return t;
+                                },
+                                scene.strength_reduction);
+                          });
+}
+
+StrengthReductionResult factor_of_safety(
+    const Scene& scene, const BlockModel& model,
+    const std::function<StrengthReductionResult(const StrengthReductionTrials&)>& search)
 {
   const StrengthReductionTrials trials(scene, model);
   if (!trials.initial().stable)
@@ -239,15 +276,7 @@ factor_of_safety(const Scene& scene, const BlockModel& model, const TrialHooks& 
     r.failure = text;
     return r;
   }
-  return find_factor_of_safety(
-      [&](double factor)
-      {
-        const StrengthReductionTrial t = trials.run(factor, hooks);
-        if (trial_done)
-          trial_done(t);
-        return t;
-      },
-      scene.strength_reduction);
+  return search(trials);
 }
 
 } // namespace talus

@@ -73,17 +73,16 @@ unsigned int count_lines(const std::string& text)
   return n;
 }
 
-/// The names of the history files in `folder`, sorted.
-std::vector<std::string> history_files(const std::string& folder)
+/// The names of the files in `folder` that end in `tail`, sorted.
+std::vector<std::string> files(const std::string& folder, const std::string& tail = "")
 {
   std::vector<std::string> names;
   if (DIR* dir = opendir(folder.c_str()))
   {
-    const std::string tail = "_history.csv";
     while (const dirent* entry = readdir(dir))
     {
       const std::string name = entry->d_name;
-      if (name.size() > tail.size() &&
+      if (name != "." && name != ".." && name.size() > tail.size() &&
           name.compare(name.size() - tail.size(), tail.size(), tail) == 0)
         names.push_back(name);
     }
@@ -91,6 +90,12 @@ std::vector<std::string> history_files(const std::string& folder)
   }
   std::sort(names.begin(), names.end());
   return names;
+}
+
+/// The names of the history files in `folder`, sorted.
+std::vector<std::string> history_files(const std::string& folder)
+{
+  return files(folder, "_history.csv");
 }
 
 std::string read_file(const std::string& path)
@@ -240,12 +245,18 @@ int main(int argc, char** argv)
   // run (its "migration events" line on standard error).
   bool migrations = false;
   double relative = 0.0; // "# parallel test: relative R"
+  // "# parallel test: same files": every file the serial run writes (the
+  // output's VTU, PVD and parameter files too) must be written by every
+  // split run with the same bytes.
+  bool same_files = false;
   std::ifstream in(prm);
   for (std::string line; std::getline(in, line);)
     if (line.rfind("# parallel test: migrations", 0) == 0)
       migrations = true;
     else if (line.rfind("# parallel test: relative", 0) == 0)
       relative = std::strtod(line.c_str() + 25, nullptr);
+    else if (line.rfind("# parallel test: same files", 0) == 0)
+      same_files = true;
     else if (line.rfind("# parallel test: ranks", 0) == 0)
     {
       std::istringstream list(line.substr(22));
@@ -310,6 +321,20 @@ int main(int argc, char** argv)
       std::printf("%d ranks: history the serial run's to the last bit, every column: %s\n", n,
                   same_history ? "yes" : "NO");
     all &= same && same_history;
+    if (same_files)
+    {
+      const std::vector<std::string> names = files("serial_output");
+      bool all_same = !names.empty() && files(folder) == names;
+      for (const std::string& name : names)
+        if (read_file("serial_output/" + name) != read_file(folder + "/" + name))
+        {
+          std::fprintf(stderr, "--- %d ranks: %s differs\n", n, name.c_str());
+          all_same = false;
+        }
+      std::printf("%d ranks: %zu files, each the serial run's byte for byte: %s\n", n, names.size(),
+                  all_same ? "yes" : "NO");
+      all &= all_same;
+    }
     if (migrations)
     {
       // "talus: on N ranks: E migration events (the sum of their steps S), C owner changes"

@@ -1,7 +1,9 @@
 #pragma once
 
-#include <talus/scene/scene.h>
 #include <talus/model/block_model.h>
+#include <talus/scene/scene.h>
+
+#include <mpi.h>
 
 #include <string>
 
@@ -15,8 +17,12 @@ namespace talus
 /// (<prefix>_blocks.pvd, _contacts.pvd, _zones.pvd with deformable blocks,
 /// _history.csv of that trial). Returns the exit code (0); throws
 /// InputError (exit code 1) when no bracket is found between F = 0.01 and
-/// 100.
-int run_factor_of_safety(Scene& scene, BlockModel& model, const std::string& prefix);
+/// 100. With `comm` (MPI_COMM_NULL: one rank) the search runs on its ranks
+/// (find_factor_of_safety_on_ranks), with the serial run's summary and
+/// files: rank 0 prints and writes, the mechanism of a trial another rank
+/// ran from the state that rank sends.
+int run_factor_of_safety(Scene& scene, BlockModel& model, const std::string& prefix,
+                         MPI_Comm comm = MPI_COMM_NULL);
 
 struct TrialView;
 /// The end of an unstable trial as one frame of each series under

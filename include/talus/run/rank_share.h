@@ -35,8 +35,8 @@ int world_rank();
 void agree_on_input_errors(const std::function<void()>& build);
 
 /// Refuses, with one message naming the entry, a scene that talus cannot
-/// yet run split among ranks: the factor of safety (of 'Solver' or of a
-/// stage).
+/// yet run split among ranks: a stage's factor of safety ('Solver / Mode =
+/// factor of safety' runs on ranks: run_factor_of_safety).
 void check_runs_on_ranks(const Scene& scene, int ranks);
 /// The same, once the blocks are built: deformable blocks among other
 /// blocks (a deformable body alone runs split among ranks: BodyCycle).

@@ -83,6 +83,12 @@ public:
   /// diverges is unstable, with the message as its note.
   StrengthReductionTrial run(double factor, const TrialHooks& hooks = {}) const;
 
+  /// Shows `show` the system of a trial at `factor` in `state` (its
+  /// RigidSolver's save_state at the trial's end, made on another rank):
+  /// the same view its `finished` hook had.
+  void show(double factor, const std::string& state,
+            const std::function<void(const TrialView&)>& show) const;
+
 private:
   const Scene& scene_;
   const BlockModel& model_;
@@ -102,5 +108,11 @@ private:
 StrengthReductionResult
 factor_of_safety(const Scene& scene, const BlockModel& model, const TrialHooks& hooks = {},
                  const std::function<void(const StrengthReductionTrial&)>& trial_done = {});
+
+/// The same with another search on the trials (the search on ranks): the
+/// initial state is made and checked, then `search` runs.
+StrengthReductionResult factor_of_safety(
+    const Scene& scene, const BlockModel& model,
+    const std::function<StrengthReductionResult(const StrengthReductionTrials&)>& search);
 
 } // namespace talus

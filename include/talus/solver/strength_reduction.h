@@ -1,5 +1,7 @@
 #pragma once
 
+#include <mpi.h>
+
 #include <functional>
 #include <string>
 #include <vector>
@@ -48,6 +50,36 @@ struct StrengthReductionResult
   double factor() const { return 0.5 * (stable_factor + unstable_factor); }
 };
 
+/// The search of find_factor_of_safety one trial at a time: next() gives
+/// the F of the trial it needs, add() takes that trial judged. A copy
+/// answers "what next if this trial were stable (unstable)?", which the
+/// search on ranks asks ahead of the trials.
+class FactorSearch
+{
+public:
+  explicit FactorSearch(const StrengthReductionSettings& settings);
+  /// The F of the next trial; false when the search is over (result()).
+  bool next(double& factor) const;
+  /// The trial at next()'s F, judged.
+  void add(const StrengthReductionTrial& trial);
+  const StrengthReductionResult& result() const { return r_; }
+
+private:
+  enum class Phase
+  {
+    up,     ///< stable so far: doubling F
+    down,   ///< unstable so far: halving F
+    bisect, ///< bracketed
+    done
+  };
+  StrengthReductionSettings s_;
+  StrengthReductionResult r_;
+  Phase phase_ = Phase::up;
+  bool first_ = true;
+  double f_ = 1.0; ///< the next trial's F
+  void bisect_or_finish();
+};
+
 /// Finds the factor of safety with `trial` (runs one trial at F and judges
 /// it): from `initial_factor`, doubles F while stable (halves it while
 /// unstable) until one stable and one unstable trial exist, within
@@ -56,6 +88,32 @@ struct StrengthReductionResult
 StrengthReductionResult
 find_factor_of_safety(const std::function<StrengthReductionTrial(double factor)>& trial,
                       const StrengthReductionSettings& settings);
+
+/// A trial run on one rank of the search on ranks: its record and what the
+/// rank adds for the output (`payload`, any bytes; empty for none).
+struct RankTrial
+{
+  StrengthReductionTrial trial;
+  std::string payload;
+};
+
+/// The search of find_factor_of_safety on the ranks of `comm`, each trial a
+/// serial run of the whole model (`trial`, on the rank it is given to).
+/// Each round the ranks run the next trial and those the search may need
+/// after it (rank 0 the next one, then breadth first: the F after it if it
+/// is unstable, if it is stable, ...), all ranks receive every rank's
+/// record, and the search takes the trials it would have run in turn, as
+/// far as they go. The trials taken, their order and the result are those
+/// of the serial search; `taken` is called on every rank for each, in
+/// order, with the rank that ran it and its payload (on rank 0; empty on
+/// the others); the others are dropped. `rounds`, if given, gets the number of trials taken per
+/// round.
+StrengthReductionResult find_factor_of_safety_on_ranks(
+    const std::function<RankTrial(double factor)>& trial, const StrengthReductionSettings& settings,
+    MPI_Comm comm,
+    const std::function<void(const StrengthReductionTrial&, int rank, const std::string& payload)>&
+        taken,
+    std::vector<unsigned int>* rounds = nullptr);
 
 /// The largest displacement of a trial as it runs, to tell a clean
 /// equilibrium from a creeping limit state (judge_trial).
