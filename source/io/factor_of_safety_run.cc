@@ -186,7 +186,11 @@ int run_factor_of_safety(Scene& scene, BlockModel& model, const std::string& pre
           out.put(row);
         CheckpointWriter state; // for the mechanism's VTU files
         if (scene.output.write_vtu)
+        {
           view.system.solver->save_state(state);
+          if (view.system.zones)
+            view.system.zones->save_state(state);
+        }
         out.put(state.bytes());
       }
       payload = out.bytes();

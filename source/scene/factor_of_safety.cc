@@ -192,48 +192,42 @@ StrengthReductionTrials::StrengthReductionTrials(
   initial_.reached_target = true;
 }
 
-StrengthReductionTrial StrengthReductionTrials::run(double factor, const TrialHooks& hooks) const
+void StrengthReductionTrials::in_trial(
+    double factor, const std::string& state, const std::string& what,
+    const std::function<void(const Scene& reduced, const TrialView& view)>& use) const
 {
   Scene reduced = scene_;
   reduce_strengths(reduced, factor);
   reduced.solver.dynamic = false;
   BlockModel copy = model_;
   BlockSystem system = build_block_system(reduced, copy);
-  // The initial state; the joint materials and zone strengths stay the
-  // reduced ones the solvers were built with (they are not in the state).
-  CheckpointReader in(state_, "the initial state of the strength reduction");
+  // The joint materials and zone strengths stay the reduced ones the
+  // solvers were built with (they are not in the state).
+  CheckpointReader in(state, what);
   system.solver->load_state(in);
   if (system.zones)
     system.zones->load_state(in);
   if (prepare_) // after the state, as a restart sets a stage's changes
     prepare_(reduced, system);
   system.solver->set_dynamic(false); // the trials are static
-  const TrialView view{factor,
-                       system,
-                       copy,
-                       start_step_,
-                       start_time_,
-                       start_displacement_,
-                       start_gridpoint_displacement_};
-  return run_to_target(reduced, view, hooks);
+  use(reduced, TrialView{factor, system, copy, start_step_, start_time_, start_displacement_,
+                         start_gridpoint_displacement_});
+}
+
+StrengthReductionTrial StrengthReductionTrials::run(double factor, const TrialHooks& hooks) const
+{
+  StrengthReductionTrial trial;
+  in_trial(factor, state_, "the initial state of the strength reduction",
+           [&](const Scene& reduced, const TrialView& view)
+           { trial = run_to_target(reduced, view, hooks); });
+  return trial;
 }
 
 void StrengthReductionTrials::show(double factor, const std::string& state,
                                    const std::function<void(const TrialView&)>& show) const
 {
-  // As run() builds a trial, with its end state in place of the initial one.
-  Scene reduced = scene_;
-  reduce_strengths(reduced, factor);
-  reduced.solver.dynamic = false;
-  BlockModel copy = model_;
-  BlockSystem system = build_block_system(reduced, copy);
-  CheckpointReader in(state, "the end of a strength reduction trial from another rank");
-  system.solver->load_state(in);
-  if (prepare_)
-    prepare_(reduced, system);
-  system.solver->set_dynamic(false);
-  show(TrialView{factor, system, copy, start_step_, start_time_, start_displacement_,
-                 start_gridpoint_displacement_});
+  in_trial(factor, state, "the end of a strength reduction trial from another rank",
+           [&](const Scene&, const TrialView& view) { show(view); });
 }
 
 StrengthReductionResult

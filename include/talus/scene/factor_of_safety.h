@@ -1,8 +1,8 @@
 #pragma once
 
-#include <talus/scene/scene.h>
 #include <talus/model/block_model.h>
 #include <talus/scene/block_system.h>
+#include <talus/scene/scene.h>
 #include <talus/solver/strength_reduction.h>
 
 #include <functional>
@@ -68,11 +68,11 @@ public:
   /// the state, calls `prepare` on it (what the state does not hold: the
   /// stages' boundaries, rock materials and water, from the reduced scene
   /// it is given) and runs statically. initial() is stable.
-  StrengthReductionTrials(
-      const Scene& scene, const BlockModel& model, std::string state,
-      std::function<void(const Scene& reduced, BlockSystem& system)> prepare,
-      unsigned long start_step, double start_time, std::vector<Vec3> start_displacement,
-      std::vector<double> start_gridpoint_displacement);
+  StrengthReductionTrials(const Scene& scene, const BlockModel& model, std::string state,
+                          std::function<void(const Scene& reduced, BlockSystem& system)> prepare,
+                          unsigned long start_step, double start_time,
+                          std::vector<Vec3> start_displacement,
+                          std::vector<double> start_gridpoint_displacement);
 
   /// How the initial equilibrium ended (as a trial at F = smallest_factor;
   /// unstable: no trial can be judged).
@@ -84,12 +84,19 @@ public:
   StrengthReductionTrial run(double factor, const TrialHooks& hooks = {}) const;
 
   /// Shows `show` the system of a trial at `factor` in `state` (its
-  /// RigidSolver's save_state at the trial's end, made on another rank):
+  /// solvers' save_state at the trial's end, the RigidSolver's then the
+  /// zones', made on another rank):
   /// the same view its `finished` hook had.
   void show(double factor, const std::string& state,
             const std::function<void(const TrialView&)>& show) const;
 
 private:
+  /// Builds the system of a trial at `factor` (reduced strengths, static),
+  /// loads `state` (named `what` in a message if it is short), applies
+  /// `prepare` and hands the trial to `use`: run() and show() alike.
+  void in_trial(double factor, const std::string& state, const std::string& what,
+                const std::function<void(const Scene& reduced, const TrialView& view)>& use) const;
+
   const Scene& scene_;
   const BlockModel& model_;
   StrengthReductionTrial initial_;
