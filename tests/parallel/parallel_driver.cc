@@ -249,6 +249,10 @@ int main(int argc, char** argv)
   // output's VTU, PVD and parameter files too) must be written by every
   // split run with the same bytes.
   bool same_files = false;
+  // "# parallel test: steps N": every run stops after N steps
+  // (TALUS_MAX_STEPS), for a long verification scene shared with another
+  // test.
+  std::string steps;
   std::ifstream in(prm);
   for (std::string line; std::getline(in, line);)
     if (line.rfind("# parallel test: migrations", 0) == 0)
@@ -257,6 +261,8 @@ int main(int argc, char** argv)
       relative = std::strtod(line.c_str() + 25, nullptr);
     else if (line.rfind("# parallel test: same files", 0) == 0)
       same_files = true;
+    else if (line.rfind("# parallel test: steps", 0) == 0)
+      steps = "TALUS_MAX_STEPS=" + std::to_string(std::stoul(line.substr(22))) + " ";
     else if (line.rfind("# parallel test: ranks", 0) == 0)
     {
       std::istringstream list(line.substr(22));
@@ -264,7 +270,7 @@ int main(int argc, char** argv)
         ranks.push_back(n);
     }
   const std::string talus = TALUS_EXECUTABLE, mpiexec = MPIEXEC_EXECUTABLE;
-  const std::string quiet = "TALUS_PROGRESS_SECONDS=0 TALUS_HISTORY_DIGITS=17 ";
+  const std::string quiet = "TALUS_PROGRESS_SECONDS=0 TALUS_HISTORY_DIGITS=17 " + steps;
   const Run serial =
       run(quiet + "TALUS_OUTPUT_DIRECTORY=serial_output " + talus + " " + prm + " 2> serial.err",
           "serial_output");
