@@ -8,11 +8,17 @@
 # history rows every 100 steps), without the meshing and the set-up, which
 # every rank does whole. Prints zone-cycles per second and the speed-up.
 #
-# Usage: contrib/benchmarks/body_ranks.sh [talus executable] [edge length, m]
-#   (defaults: build/talus, 0.1 m: 640,000 zones)
+# Usage: contrib/benchmarks/body_ranks.sh [talus executable] [edge length, m] [brick|cube]
+#   (defaults: build/talus, 0.1 m: 640,000 zones, brick; "cube": a 10 m
+#   cube instead, at 0.17 m the mesh of benchmark_zone_ranks 59)
 set -euo pipefail
 talus=${1:-build/talus}
 edge=${2:-0.1}
+case ${3:-brick} in
+  brick) lx=8 ly=4 lz=4 ;;
+  cube) lx=10 ly=10 lz=10 ;;
+  *) echo "$0: third argument '$3': allowed: brick or cube" >&2; exit 2 ;;
+esac
 s1=50
 s2=1050
 export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 TALUS_PROGRESS_SECONDS=0
@@ -23,7 +29,7 @@ scene() # steps
   cat <<PRM
 subsection Model
   set Brick min = 0, 0, 0
-  set Brick max = 8, 4, 4
+  set Brick max = $lx, $ly, $lz
 end
 subsection Deformable
   set Groups          = rock
@@ -33,24 +39,24 @@ subsection Deformable
 end
 subsection Boundary 1
   set Corner min = -1, -1, -0.01
-  set Corner max = 9, 5, 0.01
+  set Corner max = $((lx + 1)), $((ly + 1)), 0.01
   set Held components = z
 end
 subsection Boundary 2
   set Corner min = -0.01, -1, -1
-  set Corner max = 0.01, 5, 5
+  set Corner max = 0.01, $((ly + 1)), $((lz + 1))
   set Held components = x
 end
 subsection Boundary 3
-  set Corner min = 7.99, -1, -1
-  set Corner max = 8.01, 5, 5
+  set Corner min = $((lx - 1)).99, -1, -1
+  set Corner max = $lx.01, $((ly + 1)), $((lz + 1))
   set Held components = x
 end
 subsection Solver
   set Steps            = $1
   set Target ratio     = 0
   set History interval = 100
-  set History points   = 4, 2, 4
+  set History points   = $((lx / 2)), $((ly / 2)), $lz
 end
 subsection Output
   set Directory = $work/out
