@@ -262,7 +262,18 @@ int main(int argc, char** argv)
     else if (line.rfind("# parallel test: same files", 0) == 0)
       same_files = true;
     else if (line.rfind("# parallel test: steps", 0) == 0)
-      steps = "TALUS_MAX_STEPS=" + std::to_string(std::stoul(line.substr(22))) + " ";
+    {
+      std::istringstream value(line.substr(22));
+      unsigned long n = 0;
+      if (!(value >> n) || n == 0)
+      {
+        std::fprintf(stderr,
+                     "%s: '%s': allowed: '# parallel test: steps N', N a whole number > 0\n",
+                     prm.c_str(), line.c_str());
+        return 2;
+      }
+      steps = "TALUS_MAX_STEPS=" + std::to_string(n) + " ";
+    }
     else if (line.rfind("# parallel test: ranks", 0) == 0)
     {
       std::istringstream list(line.substr(22));
