@@ -5,12 +5,14 @@
 #include <talus/io/rank_checkpoint.h>
 #include <talus/io/scene_checks.h>
 #include <talus/run/block_cycle.h>
+#include <talus/solver/mesh_share.h>
 #include <talus/scene/build_blocks.h>
 #include <talus/scene/factor_of_safety.h>
 
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
+#include <limits>
 
 namespace talus
 {
@@ -25,10 +27,11 @@ double now()
 /// Group names resolved, the summary's zone estimate, and PETSc and MPI for
 /// the zones of a scene with deformable blocks (none without): talus is
 /// serial, so they are started for this process alone.
-std::unique_ptr<ParallelEnvironment> prepare(Scene& scene, BlockModel& model)
+std::unique_ptr<ParallelEnvironment> prepare(Scene& scene, BlockModel& model, bool meshed)
 {
   resolve_group_names(scene, model);
-  print_zone_estimate(scene, model);
+  if (!meshed) // (on ranks the zones were meshed first: mesh_zones_on_ranks)
+    print_zone_estimate(scene, model);
   if (scene.deformable.groups.empty())
     return nullptr;
   return ParallelEnvironment::unless_running();
@@ -38,17 +41,18 @@ std::unique_ptr<ParallelEnvironment> prepare(Scene& scene, BlockModel& model)
 /// (null on one): ghosts within the contact tolerance plus three more of
 /// motion; on a restart, the blocks the rank held at its checkpoint.
 std::unique_ptr<RankShare> share_of(const Scene& scene, const BlockModel& model,
-                                    const std::string& restart_from)
+                                    const std::string& restart_from, const WholeZones* zones)
 {
   if (world_ranks() < 2)
     return nullptr;
   const double reach = 4.0 * scene.solver.contact.tolerance;
+  const std::vector<double>* work = zones ? &zones->zones_of_block : nullptr;
   if (!restart_from.empty())
   {
     const RankBlocks saved = read_rank_blocks(restart_from);
-    return std::make_unique<RankShare>(model, reach, MPI_COMM_WORLD, &saved);
+    return std::make_unique<RankShare>(model, reach, MPI_COMM_WORLD, &saved, work);
   }
-  return std::make_unique<RankShare>(model, reach, MPI_COMM_WORLD);
+  return std::make_unique<RankShare>(model, reach, MPI_COMM_WORLD, nullptr, work);
 }
 
 bool needs_built_model(const Scene& scene)
@@ -58,24 +62,47 @@ bool needs_built_model(const Scene& scene)
       return true;
   return false;
 }
+
+/// On ranks, deformable blocks among others are meshed before the model is
+/// split (with the blocks as built kept first, when a stage needs them).
+std::unique_ptr<WholeZones> zones_before_split(Scene& scene, BlockModel& model)
+{
+  if (world_ranks() < 2)
+    return nullptr;
+  resolve_group_names(scene, model);
+  BlockModel built = needs_built_model(scene) ? model : BlockModel();
+  std::unique_ptr<WholeZones> zones = mesh_zones_on_ranks(scene, model);
+  if (zones)
+    zones->as_built = std::move(built);
+  return zones;
+}
+
 } // namespace
 
 BlockCycle::BlockCycle(Scene& scene, BlockModel& model, const std::string& prefix,
                        const std::string& restart_from)
-    : share_(share_of(scene, model, restart_from)), scene_(scene),
-      model_(share_ ? share_->local() : model), prefix_(prefix), parallel_(prepare(scene, model)),
+    : whole_zones_(zones_before_split(scene, model)),
+      share_(share_of(scene, model, restart_from, whole_zones_.get())), scene_(scene),
+      model_(share_ ? share_->local() : model), prefix_(prefix),
+      parallel_(prepare(scene, model, whole_zones_ != nullptr)),
       // (model: the whole model, on ranks too)
-      built_model_(needs_built_model(scene) ? std::make_unique<BlockModel>(model) : nullptr),
+      built_model_(needs_built_model(scene)
+                       ? std::make_unique<BlockModel>(whole_zones_ ? whole_zones_->as_built : model)
+                       : nullptr),
       meshing_start_(now()),
       // Deformable blocks among rigid ones: their zones, and their surfaces
       // as their shapes for the contacts.
-      system_(build_block_system(scene, model_)), block_series_(prefix + "_blocks.pvd"),
+      system_(whole_zones_ ? build_block_system_on_ranks(scene, model, model_, *whole_zones_,
+                                                         *share_, rank_zones_)
+                           : build_block_system(scene, model_)),
+      block_series_(prefix + "_blocks.pvd"),
       contact_series_(prefix + "_contacts.pvd"), zone_series_(prefix + "_zones.pvd"),
       built_centroid_(model.centroid) // the whole model's, by global number
 {
   const double meshing_seconds = now() - meshing_start_;
   // On ranks, on the whole model: every rank finds what one rank would.
-  check_boundary_selections(scene, share_ ? model : model_, system_.mesh);
+  check_boundary_selections(scene, share_ ? model : model_,
+                            whole_zones_ ? whole_zones_->mesh : system_.mesh);
   if (share_)
   {
     system_.solver->split_among_ranks(share_->ghost_flags(), reductions_over(share_->comm()));
@@ -103,7 +130,11 @@ BlockCycle::BlockCycle(Scene& scene, BlockModel& model, const std::string& prefi
       std::printf("Hexahedra:    %u (mixed discretization: the tetrahedra are their two overlays "
                   "of five)\n",
                   system_.mesh_report.hexes);
-    print_mesh_quality(system_.mesh_report, system_.mesh, zones->time_step_gridpoint(), model_);
+    if (whole_zones_) // the gridpoint named in the whole mesh, of the whole model
+      print_mesh_quality(system_.mesh_report, whole_zones_->mesh, zones->time_step_gridpoint(),
+                         model);
+    else
+      print_mesh_quality(system_.mesh_report, system_.mesh, zones->time_step_gridpoint(), model_);
     print_nodal_mixed(*zones);
   }
   if (scene.solver.time_step > 0.0 && solver.stable_time_step() < 1e300)
@@ -117,10 +148,20 @@ BlockCycle::BlockCycle(Scene& scene, BlockModel& model, const std::string& prefi
                 scene.solver.time_step_fraction, zones ? "; eq. 84 for the zones" : "");
   print_dynamic_damping(scene.solver, solver.dt(), solver.time_step_without_stiffness_damping());
   print_added_mass(scene.solver, solver.added_mass());
-  if (zones)
+  if (zones && share_)
+  {
+    zone_piece_ = system_.mesh;
+    zone_piece_.zone_block = rank_zones_.zone_global_block;
+    zone_writer_ = std::make_unique<ZoneWriter>(zone_piece_, scene.output.vtu_encoding);
+  }
+  else if (zones)
     zone_writer_ = std::make_unique<ZoneWriter>(system_.mesh, scene.output.vtu_encoding);
-  points_ = std::make_unique<PointHistory>(system_.mesh, zones ? scene.solver.history_points
-                                                               : std::vector<Vec3>{});
+  // (On ranks, with zones: the points as the whole mesh has them, reported
+  // by the ranks rank_zones_ names.)
+  points_ = std::make_unique<PointHistory>(whole_zones_ ? whole_zones_->mesh : system_.mesh,
+                                           zones ? scene.solver.history_points
+                                                 : std::vector<Vec3>{});
+  whole_zones_.reset();
   points_->water = has_water(scene);
   points_->gravity = scene.solver.gravity.norm();
   if (!zones && !scene.solver.history_points.empty())
@@ -277,16 +318,31 @@ BlockCycle::~BlockCycle() = default;
 
 void BlockCycle::step()
 {
-  system_.solver->step();
+  RigidSolver& solver = *system_.solver;
+  solver.step();
   if (share_)
   {
     // The block of the largest force by its global number: the refresh may
     // hand blocks to other ranks and number the rest again.
-    const unsigned int b = system_.solver->unbalanced_block();
-    const bool mine = b < model_.n_blocks() && share_->blocks().owned[b];
-    unbalanced_ = {mine ? system_.solver->local_unbalanced_force() : -1.0,
-                   mine ? share_->global_of(b) : 0};
-    share_->refresh(*system_.solver);
+    const DeformableSolver* zones = system_.zones.get();
+    if (zones && zones->unbalanced_ratio() > solver.rigid_unbalanced_ratio())
+    {
+      // A gridpoint's: every rank knows which (of the whole mesh).
+      unbalanced_ = {1.0, rank_zones_.block_of_whole_gridpoint(zones->unbalanced_gridpoint())};
+    }
+    else
+    {
+      const unsigned int b = solver.unbalanced_block();
+      const bool mine = b < model_.n_blocks() && share_->blocks().owned[b];
+      unbalanced_ = {mine ? solver.local_unbalanced_force() : -1.0, mine ? share_->global_of(b) : 0};
+    }
+    share_->refresh(solver);
+    if (zones && share_->migrations() != migrations_seen_)
+    {
+      // The zones' blocks by their new local numbers.
+      migrations_seen_ = share_->migrations();
+      rank_zones_.renumber(system_.mesh, *share_);
+    }
   }
 }
 unsigned long BlockCycle::steps_done() const
@@ -340,19 +396,43 @@ std::vector<double> BlockCycle::history_row()
                           : pore_pressure(solver.water(), scene_.solver.gravity.norm(),
                                           model_.centroid[std::size_t(b)]));
   }
-  if (system_.zones)
-    points_->add_values(row, *system_.zones);
   if (share_)
   {
     // The energies are the whole model's on every rank (RigidSolver::
-    // energy_account); every column after them is a sum of the ranks'
-    // shares (the owner's values and zeros).
+    // energy_account); the blocks' columns after them are sums of the
+    // ranks' shares (the owner's values and zeros).
     const std::size_t first = 3 + EnergyAccount::column_names().size();
     std::vector<double> shares(row.begin() + first, row.end());
     share_->sum(shares);
     std::copy(shares.begin(), shares.end(), row.begin() + first);
+    if (system_.zones)
+      add_point_values(row);
   }
+  else if (system_.zones)
+    points_->add_values(row, *system_.zones);
   return row;
+}
+
+void BlockCycle::add_point_values(std::vector<double>& row) const
+{
+  // Every rank fills what it reports and -infinity elsewhere: the maximum
+  // over the ranks is the reporting rank's value, bit for bit.
+  const double none = -std::numeric_limits<double>::infinity();
+  const DeformableSolver& zones = *system_.zones;
+  const std::vector<double> u = zones.displacements(), v = zones.velocities();
+  std::vector<double> values;
+  for (std::size_t k = 0; k < rank_zones_.point_gridpoint.size(); ++k)
+  {
+    const int g = rank_zones_.point_gridpoint[k], z = rank_zones_.point_zone[k];
+    for (const std::vector<double>* q : {&u, &v})
+      for (int d = 0; d < 3; ++d)
+        values.push_back(g >= 0 ? (*q)[3 * std::size_t(g) + d] : none);
+    for (int c = 0; c < 6; ++c)
+      values.push_back(z >= 0 ? zones.stress()[6 * std::size_t(z) + c] : none);
+  }
+  MPI_Allreduce(MPI_IN_PLACE, values.data(), static_cast<int>(values.size()), MPI_DOUBLE, MPI_MAX,
+                share_->comm());
+  row.insert(row.end(), values.begin(), values.end());
 }
 
 std::string
@@ -410,8 +490,7 @@ void BlockCycle::write_frame(bool diverged)
   if (diverged)
   {
     if (system_.zones)
-      write_zone_frame(scene_, system_.mesh, *system_.zones, *zone_writer_, zone_series_,
-                       zone_frame_++, false);
+      write_zones(false);
     return;
   }
   std::snprintf(name, sizeof name, "_contacts_%05u", frame_ - 1);
@@ -440,8 +519,28 @@ void BlockCycle::write_frame(bool diverged)
   if (lists)
     contact_series_.add(solver.time(), contacts_vtu);
   if (system_.zones)
+    write_zones(true);
+}
+
+void BlockCycle::write_zones(bool with_stress)
+{
+  if (!share_)
+  {
     write_zone_frame(scene_, system_.mesh, *system_.zones, *zone_writer_, zone_series_,
-                     zone_frame_++);
+                     zone_frame_++, with_stress);
+    return;
+  }
+  char name[64];
+  std::snprintf(name, sizeof name, "_zones_%05u", zone_frame_++);
+  const std::string vtu = write_pieces(scene_.output.base_name + name,
+                                       [&](const std::string& piece)
+                                       {
+                                         write_zone_file(scene_.output.directory + "/" + piece,
+                                                         zone_piece_, *system_.zones,
+                                                         *zone_writer_, with_stress);
+                                       });
+  if (share_->rank() == 0)
+    zone_series_.add(system_.zones->time(), vtu);
 }
 
 void BlockCycle::register_checkpoint(Checkpoint& checkpoint)
@@ -699,7 +798,6 @@ void BlockCycle::print_end()
 
 std::string BlockCycle::unbalanced_where() const
 {
-  const unsigned int b = system_.solver->unbalanced_block();
   if (share_)
   {
     // The rank with the largest force names its block, and sends where it is.
@@ -720,6 +818,7 @@ std::string BlockCycle::unbalanced_where() const
                   model_.group_names[std::size_t(where[3])].c_str(), where[0], where[1], where[2]);
     return text;
   }
+  const unsigned int b = system_.solver->unbalanced_block();
   const Vec3& c = model_.centroid[b];
   char where[200];
   std::snprintf(where, sizeof where, "block %u (group %s, centroid %.4g, %.4g, %.4g m)", b,

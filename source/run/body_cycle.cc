@@ -2,6 +2,7 @@
 #include <talus/io/scene_checks.h>
 #include <talus/run/body_cycle.h>
 #include <talus/run/rank_share.h>
+#include <talus/run/rank_zones.h>
 #include <talus/scene/block_system.h>
 #include <talus/solver/implicit_check.h>
 #include <talus/solver/mesh_share.h>
@@ -148,22 +149,7 @@ BodyCycle::BodyCycle(Scene& scene, BlockModel& model, const std::string& prefix)
 
 void BodyCycle::check_runs_on_ranks(const Scene& scene)
 {
-  const std::string on = "a deformable body split among MPI ranks";
-  const ZoneMaterial& m = scene.deformable.material;
-  if (m.element != ZoneElement::tet4)
-    throw scene_error(scene, "Deformable", "Element",
-                      "10-node and hexahedral zones: " + on + " has 4-node zones only so far",
-                      "4-node zones (tet4), or run without mpirun");
-  if (m.nodal_mixed || !scene.deformable.nodal_mixed_groups.empty())
-    throw scene_error(scene, "Deformable", "Nodal mixed discretization",
-                      "nodal mixed discretization: not yet on " + on,
-                      "false, or run without mpirun");
-  if (scene.solver.damping == Damping::adaptive_global)
-    throw scene_error(scene, "Solver", "Damping", "global adaptive damping: not yet on " + on,
-                      "local or combined damping, or run without mpirun");
-  if (has_water(scene))
-    throw scene_error(scene, "Water", "", "water: not yet on " + on,
-                      "no water on a deformable body, or run without mpirun");
+  check_zones_on_ranks(scene, "a deformable body split among MPI ranks");
 }
 
 void BodyCycle::split_among_ranks(const TetMesh& whole)

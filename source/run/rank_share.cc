@@ -3,6 +3,7 @@
 #include <talus/contact/cell_space.h>
 #include <talus/io/scene_checks.h>
 #include <talus/run/rank_share.h>
+#include <talus/run/rank_zones.h>
 #include <talus/run/run_summary.h>
 #include <talus/solver/rigid_solver.h>
 
@@ -61,11 +62,9 @@ void agree_on_input_errors(const std::function<void()>& build)
 
 void check_runs_on_ranks(const Scene& scene, int ranks)
 {
-  const std::string on = "talus runs on " + std::to_string(ranks) +
-                         " MPI ranks only scenes of rigid blocks and of one deformable body "
-                         "alone so far";
+  (void)ranks;
   const std::string allowed = "run it without mpirun (one rank), or leave this out";
-  // Deformable blocks among others: refused once the blocks are built
+  // What zones cannot do on ranks: refused once the blocks are built
   // (check_runs_on_ranks with the model).
   // 'Solver / Mode = factor of safety' runs its trials on ranks
   // (run_factor_of_safety); a stage's would need the stage's state of the
@@ -82,21 +81,20 @@ void check_runs_on_ranks(const Scene& scene, int ranks)
 
 void check_runs_on_ranks(const Scene& scene, const BlockModel& model, int ranks)
 {
+  (void)ranks;
   if (!scene.deformable.groups.empty() && model.n_blocks() != 1)
-    throw scene_error(scene, "Deformable", "Groups",
-                      "deformable blocks among other blocks: talus runs on " +
-                          std::to_string(ranks) +
-                          " MPI ranks a deformable body alone (a scene of one block) so far",
-                      "run it without mpirun (one rank), or rigid blocks");
+    check_zones_on_ranks(scene, "deformable blocks among others on MPI ranks");
 }
 
-RankShare::RankShare(const BlockModel& model, double reach, MPI_Comm comm, const RankBlocks* saved)
+RankShare::RankShare(const BlockModel& model, double reach, MPI_Comm comm, const RankBlocks* saved,
+                     const std::vector<double>* zones_of_block)
     : comm_(comm), reach_(reach)
 {
   MPI_Comm_rank(comm, &rank_);
   MPI_Comm_size(comm, &ranks_);
   // The cell space of the whole model, about one cell per block (as the
-  // contact search's), cut into regions of equal numbers of blocks.
+  // contact search's), cut into regions of equal work: a block each, and
+  // a deformable block's zones besides (one each).
   Box domain{Vec3::Zero(), Vec3::Zero()};
   if (!model.vertex.empty())
     domain = Box{model.vertex[0], model.vertex[0]};
@@ -107,9 +105,12 @@ RankShare::RankShare(const BlockModel& model, double reach, MPI_Comm comm, const
   }
   CellSpace cells;
   cells.define(domain, model.n_blocks());
+  std::vector<double> work(model.n_blocks(), 1.0);
+  if (zones_of_block != nullptr)
+    for (unsigned int b = 0; b < model.n_blocks(); ++b)
+      work[b] += (*zones_of_block)[b];
   partition_ = std::make_unique<CellPartition>(domain, domain.lo, cells.cell_size(), model.centroid,
-                                               std::vector<double>(model.n_blocks(), 1.0),
-                                               static_cast<unsigned int>(ranks_));
+                                               work, static_cast<unsigned int>(ranks_));
   blocks_ = saved ? *saved
                   : decompose_blocks(model, *partition_, static_cast<unsigned int>(rank_), reach,
                                      ghost_layers);

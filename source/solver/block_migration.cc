@@ -1,5 +1,7 @@
+#include <talus/base/exceptions.h>
 #include <talus/joint/continuously_yielding.h>
 #include <talus/solver/block_migration.h>
+#include <talus/solver/deformable_solver.h>
 #include <talus/solver/rigid_solver.h>
 
 #include <algorithm>
@@ -8,6 +10,7 @@
 #include <map>
 #include <stdexcept>
 #include <type_traits>
+#include <unordered_map>
 #include <unordered_set>
 
 namespace talus
@@ -225,7 +228,8 @@ bool BlockMigration::due(const RigidSolver& solver, const RankBlocks& blocks) co
   for (std::size_t i = 0; i < blocks.local.size() && !mine; ++i)
     if (blocks.owned[i] && !solver.removed_[i])
       mine = solver.path[i] - path_at_choice_[i] > allowance_ ||
-             partition_.owner(solver.m_.centroid[i]) != blocks.rank;
+             // (a deformable block stays with its first owner: migrate)
+             (!solver.is_deformable_[i] && partition_.owner(solver.m_.centroid[i]) != blocks.rank);
   if (solver.ranks_.any)
     return solver.ranks_.any(mine);
   int in = mine, out = 0; // a solver not split_among_ranks: decided here all the same
@@ -246,10 +250,9 @@ void BlockMigration::migrate(RigidSolver& s, RankBlocks& blocks)
 {
   // Face loads move as a table of the whole model (set_face_load_table),
   // water with the flags that choose its blocks; update() places both again.
-  if (s.zones_ != nullptr || (!s.face_loads_.empty() && !s.has_face_load_table_))
-    throw std::logic_error("BlockMigration: blocks with zones, or face loads without their "
-                           "table (RigidSolver::set_face_load_table), do not move between "
-                           "ranks yet");
+  if (!s.face_loads_.empty() && !s.has_face_load_table_)
+    throw std::logic_error("BlockMigration: face loads without their table "
+                           "(RigidSolver::set_face_load_table) do not move between ranks");
   int rank = 0, n_ranks = 1;
   MPI_Comm_rank(comm_, &rank);
   MPI_Comm_size(comm_, &n_ranks);
@@ -294,6 +297,7 @@ void BlockMigration::migrate(RigidSolver& s, RankBlocks& blocks)
       record.put(own_box[i].lo);
       record.put(own_box[i].hi);
       record.put(m.centroid[i]);
+      record.put(s.is_deformable_[i]);
       for (unsigned int q : near)
         boxes_out[q].insert(boxes_out[q].end(), record.data.begin(), record.data.end());
     }
@@ -303,6 +307,7 @@ void BlockMigration::migrate(RigidSolver& s, RankBlocks& blocks)
   {
     unsigned int block, old_owner, owner;
     Box box;
+    char deformable;
   };
   std::vector<Known> known;
   for (int r = 0; r < n_ranks; ++r)
@@ -316,6 +321,11 @@ void BlockMigration::migrate(RigidSolver& s, RankBlocks& blocks)
       k.box.lo = in.get<Vec3>();
       k.box.hi = in.get<Vec3>();
       k.owner = partition_.owner(in.get<Vec3>());
+      // A deformable block stays with its first owner, which holds its
+      // zones (their state does not move between ranks).
+      k.deformable = in.get<char>();
+      if (k.deformable)
+        k.owner = k.old_owner;
       known.push_back(k);
     }
   }
@@ -343,6 +353,28 @@ void BlockMigration::migrate(RigidSolver& s, RankBlocks& blocks)
     next.local[j] = known[next.local[j]].block;
   }
   const unsigned int n_new = static_cast<unsigned int>(next.local.size());
+  {
+    // A rank holds the surface gridpoints of the deformable ghosts it had
+    // when the zones were built; a new one it cannot take yet (decided
+    // alike on every rank, so that all stop together).
+    long first_new = -1;
+    for (unsigned int j = 0; j < n_new; ++j)
+      if (known[next.local[j]].deformable && local_of(old_local, known[next.local[j]].block) < 0)
+      {
+        first_new = known[next.local[j]].block;
+        break;
+      }
+    long any = first_new;
+    MPI_Allreduce(&first_new, &any, 1, MPI_LONG, MPI_MAX, comm_);
+    if (any >= 0)
+      throw InputError(
+          "on " + std::to_string(n_ranks) + " MPI ranks: deformable block " + std::to_string(any) +
+          " came within reach of blocks owned by a rank that did not hold it as a ghost when the "
+          "run began (at step " + std::to_string(s.steps_done()) +
+          "); deformable blocks among others do not yet move to new neighbours between ranks. "
+          "Allowed: run this scene without mpirun, or on ranks where the deformable blocks stay "
+          "near their first neighbours");
+  }
 
   // 2. Requests: the blocks this rank newly holds, to their old owners.
   std::vector<int> old_of(n_new); // per new local block: its old local index, or -1
@@ -391,6 +423,16 @@ void BlockMigration::migrate(RigidSolver& s, RankBlocks& blocks)
       contacts_of[cs.block_b[c]].push_back(c);
     }
   const bool dilation = s.s_.contact.dilation, yielding = s.s_.contact.yielding;
+  // With zones, each sub-contact's gridpoints (sc_node) travel by their
+  // numbers in the whole mesh, local numbers being each rank's own.
+  const GridpointShare* gridpoints = s.zones_ != nullptr ? s.zones_->share() : nullptr;
+  const bool nodes = gridpoints != nullptr;
+  if (s.zones_ != nullptr && !nodes)
+    throw std::logic_error("BlockMigration: zones not split among the ranks");
+  std::unordered_map<unsigned int, int> local_gridpoint;
+  if (nodes)
+    for (std::size_t i = 0; i < gridpoints->whole_gridpoint.size(); ++i)
+      local_gridpoint[gridpoints->whole_gridpoint[i]] = static_cast<int>(i);
   // A contact with its sub-contacts, blocks by global number.
   const auto put_contact = [&](Bytes& out, unsigned int c)
   {
@@ -420,6 +462,14 @@ void BlockMigration::migrate(RigidSolver& s, RankBlocks& blocks)
       if (yielding)
         for (unsigned int y = 0; y < yield_state_size; ++y)
           out.put(cs.sc_yield[yield_state_size * k + y]);
+      if (nodes)
+        for (unsigned int n = 6 * k; n < 6 * k + 6; ++n)
+        {
+          out.put<int>(cs.sc_node[n] < 0 ? -1
+                                         : static_cast<int>(gridpoints->whole_gridpoint[std::size_t(
+                                               cs.sc_node[n])]));
+          out.put(cs.sc_weight[n]);
+        }
     }
   };
   std::vector<std::vector<char>> reply(n_ranks);
@@ -462,7 +512,8 @@ void BlockMigration::migrate(RigidSolver& s, RankBlocks& blocks)
     const unsigned int n_sc = in.get<unsigned int>();
     in.at += n_sc *
              (sizeof(Vec3) + 9 * sizeof(double) + 3 * sizeof(unsigned char) +
-              (dilation ? sizeof(double) : 0) + (yielding ? yield_state_size * sizeof(double) : 0));
+              (dilation ? sizeof(double) : 0) + (yielding ? yield_state_size * sizeof(double) : 0) +
+              (nodes ? 6 * (sizeof(int) + sizeof(double)) : 0));
     const int la = local_of(next.local, a), lb = local_of(next.local, b);
     if (la >= 0 && lb >= 0 && (next.owned[la] || next.owned[lb]) &&
         have.insert(pair_key(la, lb)).second)
@@ -489,11 +540,23 @@ void BlockMigration::migrate(RigidSolver& s, RankBlocks& blocks)
   // global order): kept blocks from here, others as received.
   BlockModel model;
   model.group_names = m.group_names;
+  std::vector<int> vertex_gridpoint; // with zones: the surfaces' gridpoints, kept blocks only
   for (unsigned int j = 0; j < n_new; ++j)
+  {
+    const std::size_t first = model.vertex.size();
     if (old_of[j] >= 0)
       append_block(model, m, static_cast<unsigned int>(old_of[j]));
     else
       append_block(model, arrived[j], 0);
+    if (s.zones_ == nullptr)
+      continue;
+    if (old_of[j] >= 0)
+      vertex_gridpoint.insert(vertex_gridpoint.end(),
+                              s.vertex_gridpoint_.begin() + m.vertex_start[old_of[j]],
+                              s.vertex_gridpoint_.begin() + m.vertex_start[old_of[j] + 1]);
+    else // (rigid: a deformable block new here was refused above)
+      vertex_gridpoint.resize(vertex_gridpoint.size() + model.vertex.size() - first, -1);
+  }
   std::size_t at = 0; // byte offset of the array in a received block's state
   visit_block_arrays(s,
                      [&](auto& array)
@@ -510,6 +573,15 @@ void BlockMigration::migrate(RigidSolver& s, RankBlocks& blocks)
                        array.swap(next_array);
                      });
   m = std::move(model);
+  if (s.zones_ != nullptr)
+  {
+    // In place: the contacts point at these.
+    s.vertex_gridpoint_ = vertex_gridpoint;
+    s.deformable_blocks_.clear();
+    for (unsigned int j = 0; j < n_new; ++j)
+      if (s.is_deformable_[j])
+        s.deformable_blocks_.push_back(j);
+  }
 
   // 6. The contacts again, in block-pair order (those kept are in it
   // already, the global order being kept), slots in that order, each
@@ -557,6 +629,12 @@ void BlockMigration::migrate(RigidSolver& s, RankBlocks& blocks)
       if (yielding)
         laid.sc_yield.insert(laid.sc_yield.end(), &cs.sc_yield[yield_state_size * k],
                              &cs.sc_yield[yield_state_size * k] + yield_state_size);
+      if (nodes)
+      {
+        laid.sc_node.insert(laid.sc_node.end(), &cs.sc_node[6 * k], &cs.sc_node[6 * k] + 6);
+        laid.sc_weight.insert(laid.sc_weight.end(), &cs.sc_weight[6 * k],
+                              &cs.sc_weight[6 * k] + 6);
+      }
     }
   };
   const auto add_received = [&](std::uint64_t key, const char* record)
@@ -588,6 +666,21 @@ void BlockMigration::migrate(RigidSolver& s, RankBlocks& blocks)
       if (yielding)
         for (unsigned int y = 0; y < yield_state_size; ++y)
           laid.sc_yield.push_back(in.get<double>());
+      if (nodes)
+        for (int n = 0; n < 6; ++n)
+        {
+          const int whole = in.get<int>();
+          int node = -1;
+          if (whole >= 0)
+          {
+            const auto it = local_gridpoint.find(static_cast<unsigned int>(whole));
+            if (it == local_gridpoint.end())
+              throw std::logic_error("BlockMigration: a contact's gridpoint is not held here");
+            node = it->second;
+          }
+          laid.sc_node.push_back(node);
+          laid.sc_weight.push_back(in.get<double>());
+        }
     }
   };
   for (std::size_t k = 0, r = 0; k < kept.size() || r < received_contacts.size();)

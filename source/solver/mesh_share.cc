@@ -27,7 +27,8 @@ std::vector<unsigned int> gridpoint_owners(const TetMesh& mesh, const Box& domai
 }
 
 MeshShare share_mesh(const TetMesh& whole, const std::vector<unsigned int>& owner,
-                     unsigned int rank, unsigned int ranks, MPI_Comm comm)
+                     unsigned int rank, unsigned int ranks, MPI_Comm comm,
+                     const std::vector<char>* also_ghosts)
 {
   if (whole.quadratic() || whole.n_hexes() > 0)
     throw std::logic_error("share_mesh: 4-node zones only");
@@ -52,6 +53,9 @@ MeshShare share_mesh(const TetMesh& whole, const std::vector<unsigned int>& owne
     if (held_zone[z])
       for (unsigned int g : whole.zone_gridpoint[z])
         held_gridpoint[g] = 1;
+  if (also_ghosts != nullptr)
+    for (unsigned int g = 0; g < ng; ++g)
+      held_gridpoint[g] |= (*also_ghosts)[g];
   MeshShare s;
   s.share.comm = comm;
   std::vector<std::pair<unsigned int, unsigned int>> ghosts; // number, gridpoint

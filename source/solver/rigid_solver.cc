@@ -482,7 +482,7 @@ void RigidSolver::change_rock(const std::vector<char>& blocks, double density,
     bool any = false;
     for (unsigned int z = 0; z < mesh.n_zones(); ++z)
       any |= (zones[z] = blocks[mesh.zone_block[z]]) != 0;
-    if (any)
+    if (any || zones_->share() != nullptr) // split among ranks: collective (the step)
       zones_->change_material(zones, material, false);
   }
   set_masses_and_step();

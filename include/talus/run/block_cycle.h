@@ -6,6 +6,7 @@
 #include <talus/io/zone_vtu_writer.h>
 #include <talus/run/cycle.h>
 #include <talus/run/rank_share.h>
+#include <talus/run/rank_zones.h>
 #include <talus/run/run_summary.h>
 #include <talus/scene/block_system.h>
 
@@ -53,9 +54,19 @@ public:
   std::string unbalanced_where() const override;
 
 private:
-  /// The rank's share of the model (null on one rank); declared first:
-  /// model_ is its model.
+  /// On ranks, with deformable blocks among others: every deformable block
+  /// meshed, before the model is split (freed once the solvers are built).
+  std::unique_ptr<WholeZones> whole_zones_;
+  /// The rank's share of the model (null on one rank); declared before
+  /// model_, which is its model.
   std::unique_ptr<RankShare> share_;
+  /// On ranks, with zones: what their split keeps (global blocks, history
+  /// points reported here).
+  RankZones rank_zones_;
+  unsigned long migrations_seen_ = 0;
+  /// On ranks, with zones: this rank's zones as its output piece shows
+  /// them (blocks by their global numbers).
+  TetMesh zone_piece_;
   Scene& scene_;
   BlockModel& model_;
   std::string prefix_;
@@ -86,6 +97,11 @@ private:
   /// lists.
   std::string write_pieces(const std::string& name,
                            const std::function<void(const std::string&)>& write_piece) const;
+  /// On ranks: the history points' values of the whole model, each from
+  /// the rank that reports it.
+  void add_point_values(std::vector<double>& row) const;
+  /// Writes the zones' frame (on ranks a piece per rank).
+  void write_zones(bool with_stress);
 
 };
 

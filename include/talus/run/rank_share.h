@@ -38,8 +38,9 @@ void agree_on_input_errors(const std::function<void()>& build);
 /// yet run split among ranks: a stage's factor of safety ('Solver / Mode =
 /// factor of safety' runs on ranks: run_factor_of_safety).
 void check_runs_on_ranks(const Scene& scene, int ranks);
-/// The same, once the blocks are built: deformable blocks among other
-/// blocks (a deformable body alone runs split among ranks: BodyCycle).
+/// The same, once the blocks are built: what zones cannot yet do on ranks
+/// (check_zones_on_ranks), for deformable blocks among other blocks (a
+/// deformable body alone: BodyCycle::check_runs_on_ranks).
 void check_runs_on_ranks(const Scene& scene, const BlockModel& model, int ranks);
 
 /// This rank's share of a model of rigid blocks split among the ranks of
@@ -61,8 +62,11 @@ public:
   /// `reach` (m): the contact tolerance plus the motion allowed until the
   /// ghosts are chosen again. `saved`: the blocks this rank held at a
   /// checkpoint (read_rank_blocks), instead of those the partition gives.
+  /// `zones_of_block`: per block, its zones (0 for a rigid one), work the
+  /// regions balance besides the blocks.
   RankShare(const BlockModel& model, double reach, MPI_Comm comm,
-            const RankBlocks* saved = nullptr);
+            const RankBlocks* saved = nullptr,
+            const std::vector<double>* zones_of_block = nullptr);
 
   int rank() const { return rank_; }
   int ranks() const { return ranks_; }

@@ -34,8 +34,12 @@ std::vector<unsigned int> gridpoint_owners(const TetMesh& mesh, const Box& domai
 
 /// The part of `whole` that rank `rank` of `ranks` holds, with `owner[g]`
 /// the rank of each gridpoint. Every rank must pass the same `owner`.
+/// `also_ghosts` (per gridpoint of `whole`, optional): gridpoints held as
+/// ghosts besides those of the zones held, without their zones (the
+/// surfaces of other ranks' deformable blocks near this rank's blocks).
 /// 4-node zones only (no 10-node or hexahedral zones).
 MeshShare share_mesh(const TetMesh& whole, const std::vector<unsigned int>& owner,
-                     unsigned int rank, unsigned int ranks, MPI_Comm comm);
+                     unsigned int rank, unsigned int ranks, MPI_Comm comm,
+                     const std::vector<char>* also_ghosts = nullptr);
 
 } // namespace talus

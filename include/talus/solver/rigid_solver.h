@@ -274,6 +274,8 @@ public:
   /// Largest unbalanced force over the mean gravity force of free blocks.
   /// (with deformable blocks, the larger of that and the gridpoints' ratio).
   double unbalanced_ratio() const;
+  /// The rigid blocks' part of it alone.
+  double rigid_unbalanced_ratio() const { return ratio_; }
   /// The block whose unbalanced force sets that ratio (of the last step; for
   /// deformable blocks, the block of the gridpoint that sets it).
   unsigned int unbalanced_block() const;

@@ -1,0 +1,81 @@
+#pragma once
+
+#include <talus/model/block_model.h>
+#include <talus/scene/block_system.h>
+#include <talus/scene/scene.h>
+#include <talus/zone/block_mesher.h>
+#include <talus/zone/tet_mesh.h>
+
+#include <memory>
+#include <vector>
+
+namespace talus
+{
+
+class RankShare;
+
+/// The deformable blocks of a whole model with other blocks, meshed alike
+/// on every MPI rank (as one run meshes them) before the model is split
+/// among the ranks (issue 24). Kept only while the solvers are built.
+struct WholeZones
+{
+  TetMesh mesh; ///< gridpoint_block, zone_block: blocks of the whole model
+  MeshReport report;
+  /// Per vertex of the whole model (its deformable blocks' faces being
+  /// their zones' surfaces): the gridpoint of `mesh` there, -1 on rigid blocks.
+  std::vector<int> vertex_gridpoint;
+  /// Zones of each block of the whole model (0 for a rigid one): the work
+  /// that the split among ranks balances.
+  std::vector<double> zones_of_block;
+  /// The blocks as built, before the surfaces replaced the deformable
+  /// blocks' faces, when a stage needs them (else empty).
+  BlockModel as_built;
+};
+
+/// On several MPI ranks, for a scene whose deformable blocks lie among
+/// other blocks: meshes every deformable block of `whole` and gives them
+/// their zone surfaces in `whole` (printing the summary's estimate first,
+/// as one run does). Null on one rank, or without deformable blocks, or
+/// when the only block is deformable (a body alone: BodyCycle).
+std::unique_ptr<WholeZones> mesh_zones_on_ranks(const Scene& scene, BlockModel& whole);
+
+/// What a rank's cycle keeps of its zones' split: the global block of each
+/// of its zones and gridpoints (local numbers change when blocks move
+/// between ranks), the whole mesh's gridpoint numbering by blocks, and the
+/// history points it reports.
+struct RankZones
+{
+  std::vector<unsigned int> zone_global_block, gridpoint_global_block;
+  /// Runs of the whole mesh's gridpoints: each run's first gridpoint and
+  /// its block (global number), ascending.
+  std::vector<unsigned int> run_first, run_block;
+  /// Per history point: the local gridpoint (owned) and zone this rank
+  /// reports, -1 where another rank does.
+  std::vector<int> point_gridpoint, point_zone;
+
+  /// The global block of gridpoint `g` of the whole mesh.
+  unsigned int block_of_whole_gridpoint(unsigned int g) const;
+  /// The mesh's blocks as local numbers of `share` again (after blocks
+  /// moved between ranks); a ghost gridpoint of a block no longer held
+  /// gets block 0 (nothing reads it: its owner moves it, no contact uses it).
+  void renumber(TetMesh& mesh, const RankShare& share) const;
+};
+
+/// The calculation of this rank's share (`share`, whose local model is
+/// `local`) of a model whose deformable blocks (`zones`, of `whole`) lie
+/// among others: the zones of the deformable blocks the rank owns, on their
+/// gridpoints, then as ghost entries the surface gridpoints of the
+/// deformable ghosts, refreshed from their owners after each motion, on
+/// which the contacts act (GridpointShare). `history_points`: the scene's,
+/// whose reporting ranks `kept` receives with the rest.
+/// 4-node zones only (check_zones_on_ranks). Collective on the share's ranks.
+BlockSystem build_block_system_on_ranks(const Scene& scene, const BlockModel& whole,
+                                        BlockModel& local, const WholeZones& zones,
+                                        const RankShare& share, RankZones& kept);
+
+/// Refuses, with one message naming the entry, what zones cannot yet do
+/// split among MPI ranks (`on`: what is split, for the message): 10-node,
+/// hexahedral and nodal mixed zones, global adaptive damping, water.
+void check_zones_on_ranks(const Scene& scene, const std::string& on);
+
+} // namespace talus

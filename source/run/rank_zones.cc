@@ -1,0 +1,169 @@
+#include <talus/base/exceptions.h>
+#include <talus/io/scene_checks.h>
+#include <talus/run/rank_share.h>
+#include <talus/run/rank_zones.h>
+#include <talus/run/run_summary.h>
+#include <talus/solver/mesh_share.h>
+#include <talus/zone/zone_surface.h>
+
+#include <algorithm>
+#include <stdexcept>
+
+namespace talus
+{
+
+std::unique_ptr<WholeZones> mesh_zones_on_ranks(const Scene& scene, BlockModel& whole)
+{
+  if (world_ranks() < 2 || scene.deformable.groups.empty() || whole.n_blocks() < 2)
+    return nullptr;
+  std::vector<unsigned int> deformable;
+  for (unsigned int b = 0; b < whole.n_blocks(); ++b)
+    for (const std::string& g : scene.deformable.groups)
+      if (whole.group_names[whole.group[b]] == g)
+        deformable.push_back(b);
+  if (deformable.empty())
+    return nullptr;
+  print_zone_estimate(scene, whole);
+  auto zones = std::make_unique<WholeZones>();
+  zones->mesh = mesh_deformable_blocks(scene, whole, deformable, zones->report);
+  zones->vertex_gridpoint = use_zone_surfaces(whole, zones->mesh);
+  zones->zones_of_block.assign(whole.n_blocks(), 0.0);
+  for (unsigned int b : zones->mesh.zone_block)
+    zones->zones_of_block[b] += 1.0;
+  return zones;
+}
+
+unsigned int RankZones::block_of_whole_gridpoint(unsigned int g) const
+{
+  const auto it = std::upper_bound(run_first.begin(), run_first.end(), g);
+  return run_block[std::size_t(it - run_first.begin()) - 1];
+}
+
+void RankZones::renumber(TetMesh& mesh, const RankShare& share) const
+{
+  for (std::size_t z = 0; z < mesh.zone_block.size(); ++z)
+    mesh.zone_block[z] = static_cast<unsigned int>(share.local_of(zone_global_block[z]));
+  for (std::size_t g = 0; g < mesh.gridpoint_block.size(); ++g)
+    mesh.gridpoint_block[g] =
+        static_cast<unsigned int>(std::max(0, share.local_of(gridpoint_global_block[g])));
+}
+
+BlockSystem build_block_system_on_ranks(const Scene& scene, const BlockModel& whole,
+                                        BlockModel& local, const WholeZones& zones,
+                                        const RankShare& share, RankZones& kept)
+{
+  const TetMesh& w = zones.mesh;
+  const unsigned int rank = static_cast<unsigned int>(share.rank());
+  // Each block's owner (every block has one; a deformable block keeps its
+  // first: BlockMigration).
+  std::vector<int> block_owner(whole.n_blocks(), -1);
+  for (unsigned int l = 0; l < local.n_blocks(); ++l)
+    if (share.blocks().owned[l])
+      block_owner[share.global_of(l)] = static_cast<int>(rank);
+  MPI_Allreduce(MPI_IN_PLACE, block_owner.data(), static_cast<int>(block_owner.size()), MPI_INT,
+                MPI_MAX, share.comm());
+  std::vector<unsigned int> owner(w.n_gridpoints());
+  for (unsigned int g = 0; g < w.n_gridpoints(); ++g)
+    owner[g] = static_cast<unsigned int>(block_owner[w.gridpoint_block[g]]);
+  // The deformable ghosts' surfaces: ghost entries without their zones.
+  std::vector<char> ghost_surface(w.n_gridpoints(), 0);
+  for (unsigned int l = 0; l < local.n_blocks(); ++l)
+  {
+    const unsigned int b = share.global_of(l);
+    if (share.blocks().owned[l])
+      continue;
+    for (unsigned int v = whole.vertex_start[b]; v < whole.vertex_start[b + 1]; ++v)
+      if (zones.vertex_gridpoint[v] >= 0)
+        ghost_surface[std::size_t(zones.vertex_gridpoint[v])] = 1;
+  }
+  MeshShare part =
+      share_mesh(w, owner, rank, static_cast<unsigned int>(share.ranks()), share.comm(),
+                 &ghost_surface);
+  std::vector<int> local_gridpoint(w.n_gridpoints(), -1);
+  for (unsigned int i = 0; i < part.gridpoint.size(); ++i)
+    local_gridpoint[part.gridpoint[i]] = static_cast<int>(i);
+
+  kept.run_first.clear();
+  kept.run_block.clear();
+  for (unsigned int g = 0; g < w.n_gridpoints(); ++g)
+    if (g == 0 || w.gridpoint_block[g] != w.gridpoint_block[g - 1])
+    {
+      kept.run_first.push_back(g);
+      kept.run_block.push_back(w.gridpoint_block[g]);
+    }
+  // History points: a gridpoint reported by its owner, a zone by its
+  // block's owner (which alone holds it).
+  const PointHistory points(w, scene.solver.history_points);
+  kept.point_gridpoint.clear();
+  kept.point_zone.clear();
+  for (std::size_t k = 0; k < points.gridpoint.size(); ++k)
+  {
+    const unsigned int g = points.gridpoint[k], z = points.zone[k];
+    kept.point_gridpoint.push_back(owner[g] == rank ? local_gridpoint[g] : -1);
+    int local_zone = -1;
+    if (block_owner[w.zone_block[z]] == static_cast<int>(rank))
+      local_zone = static_cast<int>(std::lower_bound(part.zone.begin(), part.zone.end(), z) -
+                                    part.zone.begin());
+    kept.point_zone.push_back(local_zone);
+  }
+
+  BlockSystem s;
+  s.mesh = std::move(part.mesh);
+  kept.zone_global_block = s.mesh.zone_block;
+  kept.gridpoint_global_block = s.mesh.gridpoint_block;
+  kept.renumber(s.mesh, share);
+  s.mesh_report = zones.report;
+  for (unsigned int l = 0; l < local.n_blocks(); ++l)
+  {
+    const unsigned int b = share.global_of(l);
+    if (whole.vertex_start[b + 1] - whole.vertex_start[b] !=
+        local.vertex_start[l + 1] - local.vertex_start[l])
+      throw std::logic_error("build_block_system_on_ranks: the local model is not the whole's");
+    for (unsigned int v = whole.vertex_start[b]; v < whole.vertex_start[b + 1]; ++v)
+    {
+      const int g = zones.vertex_gridpoint[v];
+      if (g >= 0 && local_gridpoint[std::size_t(g)] < 0)
+        throw std::logic_error("build_block_system_on_ranks: a deformable block's surface "
+                               "gridpoint is not held");
+      s.vertex_gridpoint.push_back(g < 0 ? -1 : local_gridpoint[std::size_t(g)]);
+    }
+    if (s.vertex_gridpoint[local.vertex_start[l]] >= 0)
+      s.deformable_blocks.push_back(l);
+  }
+  ZoneMaterials m = zone_materials(scene, local, s.mesh);
+  s.zones = std::make_unique<DeformableSolver>(
+      s.mesh, std::move(m.materials), std::move(m.of_zone), scene.solver, scene.gridpoint_conditions,
+      scene.face_pressures, scene.has_initial_stress ? &scene.initial_stress : nullptr,
+      &part.share);
+  SolverSettings settings = scene.solver;
+  if (!scene.rock_materials.empty())
+    for (unsigned int b = 0; b < local.n_blocks(); ++b)
+      settings.block_density.push_back(scene.density_of(local.group_names[local.group[b]]));
+  if (scene.has_initial_stress)
+    settings.initial_stress = &scene.initial_stress;
+  s.solver = std::make_unique<RigidSolver>(local, scene.density, settings, s.zones.get(),
+                                           s.vertex_gridpoint);
+  s.solver->set_face_loads(scene.face_pressures);
+  return s;
+}
+
+void check_zones_on_ranks(const Scene& scene, const std::string& on)
+{
+  const ZoneMaterial& m = scene.deformable.material;
+  if (m.element != ZoneElement::tet4)
+    throw scene_error(scene, "Deformable", "Element",
+                      "10-node and hexahedral zones: " + on + " has 4-node zones only so far",
+                      "4-node zones (tet4), or run without mpirun");
+  if (m.nodal_mixed || !scene.deformable.nodal_mixed_groups.empty())
+    throw scene_error(scene, "Deformable", "Nodal mixed discretization",
+                      "nodal mixed discretization: not yet on " + on,
+                      "false, or run without mpirun");
+  if (scene.solver.damping == Damping::adaptive_global)
+    throw scene_error(scene, "Solver", "Damping", "global adaptive damping: not yet on " + on,
+                      "local or combined damping, or run without mpirun");
+  if (has_water(scene))
+    throw scene_error(scene, "Water", "", "water: not yet on " + on,
+                      "no water on deformable blocks, or run without mpirun");
+}
+
+} // namespace talus
