@@ -7,6 +7,7 @@
 #include <talus/zone/zone_surface.h>
 
 #include <algorithm>
+#include <unordered_map>
 #include <stdexcept>
 
 namespace talus
@@ -65,16 +66,43 @@ BlockSystem build_block_system_on_ranks(const Scene& scene, const BlockModel& wh
   std::vector<unsigned int> owner(w.n_gridpoints());
   for (unsigned int g = 0; g < w.n_gridpoints(); ++g)
     owner[g] = static_cast<unsigned int>(block_owner[w.gridpoint_block[g]]);
-  // The deformable ghosts' surfaces: ghost entries without their zones.
-  std::vector<char> ghost_surface(w.n_gridpoints(), 0);
-  for (unsigned int l = 0; l < local.n_blocks(); ++l)
+  // Ghost entries without their zones: the surfaces of the other ranks'
+  // deformable blocks whose boxes come within 2 (reach + s) of a box of
+  // this rank's blocks (s: the longest side of any block's box), the
+  // distance within which a migration makes a block a ghost here
+  // (BlockMigration), and so those of its deformable ghosts now.
+  std::vector<Box> box(whole.n_blocks());
+  double longest = 0.0;
+  for (unsigned int b = 0; b < whole.n_blocks(); ++b)
   {
-    const unsigned int b = share.global_of(l);
-    if (share.blocks().owned[l])
-      continue;
+    box[b] = Box{whole.vertex[whole.vertex_start[b]], whole.vertex[whole.vertex_start[b]]};
     for (unsigned int v = whole.vertex_start[b]; v < whole.vertex_start[b + 1]; ++v)
-      if (zones.vertex_gridpoint[v] >= 0)
-        ghost_surface[std::size_t(zones.vertex_gridpoint[v])] = 1;
+    {
+      box[b].lo = box[b].lo.cwiseMin(whole.vertex[v]);
+      box[b].hi = box[b].hi.cwiseMax(whole.vertex[v]);
+    }
+    longest = std::max(longest, (box[b].hi - box[b].lo).maxCoeff());
+  }
+  const double span = 2.0 * (share.reach() + longest);
+  const auto near = [&](const Box& a, const Box& b)
+  {
+    return (a.lo.array() - span <= b.hi.array()).all() && (b.lo.array() <= a.hi.array() + span).all();
+  };
+  std::vector<char> ghost_surface(w.n_gridpoints(), 0);
+  std::vector<unsigned int> surfaces; // deformable blocks of other ranks held by their surfaces
+  for (unsigned int b = 0; b < whole.n_blocks(); ++b)
+  {
+    if (zones.vertex_gridpoint[whole.vertex_start[b]] < 0 || block_owner[b] == int(rank))
+      continue;
+    bool held = false;
+    for (unsigned int l = 0; l < local.n_blocks() && !held; ++l)
+      held = share.blocks().owned[l] && near(box[share.global_of(l)], box[b]);
+    held |= share.local_of(b) >= 0; // a ghost now
+    if (!held)
+      continue;
+    surfaces.push_back(b);
+    for (unsigned int v = whole.vertex_start[b]; v < whole.vertex_start[b + 1]; ++v)
+      ghost_surface[std::size_t(zones.vertex_gridpoint[v])] = 1;
   }
   MeshShare part =
       share_mesh(w, owner, rank, static_cast<unsigned int>(share.ranks()), share.comm(),
@@ -130,6 +158,16 @@ BlockSystem build_block_system_on_ranks(const Scene& scene, const BlockModel& wh
     if (s.vertex_gridpoint[local.vertex_start[l]] >= 0)
       s.deformable_blocks.push_back(l);
   }
+  // Each held deformable block's vertices on their local gridpoints.
+  std::unordered_map<unsigned int, std::vector<int>> held_surfaces;
+  for (unsigned int b = 0; b < whole.n_blocks(); ++b)
+    if (block_owner[b] == int(rank) || std::binary_search(surfaces.begin(), surfaces.end(), b))
+      if (zones.vertex_gridpoint[whole.vertex_start[b]] >= 0)
+      {
+        std::vector<int>& gridpoints = held_surfaces[b];
+        for (unsigned int v = whole.vertex_start[b]; v < whole.vertex_start[b + 1]; ++v)
+          gridpoints.push_back(local_gridpoint[std::size_t(zones.vertex_gridpoint[v])]);
+      }
   ZoneMaterials m = zone_materials(scene, local, s.mesh);
   s.zones = std::make_unique<DeformableSolver>(
       s.mesh, std::move(m.materials), std::move(m.of_zone), scene.solver, scene.gridpoint_conditions,
@@ -144,6 +182,7 @@ BlockSystem build_block_system_on_ranks(const Scene& scene, const BlockModel& wh
   s.solver = std::make_unique<RigidSolver>(local, scene.density, settings, s.zones.get(),
                                            s.vertex_gridpoint);
   s.solver->set_face_loads(scene.face_pressures);
+  s.solver->hold_surfaces(std::move(held_surfaces));
   return s;
 }
 

@@ -286,12 +286,46 @@ void BlockMigration::migrate(RigidSolver& s, RankBlocks& blocks)
     }
   MPI_Allreduce(MPI_IN_PLACE, &largest, 1, MPI_DOUBLE, MPI_MAX, comm_);
   const double span = (layers_ + 1) * (reach_ + largest);
+  // A deformable block stays with its first owner (below) wherever it
+  // goes: the owners of those that have left their regions must hear of
+  // the blocks near them too. Their boxes, from every rank to every rank
+  // (few: most deformable blocks barely move).
+  std::vector<double> strays; // owner, lo, hi
+  for (unsigned int i = 0; i < n_old; ++i)
+    if (blocks.owned[i] && !s.removed_[i] && s.is_deformable_[i] &&
+        partition_.owner(m.centroid[i]) != blocks.rank)
+    {
+      strays.push_back(rank);
+      strays.insert(strays.end(), own_box[i].lo.data(), own_box[i].lo.data() + 3);
+      strays.insert(strays.end(), own_box[i].hi.data(), own_box[i].hi.data() + 3);
+    }
+  {
+    int mine = static_cast<int>(strays.size());
+    std::vector<int> counts(n_ranks), starts(n_ranks, 0);
+    MPI_Allgather(&mine, 1, MPI_INT, counts.data(), 1, MPI_INT, comm_);
+    for (int r = 1; r < n_ranks; ++r)
+      starts[r] = starts[r - 1] + counts[r - 1];
+    std::vector<double> all(std::size_t(starts.back() + counts.back()));
+    MPI_Allgatherv(strays.data(), mine, MPI_DOUBLE, all.data(), counts.data(), starts.data(),
+                   MPI_DOUBLE, comm_);
+    strays.swap(all);
+  }
   std::vector<std::vector<char>> boxes_out(n_ranks);
   std::vector<unsigned int> near;
   for (unsigned int i = 0; i < n_old; ++i)
     if (blocks.owned[i] && !s.removed_[i]) // a removed block is held nowhere from now on
     {
       partition_.ranks_near(own_box[i], span, near);
+      for (std::size_t k = 0; k < strays.size(); k += 7)
+      {
+        const Vec3 lo(strays[k + 1], strays[k + 2], strays[k + 3]),
+            hi(strays[k + 4], strays[k + 5], strays[k + 6]);
+        if ((own_box[i].lo.array() - span <= hi.array()).all() &&
+            (lo.array() <= own_box[i].hi.array() + span).all())
+          near.push_back(static_cast<unsigned int>(strays[k]));
+      }
+      std::sort(near.begin(), near.end());
+      near.erase(std::unique(near.begin(), near.end()), near.end());
       Bytes record;
       record.put(old_local[i]);
       record.put(own_box[i].lo);
@@ -353,27 +387,32 @@ void BlockMigration::migrate(RigidSolver& s, RankBlocks& blocks)
     next.local[j] = known[next.local[j]].block;
   }
   const unsigned int n_new = static_cast<unsigned int>(next.local.size());
+  const auto is_deformable_known = [&](unsigned int block)
   {
-    // A rank holds the surface gridpoints of the deformable ghosts it had
-    // when the zones were built; a new one it cannot take yet (decided
-    // alike on every rank, so that all stop together).
+    const auto it = std::lower_bound(known.begin(), known.end(), block,
+                                     [](const Known& k, unsigned int b) { return k.block < b; });
+    return it != known.end() && it->block == block && it->deformable;
+  };
+  {
+    // A rank holds the surface gridpoints of the deformable blocks near
+    // its own when the zones were built (build_block_system_on_ranks): any
+    // of those can become a ghost here, others cannot yet (decided alike
+    // on every rank, so that all stop together).
     long first_new = -1;
-    for (unsigned int j = 0; j < n_new; ++j)
-      if (known[next.local[j]].deformable && local_of(old_local, known[next.local[j]].block) < 0)
-      {
-        first_new = known[next.local[j]].block;
-        break;
-      }
+    for (unsigned int j = 0; j < n_new && first_new < 0; ++j)
+      if (is_deformable_known(next.local[j]) && local_of(old_local, next.local[j]) < 0 &&
+          s.held_surfaces_.count(next.local[j]) == 0)
+        first_new = next.local[j];
     long any = first_new;
     MPI_Allreduce(&first_new, &any, 1, MPI_LONG, MPI_MAX, comm_);
     if (any >= 0)
       throw InputError(
           "on " + std::to_string(n_ranks) + " MPI ranks: deformable block " + std::to_string(any) +
-          " came within reach of blocks owned by a rank that did not hold it as a ghost when the "
-          "run began (at step " + std::to_string(s.steps_done()) +
-          "); deformable blocks among others do not yet move to new neighbours between ranks. "
-          "Allowed: run this scene without mpirun, or on ranks where the deformable blocks stay "
-          "near their first neighbours");
+          " came within reach of blocks of a rank that does not hold its surface (at step " +
+          std::to_string(s.steps_done()) +
+          "): a rank holds the surfaces of the deformable blocks within two block sizes of its "
+          "own when the run begins, and no others yet. Allowed: run this scene without mpirun, "
+          "or on fewer ranks");
   }
 
   // 2. Requests: the blocks this rank newly holds, to their old owners.
@@ -554,7 +593,14 @@ void BlockMigration::migrate(RigidSolver& s, RankBlocks& blocks)
       vertex_gridpoint.insert(vertex_gridpoint.end(),
                               s.vertex_gridpoint_.begin() + m.vertex_start[old_of[j]],
                               s.vertex_gridpoint_.begin() + m.vertex_start[old_of[j] + 1]);
-    else // (rigid: a deformable block new here was refused above)
+    else if (is_deformable_known(next.local[j])) // a surface held here (checked above)
+    {
+      const std::vector<int>& surface = s.held_surfaces_.at(next.local[j]);
+      if (surface.size() != model.vertex.size() - first)
+        throw std::logic_error("BlockMigration: a deformable block's surface is not the one held");
+      vertex_gridpoint.insert(vertex_gridpoint.end(), surface.begin(), surface.end());
+    }
+    else
       vertex_gridpoint.resize(vertex_gridpoint.size() + model.vertex.size() - first, -1);
   }
   std::size_t at = 0; // byte offset of the array in a received block's state

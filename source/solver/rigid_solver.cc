@@ -1072,7 +1072,7 @@ void RigidSolver::split_among_ranks(std::vector<char> ghost, RankReductions redu
   contacts_.drop_contacts_among(ghost_);
   build_water_loads(); // on the blocks this rank owns
   set_masses_and_step();
-  if (step_ == 0 && zones_ == nullptr)
+  if (step_ == 0)
   {
     // This rank's share of the energy at the start, with the masses of the
     // whole model's density scaling: its blocks and the contacts it counts.

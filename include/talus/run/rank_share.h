@@ -69,6 +69,8 @@ public:
             const std::vector<double>* zones_of_block = nullptr);
 
   int rank() const { return rank_; }
+  /// m: the contact tolerance plus the motion allowed between choices of the ghosts.
+  double reach() const { return reach_; }
   int ranks() const { return ranks_; }
   MPI_Comm comm() const { return comm_; }
   const RankBlocks& blocks() const { return blocks_; }

@@ -19,6 +19,7 @@
 
 #include <functional>
 #include <string>
+#include <unordered_map>
 #include <vector>
 
 namespace talus
@@ -271,6 +272,13 @@ public:
   /// Reads what pack_block wrote for block b; returns the end of it.
   const double* unpack_block(unsigned int b, const double* in);
 
+  /// Split among ranks with zones: the deformable blocks (global numbers)
+  /// whose surfaces this rank holds, each with its vertices' local gridpoints.
+  void hold_surfaces(std::unordered_map<unsigned int, std::vector<int>> surfaces)
+  {
+    held_surfaces_ = std::move(surfaces);
+  }
+
   /// Largest unbalanced force over the mean gravity force of free blocks.
   /// (with deformable blocks, the larger of that and the gridpoints' ratio).
   double unbalanced_ratio() const;
@@ -394,6 +402,11 @@ private:
   // Deformable blocks (none without a zone solver).
   DeformableSolver* zones_ = nullptr;
   std::vector<int> vertex_gridpoint_;
+  /// Split among ranks: the deformable blocks (by global number) whose
+  /// surface gridpoints this rank holds, with the local gridpoint of each
+  /// of their vertices, so that such a block can become a ghost here when
+  /// blocks move (BlockMigration).
+  std::unordered_map<unsigned int, std::vector<int>> held_surfaces_;
   std::vector<char> is_deformable_;
   std::vector<unsigned int> deformable_blocks_;
   double* gp_x_ = nullptr; ///< gridpoint arrays during the contact stage
