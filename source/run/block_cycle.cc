@@ -406,33 +406,12 @@ std::vector<double> BlockCycle::history_row()
     share_->sum(shares);
     std::copy(shares.begin(), shares.end(), row.begin() + first);
     if (system_.zones)
-      add_point_values(row);
+      add_point_values_on_ranks(row, *system_.zones, rank_zones_.point_gridpoint,
+                                rank_zones_.point_zone, share_->comm());
   }
   else if (system_.zones)
     points_->add_values(row, *system_.zones);
   return row;
-}
-
-void BlockCycle::add_point_values(std::vector<double>& row) const
-{
-  // Every rank fills what it reports and -infinity elsewhere: the maximum
-  // over the ranks is the reporting rank's value, bit for bit.
-  const double none = -std::numeric_limits<double>::infinity();
-  const DeformableSolver& zones = *system_.zones;
-  const std::vector<double> u = zones.displacements(), v = zones.velocities();
-  std::vector<double> values;
-  for (std::size_t k = 0; k < rank_zones_.point_gridpoint.size(); ++k)
-  {
-    const int g = rank_zones_.point_gridpoint[k], z = rank_zones_.point_zone[k];
-    for (const std::vector<double>* q : {&u, &v})
-      for (int d = 0; d < 3; ++d)
-        values.push_back(g >= 0 ? (*q)[3 * std::size_t(g) + d] : none);
-    for (int c = 0; c < 6; ++c)
-      values.push_back(z >= 0 ? zones.stress()[6 * std::size_t(z) + c] : none);
-  }
-  MPI_Allreduce(MPI_IN_PLACE, values.data(), static_cast<int>(values.size()), MPI_DOUBLE, MPI_MAX,
-                share_->comm());
-  row.insert(row.end(), values.begin(), values.end());
 }
 
 std::string

@@ -228,28 +228,9 @@ Vec3 BodyCycle::whole_gridpoint_position(unsigned int g) const
 void BodyCycle::add_point_values(std::vector<double>& row) const
 {
   if (!split_)
-  {
     points_->add_values(row, *solver_);
-    return;
-  }
-  // Every rank fills what it reports and -infinity elsewhere: the maximum
-  // over the ranks is the reporting rank's value, bit for bit (a sign of
-  // zero included).
-  const double none = -std::numeric_limits<double>::infinity();
-  const std::vector<double> u = solver_->displacements(), v = solver_->velocities();
-  std::vector<double> values;
-  for (std::size_t k = 0; k < points_->gridpoint.size(); ++k)
-  {
-    const int g = point_gridpoint_[k], z = point_zone_[k];
-    for (const std::vector<double>* q : {&u, &v})
-      for (int d = 0; d < 3; ++d)
-        values.push_back(g >= 0 ? (*q)[3 * std::size_t(g) + d] : none);
-    for (int c = 0; c < 6; ++c)
-      values.push_back(z >= 0 ? solver_->stress()[6 * std::size_t(z) + c] : none);
-  }
-  MPI_Allreduce(MPI_IN_PLACE, values.data(), static_cast<int>(values.size()), MPI_DOUBLE, MPI_MAX,
-                MPI_COMM_WORLD);
-  row.insert(row.end(), values.begin(), values.end());
+  else
+    add_point_values_on_ranks(row, *solver_, point_gridpoint_, point_zone_, MPI_COMM_WORLD);
 }
 
 Vec3 BodyCycle::zone_centroid(unsigned int z) const

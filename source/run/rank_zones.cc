@@ -7,6 +7,7 @@
 #include <talus/zone/zone_surface.h>
 
 #include <algorithm>
+#include <limits>
 #include <unordered_map>
 #include <stdexcept>
 
@@ -184,6 +185,30 @@ BlockSystem build_block_system_on_ranks(const Scene& scene, const BlockModel& wh
   s.solver->set_face_loads(scene.face_pressures);
   s.solver->hold_surfaces(std::move(held_surfaces));
   return s;
+}
+
+void add_point_values_on_ranks(std::vector<double>& row, const DeformableSolver& zones,
+                               const std::vector<int>& point_gridpoint,
+                               const std::vector<int>& point_zone, MPI_Comm comm)
+{
+  // Every rank fills what it reports and -infinity elsewhere: the maximum
+  // over the ranks is the reporting rank's value, bit for bit (a sign of
+  // zero included).
+  const double none = -std::numeric_limits<double>::infinity();
+  const std::vector<double> u = zones.displacements(), v = zones.velocities();
+  std::vector<double> values;
+  for (std::size_t k = 0; k < point_gridpoint.size(); ++k)
+  {
+    const int g = point_gridpoint[k], z = point_zone[k];
+    for (const std::vector<double>* q : {&u, &v})
+      for (int d = 0; d < 3; ++d)
+        values.push_back(g >= 0 ? (*q)[3 * std::size_t(g) + d] : none);
+    for (int c = 0; c < 6; ++c)
+      values.push_back(z >= 0 ? zones.stress()[6 * std::size_t(z) + c] : none);
+  }
+  MPI_Allreduce(MPI_IN_PLACE, values.data(), static_cast<int>(values.size()), MPI_DOUBLE, MPI_MAX,
+                comm);
+  row.insert(row.end(), values.begin(), values.end());
 }
 
 void check_zones_on_ranks(const Scene& scene, const std::string& on)

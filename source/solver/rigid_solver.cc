@@ -1319,7 +1319,9 @@ double RigidSolver::unbalanced_ratio() const
 
 unsigned int RigidSolver::unbalanced_block() const
 {
-  if (zones_ != nullptr && zones_->unbalanced_ratio() > ratio_)
+  // (Split among ranks the gridpoint is the whole mesh's: BlockCycle finds
+  // its block.)
+  if (zones_ != nullptr && zones_->share() == nullptr && zones_->unbalanced_ratio() > ratio_)
     return zones_->mesh().gridpoint_block[zones_->unbalanced_gridpoint()];
   return ratio_block_;
 }

@@ -97,9 +97,6 @@ private:
   /// lists.
   std::string write_pieces(const std::string& name,
                            const std::function<void(const std::string&)>& write_piece) const;
-  /// On ranks: the history points' values of the whole model, each from
-  /// the rank that reports it.
-  void add_point_values(std::vector<double>& row) const;
   /// Writes the zones' frame (on ranks a piece per rank).
   void write_zones(bool with_stress);
 

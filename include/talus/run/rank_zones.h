@@ -6,6 +6,8 @@
 #include <talus/zone/block_mesher.h>
 #include <talus/zone/tet_mesh.h>
 
+#include <mpi.h>
+
 #include <memory>
 #include <vector>
 
@@ -72,6 +74,15 @@ struct RankZones
 BlockSystem build_block_system_on_ranks(const Scene& scene, const BlockModel& whole,
                                         BlockModel& local, const WholeZones& zones,
                                         const RankShare& share, RankZones& kept);
+
+/// Appends to `row` the history points' values (PointHistory's columns,
+/// without water) of zones split among the ranks of `comm`: point k's
+/// displacement and velocity from the rank whose local gridpoint
+/// `point_gridpoint[k]` it is, its stress from the one whose local zone
+/// `point_zone[k]` it is (-1 elsewhere). Collective.
+void add_point_values_on_ranks(std::vector<double>& row, const DeformableSolver& zones,
+                               const std::vector<int>& point_gridpoint,
+                               const std::vector<int>& point_zone, MPI_Comm comm);
 
 /// Refuses, with one message naming the entry, what zones cannot yet do
 /// split among MPI ranks (`on`: what is split, for the message): 10-node,
