@@ -5,9 +5,9 @@
 #include <talus/io/rank_checkpoint.h>
 #include <talus/io/scene_checks.h>
 #include <talus/run/block_cycle.h>
-#include <talus/solver/mesh_share.h>
 #include <talus/scene/build_blocks.h>
 #include <talus/scene/factor_of_safety.h>
+#include <talus/solver/mesh_share.h>
 
 #include <algorithm>
 #include <chrono>
@@ -95,8 +95,8 @@ BlockCycle::BlockCycle(Scene& scene, BlockModel& model, const std::string& prefi
       system_(whole_zones_ ? build_block_system_on_ranks(scene, model, model_, *whole_zones_,
                                                          *share_, rank_zones_)
                            : build_block_system(scene, model_)),
-      block_series_(prefix + "_blocks.pvd"),
-      contact_series_(prefix + "_contacts.pvd"), zone_series_(prefix + "_zones.pvd"),
+      block_series_(prefix + "_blocks.pvd"), contact_series_(prefix + "_contacts.pvd"),
+      zone_series_(prefix + "_zones.pvd"),
       built_centroid_(model.centroid) // the whole model's, by global number
 {
   const double meshing_seconds = now() - meshing_start_;
@@ -158,9 +158,9 @@ BlockCycle::BlockCycle(Scene& scene, BlockModel& model, const std::string& prefi
     zone_writer_ = std::make_unique<ZoneWriter>(system_.mesh, scene.output.vtu_encoding);
   // (On ranks, with zones: the points as the whole mesh has them, reported
   // by the ranks rank_zones_ names.)
-  points_ = std::make_unique<PointHistory>(whole_zones_ ? whole_zones_->mesh : system_.mesh,
-                                           zones ? scene.solver.history_points
-                                                 : std::vector<Vec3>{});
+  points_ =
+      std::make_unique<PointHistory>(whole_zones_ ? whole_zones_->mesh : system_.mesh,
+                                     zones ? scene.solver.history_points : std::vector<Vec3>{});
   whole_zones_.reset();
   points_->water = has_water(scene);
   points_->gravity = scene.solver.gravity.norm();
@@ -334,7 +334,8 @@ void BlockCycle::step()
     {
       const unsigned int b = solver.unbalanced_block();
       const bool mine = b < model_.n_blocks() && share_->blocks().owned[b];
-      unbalanced_ = {mine ? solver.local_unbalanced_force() : -1.0, mine ? share_->global_of(b) : 0};
+      unbalanced_ = {mine ? solver.local_unbalanced_force() : -1.0,
+                     mine ? share_->global_of(b) : 0};
     }
     share_->refresh(solver);
     if (zones && share_->migrations() != migrations_seen_)
@@ -511,13 +512,13 @@ void BlockCycle::write_zones(bool with_stress)
   }
   char name[64];
   std::snprintf(name, sizeof name, "_zones_%05u", zone_frame_++);
-  const std::string vtu = write_pieces(scene_.output.base_name + name,
-                                       [&](const std::string& piece)
-                                       {
-                                         write_zone_file(scene_.output.directory + "/" + piece,
-                                                         zone_piece_, *system_.zones,
-                                                         *zone_writer_, with_stress);
-                                       });
+  const std::string vtu =
+      write_pieces(scene_.output.base_name + name,
+                   [&](const std::string& piece)
+                   {
+                     write_zone_file(scene_.output.directory + "/" + piece, zone_piece_,
+                                     *system_.zones, *zone_writer_, with_stress);
+                   });
   if (share_->rank() == 0)
     zone_series_.add(system_.zones->time(), vtu);
 }

@@ -8,8 +8,8 @@
 
 #include <algorithm>
 #include <limits>
-#include <unordered_map>
 #include <stdexcept>
+#include <unordered_map>
 
 namespace talus
 {
@@ -87,7 +87,8 @@ BlockSystem build_block_system_on_ranks(const Scene& scene, const BlockModel& wh
   const double span = 2.0 * (share.reach() + longest);
   const auto near = [&](const Box& a, const Box& b)
   {
-    return (a.lo.array() - span <= b.hi.array()).all() && (b.lo.array() <= a.hi.array() + span).all();
+    return (a.lo.array() - span <= b.hi.array()).all() &&
+           (b.lo.array() <= a.hi.array() + span).all();
   };
   std::vector<char> ghost_surface(w.n_gridpoints(), 0);
   std::vector<unsigned int> surfaces; // deformable blocks of other ranks held by their surfaces
@@ -105,9 +106,8 @@ BlockSystem build_block_system_on_ranks(const Scene& scene, const BlockModel& wh
     for (unsigned int v = whole.vertex_start[b]; v < whole.vertex_start[b + 1]; ++v)
       ghost_surface[std::size_t(zones.vertex_gridpoint[v])] = 1;
   }
-  MeshShare part =
-      share_mesh(w, owner, rank, static_cast<unsigned int>(share.ranks()), share.comm(),
-                 &ghost_surface);
+  MeshShare part = share_mesh(w, owner, rank, static_cast<unsigned int>(share.ranks()),
+                              share.comm(), &ghost_surface);
   std::vector<int> local_gridpoint(w.n_gridpoints(), -1);
   for (unsigned int i = 0; i < part.gridpoint.size(); ++i)
     local_gridpoint[part.gridpoint[i]] = static_cast<int>(i);
@@ -171,9 +171,9 @@ BlockSystem build_block_system_on_ranks(const Scene& scene, const BlockModel& wh
       }
   ZoneMaterials m = zone_materials(scene, local, s.mesh);
   s.zones = std::make_unique<DeformableSolver>(
-      s.mesh, std::move(m.materials), std::move(m.of_zone), scene.solver, scene.gridpoint_conditions,
-      scene.face_pressures, scene.has_initial_stress ? &scene.initial_stress : nullptr,
-      &part.share);
+      s.mesh, std::move(m.materials), std::move(m.of_zone), scene.solver,
+      scene.gridpoint_conditions, scene.face_pressures,
+      scene.has_initial_stress ? &scene.initial_stress : nullptr, &part.share);
   SolverSettings settings = scene.solver;
   if (!scene.rock_materials.empty())
     for (unsigned int b = 0; b < local.n_blocks(); ++b)

@@ -504,9 +504,10 @@ void BlockMigration::migrate(RigidSolver& s, RankBlocks& blocks)
       if (nodes)
         for (unsigned int n = 6 * k; n < 6 * k + 6; ++n)
         {
-          out.put<int>(cs.sc_node[n] < 0 ? -1
-                                         : static_cast<int>(gridpoints->whole_gridpoint[std::size_t(
-                                               cs.sc_node[n])]));
+          out.put<int>(
+              cs.sc_node[n] < 0
+                  ? -1
+                  : static_cast<int>(gridpoints->whole_gridpoint[std::size_t(cs.sc_node[n])]));
           out.put(cs.sc_weight[n]);
         }
     }
@@ -678,8 +679,7 @@ void BlockMigration::migrate(RigidSolver& s, RankBlocks& blocks)
       if (nodes)
       {
         laid.sc_node.insert(laid.sc_node.end(), &cs.sc_node[6 * k], &cs.sc_node[6 * k] + 6);
-        laid.sc_weight.insert(laid.sc_weight.end(), &cs.sc_weight[6 * k],
-                              &cs.sc_weight[6 * k] + 6);
+        laid.sc_weight.insert(laid.sc_weight.end(), &cs.sc_weight[6 * k], &cs.sc_weight[6 * k] + 6);
       }
     }
   };

@@ -1,6 +1,6 @@
 #include <talus/base/exceptions.h>
-#include <talus/geometry/mass_properties.h>
 #include <talus/contact/contact_origin.h>
+#include <talus/geometry/mass_properties.h>
 #include <talus/joint/joint_model.h>
 #include <talus/solver/damper.h>
 #include <talus/solver/deformable_solver.h>
@@ -578,9 +578,8 @@ void RigidSolver::change_joint_material(int origin, unsigned char material)
 {
   // New contacts on the joint follow the rule; those there now change.
   if (origin > 0)
-    s_.joint_rule.of_joint_set.resize(std::max<std::size_t>(s_.joint_rule.of_joint_set.size(),
-                                                            origin),
-                                      JointMaterialRule::none);
+    s_.joint_rule.of_joint_set.resize(
+        std::max<std::size_t>(s_.joint_rule.of_joint_set.size(), origin), JointMaterialRule::none);
   if (origin < 0)
     s_.joint_rule.of_joint.resize(std::max<std::size_t>(s_.joint_rule.of_joint.size(), -origin),
                                   JointMaterialRule::none);
@@ -589,8 +588,7 @@ void RigidSolver::change_joint_material(int origin, unsigned char material)
   if (s_.joint_rule.n_groups == 0)
   {
     s_.joint_rule.n_groups = static_cast<unsigned int>(m_.group_names.size());
-    s_.joint_rule.of_group_pair.assign(std::size_t(s_.joint_rule.n_groups) *
-                                           s_.joint_rule.n_groups,
+    s_.joint_rule.of_group_pair.assign(std::size_t(s_.joint_rule.n_groups) * s_.joint_rule.n_groups,
                                        JointMaterialRule::none);
   }
   s_.contact.materials = &s_.joint_rule;
@@ -601,8 +599,7 @@ void RigidSolver::change_joint_material(int origin, unsigned char material)
     contacts_.sc_material[i] = contacts_.material[contacts_.sc_contact[i]];
 }
 
-void RigidSolver::change_group_pair_material(unsigned int a, unsigned int b,
-                                             unsigned char material)
+void RigidSolver::change_group_pair_material(unsigned int a, unsigned int b, unsigned char material)
 {
   JointMaterialRule& rule = s_.joint_rule;
   if (rule.n_groups < m_.group_names.size())
@@ -1114,9 +1111,9 @@ void RigidSolver::pack_block(unsigned int b, std::vector<double>& out) const
     put(m_.vertex[v]);
   for (unsigned int f = m_.face_start[b]; f < m_.face_start[b + 1]; ++f)
     put(m_.face_normal[f]);
-  for (const Vec3* x : std::initializer_list<const Vec3*>{&m_.centroid[b], &velocity[b], &spin[b], &displacement[b], &rotation[b],
-                        &last_force_[b], &last_moment_[b], &applied_force[b],
-                        &motion_dx_[b], &motion_dtheta_[b]})
+  for (const Vec3* x : std::initializer_list<const Vec3*>{
+           &m_.centroid[b], &velocity[b], &spin[b], &displacement[b], &rotation[b], &last_force_[b],
+           &last_moment_[b], &applied_force[b], &motion_dx_[b], &motion_dtheta_[b]})
     put(*x);
   out.push_back(moved[b]);
   out.push_back(path[b]);
@@ -1135,9 +1132,9 @@ const double* RigidSolver::unpack_block(unsigned int b, const double* in)
     get(m_.vertex[v]);
   for (unsigned int f = m_.face_start[b]; f < m_.face_start[b + 1]; ++f)
     get(m_.face_normal[f]);
-  for (Vec3* x : {&m_.centroid[b], &velocity[b], &spin[b], &displacement[b], &rotation[b],
-                  &last_force_[b], &last_moment_[b], &applied_force[b],
-                        &motion_dx_[b], &motion_dtheta_[b]})
+  for (Vec3* x :
+       {&m_.centroid[b], &velocity[b], &spin[b], &displacement[b], &rotation[b], &last_force_[b],
+        &last_moment_[b], &applied_force[b], &motion_dx_[b], &motion_dtheta_[b]})
     get(*x);
   moved[b] = *in++;
   path[b] = *in++;

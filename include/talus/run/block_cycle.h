@@ -99,7 +99,6 @@ private:
                            const std::function<void(const std::string&)>& write_piece) const;
   /// Writes the zones' frame (on ranks a piece per rank).
   void write_zones(bool with_stress);
-
 };
 
 } // namespace talus

@@ -64,8 +64,7 @@ public:
   /// checkpoint (read_rank_blocks), instead of those the partition gives.
   /// `zones_of_block`: per block, its zones (0 for a rigid one), work the
   /// regions balance besides the blocks.
-  RankShare(const BlockModel& model, double reach, MPI_Comm comm,
-            const RankBlocks* saved = nullptr,
+  RankShare(const BlockModel& model, double reach, MPI_Comm comm, const RankBlocks* saved = nullptr,
             const std::vector<double>* zones_of_block = nullptr);
 
   int rank() const { return rank_; }

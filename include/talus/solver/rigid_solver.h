@@ -127,9 +127,9 @@ inline Damper damper_for(const SolverSettings& s, double dt)
 /// means one rank (the value stays as it is).
 struct RankReductions
 {
-  std::function<bool(bool)> any;          ///< whether any rank's is true
-  std::function<double(double)> min, max; ///< the least and the largest of all ranks'
-  std::function<void(ExactSum&)> sum;     ///< each rank's partial sum becomes the total
+  std::function<bool(bool)> any;                    ///< whether any rank's is true
+  std::function<double(double)> min, max;           ///< the least and the largest of all ranks'
+  std::function<void(ExactSum&)> sum;               ///< each rank's partial sum becomes the total
   std::function<void(std::vector<ExactSum>&)> sums; ///< the same for several, in one message
 };
 
@@ -375,9 +375,9 @@ private:
 
   BlockModel& m_;
   SolverSettings s_;
-  std::vector<char> ghost_; ///< per block; empty: no ghosts
+  std::vector<char> ghost_;       ///< per block; empty: no ghosts
   double local_unbalanced_ = 0.0; ///< N, see local_unbalanced_force
-  RankReductions ranks_;     ///< members null: one rank
+  RankReductions ranks_;          ///< members null: one rank
   CellSpace cells_;
   ContactSet contacts_;
   std::vector<Box> envelopes_;
@@ -442,10 +442,10 @@ private:
   void close_energy_step();
   /// water_loads_ from s_.water, on the rigid blocks that move.
   void build_water_loads();
-  std::vector<char> removed_;             ///< per block: excavated by a stage
-  std::vector<double> true_inertia_;      ///< kg m^2, isotropic, before scaling
-  std::vector<Vec3> true_principal_;      ///< kg m^2, before scaling (principal inertia)
-  AddedMass added_mass_;                  ///< of the rigid blocks, by set_masses_and_step
+  std::vector<char> removed_;        ///< per block: excavated by a stage
+  std::vector<double> true_inertia_; ///< kg m^2, isotropic, before scaling
+  std::vector<Vec3> true_principal_; ///< kg m^2, before scaling (principal inertia)
+  AddedMass added_mass_;             ///< of the rigid blocks, by set_masses_and_step
   /// The stiffest joint spring per unit area of any material, max(kn, ks) (Pa/m).
   double stiffest_joint() const;
   unsigned int ratio_block_ = 0;
@@ -461,14 +461,14 @@ private:
   /// Blocks that moved more than the contact tolerance in the last step,
   /// with that move (m, eq. 1's measure).
   std::vector<std::pair<unsigned int, double>> too_fast_;
-  bool warned_fast_ = false;  ///< the warning of check_reach() was given
-  RigidFaceLoads face_loads_; ///< pressures and tractions on rigid blocks' faces
+  bool warned_fast_ = false;       ///< the warning of check_reach() was given
+  RigidFaceLoads face_loads_;      ///< pressures and tractions on rigid blocks' faces
   RigidFaceLoads face_load_table_; ///< on ranks: face_loads_ of the whole model, relative
   bool has_face_load_table_ = false;
   std::vector<unsigned int> global_of_local_; ///< on ranks, from localize_loads
   std::vector<unsigned int> water_global_;    ///< see water_global()
-  bool water_stale_ = false;  ///< water_loads_ to be built again before its next use
-  WaterLoads water_loads_;    ///< water on free rigid blocks' faces (none without water)
+  bool water_stale_ = false; ///< water_loads_ to be built again before its next use
+  WaterLoads water_loads_;   ///< water on free rigid blocks' faces (none without water)
   unsigned long step_ = 0;
   unsigned long last_output_ = 0; ///< step of the last output in run()
   bool resumed_ = false;          ///< state loaded from a checkpoint
