@@ -69,9 +69,10 @@ BlockSystem build_block_system_on_ranks(const Scene& scene, const BlockModel& wh
     owner[g] = static_cast<unsigned int>(block_owner[w.gridpoint_block[g]]);
   // Ghost entries without their zones: the surfaces of the other ranks'
   // deformable blocks whose boxes come within 2 (reach + s) of a box of
-  // this rank's blocks (s: the longest side of any block's box), the
-  // distance within which a migration makes a block a ghost here
-  // (BlockMigration), and so those of its deformable ghosts now.
+  // this rank's blocks (s: the longest side of a block that may move, one
+  // not of 'Fixed groups': a large fixed boundary block would make every
+  // surface near), the distance within which a migration makes a moving
+  // block a ghost here (BlockMigration), and those of its deformable ghosts now.
   std::vector<Box> box(whole.n_blocks());
   double longest = 0.0;
   for (unsigned int b = 0; b < whole.n_blocks(); ++b)
@@ -82,7 +83,9 @@ BlockSystem build_block_system_on_ranks(const Scene& scene, const BlockModel& wh
       box[b].lo = box[b].lo.cwiseMin(whole.vertex[v]);
       box[b].hi = box[b].hi.cwiseMax(whole.vertex[v]);
     }
-    longest = std::max(longest, (box[b].hi - box[b].lo).maxCoeff());
+    const auto& fixed = scene.solver.fixed_groups;
+    if (std::find(fixed.begin(), fixed.end(), whole.group[b]) == fixed.end())
+      longest = std::max(longest, (box[b].hi - box[b].lo).maxCoeff());
   }
   const double span = 2.0 * (share.reach() + longest);
   const auto near = [&](const Box& a, const Box& b)
