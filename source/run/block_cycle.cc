@@ -118,9 +118,11 @@ BlockCycle::BlockCycle(Scene& scene, BlockModel& model, const std::string& prefi
   const DeformableSolver* zones = system_.zones.get();
   if (zones)
   {
-    std::printf("Zones:        %u tetrahedra in %u deformable blocks, %u gridpoints (%s)\n",
-                system_.mesh_report.zones, system_.mesh_report.blocks,
-                system_.mesh_report.gridpoints,
+    std::printf("Zones:        %u %s in %u deformable blocks, %u gridpoints (%s)\n",
+                system_.mesh_report.zones,
+                scene.deformable.material.element == ZoneElement::tet10 ? "10-node tetrahedra"
+                                                                        : "tetrahedra",
+                system_.mesh_report.blocks, system_.mesh_report.gridpoints,
                 edge_length_text(scene.deformable.edge_length).c_str());
     // Indented "Time =" lines are ignored when test output is compared.
     std::printf("   Time = %.3f s to mesh and set up the zones (%.3g zones/s); peak memory %s\n",

@@ -6,6 +6,7 @@
 #include <talus/scene/block_system.h>
 #include <talus/solver/implicit_check.h>
 #include <talus/solver/mesh_share.h>
+#include <talus/zone/hex_mixed.h>
 #include <talus/zone/tet10_mesh.h>
 
 #include <cmath>
@@ -189,16 +190,32 @@ void BodyCycle::split_among_ranks(const TetMesh& whole)
     point_gridpoint_.push_back(local_g);
     point_zone_.push_back(local_z);
   }
-  // This rank's output piece: the zones it counts.
+  // This rank's output piece: the zones it counts; a hexahedral zone whole,
+  // by the rank that counts its first tetrahedron.
   piece_.position = mesh_.position;
   piece_.gridpoint_block = mesh_.gridpoint_block;
+  const std::vector<char> in_hex = zones_in_hexes(mesh_);
+  const auto add = [&](unsigned int z)
+  {
+    piece_zone_.push_back(z);
+    piece_.zone_gridpoint.push_back(mesh_.zone_gridpoint[z]);
+    piece_.zone_block.push_back(mesh_.zone_block[z]);
+    if (mesh_.quadratic())
+      piece_.zone_edge_gridpoint.push_back(mesh_.zone_edge_gridpoint[z]);
+  };
   for (unsigned int z = 0; z < mesh_.n_zones(); ++z)
-    if (mesh_.zone_gridpoint[z][0] < share_.n_owned)
-    {
-      piece_zone_.push_back(z);
-      piece_.zone_gridpoint.push_back(mesh_.zone_gridpoint[z]);
-      piece_.zone_block.push_back(mesh_.zone_block[z]);
-    }
+    if (!in_hex[z] && share_.counts(mesh_.zone_gridpoint[z][0]))
+      add(z);
+  for (unsigned int h = 0; h < mesh_.n_hexes(); ++h)
+  {
+    const unsigned int first = mesh_.hex_first_zone[h];
+    if (!share_.counts(mesh_.zone_gridpoint[first][0]))
+      continue;
+    piece_.hex_gridpoint.push_back(mesh_.hex_gridpoint[h]);
+    piece_.hex_first_zone.push_back(static_cast<unsigned int>(piece_zone_.size()));
+    for (unsigned int k = 0; k < TetMesh::tets_per_hex; ++k)
+      add(first + k);
+  }
 }
 
 double BodyCycle::sum_over_ranks(double value) const

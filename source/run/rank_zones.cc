@@ -206,8 +206,15 @@ void add_point_values_on_ranks(std::vector<double>& row, const DeformableSolver&
     for (const std::vector<double>* q : {&u, &v})
       for (int d = 0; d < 3; ++d)
         values.push_back(g >= 0 ? (*q)[3 * std::size_t(g) + d] : none);
+    // The zone's mean over its stress points, as PointHistory::add_values.
+    const unsigned int p = zones.stress_points_per_zone();
     for (int c = 0; c < 6; ++c)
-      values.push_back(z >= 0 ? zones.stress()[6 * std::size_t(z) + c] : none);
+    {
+      double sum = 0.0;
+      for (unsigned int q = 0; z >= 0 && q < p; ++q)
+        sum += zones.stress()[6 * (p * std::size_t(z) + q) + c];
+      values.push_back(z >= 0 ? sum / p : none);
+    }
   }
   MPI_Allreduce(MPI_IN_PLACE, values.data(), static_cast<int>(values.size()), MPI_DOUBLE, MPI_MAX,
                 comm);
@@ -216,18 +223,6 @@ void add_point_values_on_ranks(std::vector<double>& row, const DeformableSolver&
 
 void check_zones_on_ranks(const Scene& scene, const std::string& on)
 {
-  const ZoneMaterial& m = scene.deformable.material;
-  if (m.element != ZoneElement::tet4)
-    throw scene_error(scene, "Deformable", "Element",
-                      "10-node and hexahedral zones: " + on + " has 4-node zones only so far",
-                      "4-node zones (tet4), or run without mpirun");
-  if (m.nodal_mixed || !scene.deformable.nodal_mixed_groups.empty())
-    throw scene_error(scene, "Deformable", "Nodal mixed discretization",
-                      "nodal mixed discretization: not yet on " + on,
-                      "false, or run without mpirun");
-  if (scene.solver.damping == Damping::adaptive_global)
-    throw scene_error(scene, "Solver", "Damping", "global adaptive damping: not yet on " + on,
-                      "local or combined damping, or run without mpirun");
   if (has_water(scene))
     throw scene_error(scene, "Water", "", "water: not yet on " + on,
                       "no water on deformable blocks, or run without mpirun");

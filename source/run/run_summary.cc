@@ -35,24 +35,29 @@ void write_zone_file(const std::string& path, const TetMesh& mesh, const Deforma
   const std::vector<double> x = solver.positions();
   std::vector<double> stress;
   std::vector<unsigned char> state;
-  if (zones != nullptr) // a piece: 4-node zones, each the solver's zones[k]
+  // A piece: each of its zones the solver's zones[k], with its stress points.
+  std::vector<double> piece_stress;
+  std::vector<unsigned char> piece_state;
+  if (zones != nullptr)
   {
-    std::vector<double> piece_stress;
-    std::vector<unsigned char> piece_state;
+    const unsigned int p = solver.stress_points_per_zone();
     for (unsigned int z : *zones)
     {
-      piece_stress.insert(piece_stress.end(), &solver.stress()[6 * z], &solver.stress()[6 * z + 6]);
-      piece_state.push_back(solver.plastic_state()[z]);
+      piece_stress.insert(piece_stress.end(), &solver.stress()[6 * p * std::size_t(z)],
+                          &solver.stress()[6 * p * (std::size_t(z) + 1)]);
+      piece_state.insert(piece_state.end(), &solver.plastic_state()[p * std::size_t(z)],
+                         &solver.plastic_state()[p * (std::size_t(z) + 1)]);
     }
-    shown_zone_values(mesh, x, piece_stress, piece_state, stress, state);
   }
-  else if (mesh.quadratic())
+  const std::vector<double>& zone_stress = zones ? piece_stress : solver.stress();
+  const std::vector<unsigned char>& zone_state = zones ? piece_state : solver.plastic_state();
+  if (mesh.quadratic())
   {
-    stress = tet10_subcell_values(solver.stress(), 6);
-    state = tet10_subcell_flags(solver.plastic_state());
+    stress = tet10_subcell_values(zone_stress, 6);
+    state = tet10_subcell_flags(zone_state);
   }
   else
-    shown_zone_values(mesh, x, solver.stress(), solver.plastic_state(), stress, state);
+    shown_zone_values(mesh, x, zone_stress, zone_state, stress, state);
   // After a divergence the stresses may hold the non-finite values found:
   // those are written as 0, so that the frame keeps the fields of the others.
   if (!with_stress)
@@ -210,8 +215,8 @@ void print_zone_estimate(const Scene& scene, const BlockModel& model)
 /// it.
 void print_nodal_mixed(const DeformableSolver& solver)
 {
-  if (const unsigned int mixed = solver.nodal_mixed_zones(); mixed > 0)
-    std::printf("Nodal mixed:  %u of %u zones (eqs. 68-76)\n", mixed, solver.mesh().n_zones());
+  if (const auto [mixed, all] = solver.whole_nodal_mixed_zones(); mixed > 0)
+    std::printf("Nodal mixed:  %lu of %lu zones (eqs. 68-76)\n", mixed, all);
 }
 
 /// The summary's lines on the history blocks: which block each is (so that

@@ -176,6 +176,10 @@ void list_by_key(const std::vector<unsigned int>& key, unsigned int n_keys,
 struct DeformableSolver::PetscState
 {
   dealii::PETScWrappers::MPI::Vector position, velocity, force, inertial_mass;
+  /// Split among ranks with nodal mixed discretization: the gridpoint
+  /// averages of eq. 69 (two numbers a gridpoint: the average and the
+  /// volume) and of eq. 75 (one), sent from their owners to the ghosts.
+  dealii::PETScWrappers::MPI::Vector strain_pairs, plastic_average;
 };
 
 DeformableSolver::DeformableSolver(const TetMesh& mesh, std::vector<ZoneMaterial> materials,
@@ -282,10 +286,6 @@ DeformableSolver::DeformableSolver(const TetMesh& mesh, std::vector<ZoneMaterial
   if (share != nullptr)
   {
     share_ = std::make_unique<GridpointShare>(*share);
-    if (nodal_mixed_ || mesh_.quadratic() || mesh_.n_hexes() > 0 ||
-        s_.damping == Damping::adaptive_global)
-      throw std::logic_error("DeformableSolver: only 4-node zones without global adaptive "
-                             "damping are split among ranks yet");
     n_moved_ = share_->n_owned;
   }
 
@@ -326,6 +326,8 @@ DeformableSolver::DeformableSolver(const TetMesh& mesh, std::vector<ZoneMaterial
       throw std::logic_error("DeformableSolver: one ghost index per ghost gridpoint is needed");
     for (auto* v : {&petsc_->position, &petsc_->velocity, &petsc_->force, &petsc_->inertial_mass})
       v->reinit(owned, ghosts, share_->comm);
+    share_nodal_mixed();
+    nodal_mixed_ |= nmd_on_ranks_[0];
   }
   else // this rank's own (a collective on the world would wait for the other ranks)
     for (auto* v : {&petsc_->position, &petsc_->velocity, &petsc_->force, &petsc_->inertial_mass})
@@ -723,6 +725,22 @@ unsigned int DeformableSolver::nodal_mixed_zones() const
   return n;
 }
 
+std::array<unsigned long, 2> DeformableSolver::whole_nodal_mixed_zones() const
+{
+  if (!share_)
+    return {{nodal_mixed_zones(), mesh_.n_zones()}};
+  // Each zone once, by the rank that counts it.
+  std::array<unsigned long, 2> n{{0, 0}};
+  for (unsigned int z = 0; z < mesh_.n_zones(); ++z)
+    if (share_->counts(mesh_.zone_gridpoint[z][0]))
+    {
+      n[0] += materials_[material_of_zone_[z]].nodal_mixed ? 1 : 0;
+      ++n[1];
+    }
+  MPI_Allreduce(MPI_IN_PLACE, n.data(), 2, MPI_UNSIGNED_LONG, MPI_SUM, share_->comm);
+  return n;
+}
+
 void DeformableSolver::set_nodal_mixed_ring_limit(unsigned int batches)
 {
   nmd_ring_limit_ = batches;
@@ -981,7 +999,12 @@ void DeformableSolver::zone_forces(const double* x, const double* v, double* f, 
         {
           gauss_volume_.resize(4 * n);
           for (unsigned int k = 0; k < n; ++k)
+          {
             tet10_gauss_volumes(mesh_, first + k, x, &gauss_volume_[4 * k]);
+            // Split among ranks: the zones this rank counts alone.
+            if (share_ && !share_->counts(mesh_.zone_gridpoint[first + k][0]))
+              std::fill_n(&gauss_volume_[4 * k], 4, 0.0);
+          }
           plastic_stress_work_ +=
               0.5 * stress_power(4 * n, batch.strain_increment, batch.stress, gauss_volume_.data());
         }
@@ -1155,7 +1178,9 @@ void DeformableSolver::plan_nodal_mixed()
   for (unsigned int b = 0; b < nb; ++b)
   {
     NodalMixedBatch& batch = nmd_batches_[b];
-    batch.kept = batch.ready_after - b + 1 <= nmd_ring_limit_;
+    // Split among ranks, every sums stage comes first (the ghosts' averages
+    // arrive between the stages): none kept.
+    batch.kept = !share_ && batch.ready_after - b + 1 <= nmd_ring_limit_;
     if (batch.kept)
     {
       slots = std::max(slots, batch.ready_after - b + 1);
@@ -1196,7 +1221,7 @@ void DeformableSolver::nodal_mixed_zone_forces(const double* x, const double* v,
   // do not depend on the distance between the two stages, nor on the mode.
   const unsigned int ng = mesh_.n_gridpoints();
   const bool viscous = !damping_force_.empty() && strain_dt > 0.0; // Rayleigh beta
-  bool plastic_pass = false;
+  bool plastic_pass = nmd_on_ranks_[1]; // on ranks: whether any rank's may yield
   for (const ZoneMaterial& m : materials_)
     plastic_pass |= m.nodal_mixed && m.model != ZoneModel::elastic;
   batch_volumetric_.resize(zone_batch + Tet4Scratch::max_lanes);
@@ -1232,7 +1257,11 @@ void DeformableSolver::nodal_mixed_zone_forces(const double* x, const double* v,
   // may, but none did at the last step, they are taken there all the same
   // and taken again, all of them in the model order, only if one did yield
   // after all (the sums are the same either way).
-  const bool forces_now = !plastic_pass || !last_step_yielded_;
+  // Split among ranks, with a mixed zone that may yield, the forces wait
+  // for the force stage: a ghost's plastic average comes from its owner
+  // after every model stage.
+  const bool split = share_ != nullptr;
+  const bool forces_now = !plastic_pass || (!split && !last_step_yielded_);
   if (plastic_pass)
   {
     plastic_average_.assign(ng, 0.0);
@@ -1260,7 +1289,10 @@ void DeformableSolver::nodal_mixed_zone_forces(const double* x, const double* v,
         stress_[6 * z + c] += shift;
       // Its share of the stress work, V shift tr(d eps) / 2: the zone's
       // volumetric increment is the mean of its gridpoints' (eq. 71).
-      const double volume = tet_volume(x, mesh_.zone_gridpoint[z]);
+      // Split among ranks, each zone's work by the rank that counts it.
+      const double volume = split && !share_->counts(mesh_.zone_gridpoint[z][0])
+                                ? 0.0
+                                : tet_volume(x, mesh_.zone_gridpoint[z]);
       plastic_stress_work_ +=
           0.5 * volume * shift * 3.0 * corner_mean(mesh_, z, strain_sums_.data(), 2);
       // And of the work of its forces beyond it (replaced_strain_work).
@@ -1276,8 +1308,8 @@ void DeformableSolver::nodal_mixed_zone_forces(const double* x, const double* v,
   // sums stage), while its gridpoints are still in cache; a plastic
   // average is complete, and made an average, with the last model stage
   // around its gridpoint.
-  const bool force_stage_follows = !forces_now; // (only in a plastic pass)
-  unsigned int forced = 0;                      // places of the model order through the force stage
+  const bool force_stage_follows = !forces_now && !split; // (only in a plastic pass)
+  unsigned int forced = 0; // places of the model order through the force stage
 
   const auto model_stage = [&](unsigned int p)
   {
@@ -1309,15 +1341,25 @@ void DeformableSolver::nodal_mixed_zone_forces(const double* x, const double* v,
     // midpoint rule, as the stress work (elastic zones in one pass).
     const double* stress = stress_.data() + 6 * std::size_t(first);
     const bool elastic = mat.model == ZoneModel::elastic;
+    // Split among ranks, the work of the zones this rank counts alone.
+    const double* work_volume = scratch.volume.data();
+    if (split && own != nullptr)
+    {
+      nmd_work_volume_.resize(n);
+      for (unsigned int k = 0; k < n; ++k)
+        nmd_work_volume_[k] =
+            share_->counts(mesh_.zone_gridpoint[first + k][0]) ? scratch.volume[k] : 0.0;
+      work_volume = nmd_work_volume_.data();
+    }
     const double taken_before =
         own != nullptr && !elastic
-            ? replaced_strain_work(n, own, batch.strain_increment, stress, scratch.volume.data())
+            ? replaced_strain_work(n, own, batch.strain_increment, stress, work_volume)
             : 0.0;
     update_tet4_stresses(mat, batch, scratch.volume.data(), first);
     if (own != nullptr)
     {
       const double taken_after =
-          replaced_strain_work(n, own, batch.strain_increment, stress, scratch.volume.data(),
+          replaced_strain_work(n, own, batch.strain_increment, stress, work_volume,
                                elastic ? 0.5 * mat.bulk_modulus : 0.0);
       nodal_mixed_work_ += elastic ? taken_after : 0.5 * (taken_before + taken_after);
     }
@@ -1361,6 +1403,8 @@ void DeformableSolver::nodal_mixed_zone_forces(const double* x, const double* v,
   if (ring == 0) // nothing kept: every sums stage first
     for (unsigned int j = 0; j < nb; ++j)
       sums_stage(j);
+  if (split) // the ghosts' averages, whole, from their owners
+    averages_to_ghosts(strain_sums_.data(), 2);
   for (unsigned int j = 0; j < nb; ++j)
   {
     if (ring > 0)
@@ -1372,11 +1416,27 @@ void DeformableSolver::nodal_mixed_zone_forces(const double* x, const double* v,
     return;
   const bool yielded = !yielded_zone_.empty();
   last_step_yielded_ = yielded;
+  if (split)
+  {
+    // Every rank: the plastic averages, the ghosts' from their owners, then
+    // every force stage (the model stages took no forces but viscous ones).
+    divide_by_pair_volume(plastic_gridpoint_.data(),
+                          static_cast<unsigned int>(plastic_gridpoint_.size()),
+                          plastic_average_.data(), strain_sums_.data());
+    averages_to_ghosts(plastic_average_.data(), 1);
+    for (unsigned int p = 0; p < nb; ++p)
+      force_stage(model_order_[p]);
+    return;
+  }
   if (force_stage_follows || !yielded)
     return; // forces done
   // A zone yielded where none did at the last step: the forces taken in
-  // the model stage are wrong for it, so all of them again, in order.
+  // the model stage are wrong for it, so all of them again, in order; the
+  // viscous forces of Rayleigh damping, kept apart, go back in.
   external_forces(x, f);
+  if (viscous)
+    for (std::size_t i = 0; i < damping_force_.size(); ++i)
+      f[i] += damping_force_[i];
   divide_by_pair_volume(plastic_gridpoint_.data(),
                         static_cast<unsigned int>(plastic_gridpoint_.size()),
                         plastic_average_.data(), strain_sums_.data());
@@ -1721,8 +1781,9 @@ void DeformableSolver::move()
   move_gridpoints();
   if (share_)
     refresh_ghosts();
-  if ((step_ + 1) % Damper::servo_period == 0)
-    damper_.adjust();
+  if ((step_ + 1) % Damper::servo_period == 0) // on ranks: the whole model's powers
+    damper_.adjust(share_ ? reductions_over(share_->comm).sums
+                          : std::function<void(std::vector<ExactSum>&)>());
   time_ += dt_;
   ++step_;
   seconds_gridpoints_ +=
@@ -1749,6 +1810,54 @@ DeformableSolver::View::~View()
   restore_local_array(static_cast<const Vec&>(solver_.petsc_->position), forms_->x, x);
   restore_local_array(static_cast<const Vec&>(solver_.petsc_->velocity), forms_->v, v);
   restore_local_array(static_cast<const Vec&>(solver_.petsc_->force), forms_->f, f);
+}
+
+void DeformableSolver::share_nodal_mixed()
+{
+  if (!share_)
+    return;
+  // Whether any rank has a material of nodal mixed discretization, and one
+  // that may yield: each rank has the materials of the zones it holds, and
+  // every rank must take part in the exchanges of the averages alike.
+  int any[2] = {nmd_on_ranks_[0], nmd_on_ranks_[1]};
+  for (const ZoneMaterial& m : materials_)
+  {
+    any[0] |= m.nodal_mixed;
+    any[1] |= m.nodal_mixed && m.model != ZoneModel::elastic;
+  }
+  MPI_Allreduce(MPI_IN_PLACE, any, 2, MPI_INT, MPI_LOR, share_->comm);
+  nmd_on_ranks_ = {{any[0] != 0, any[1] != 0}};
+  if (!nmd_on_ranks_[0] || petsc_->strain_pairs.size() > 0)
+    return;
+  // The layout of the position vector, with k numbers a gridpoint.
+  const dealii::IndexSet& owned3 = petsc_->position.locally_owned_elements();
+  const std::size_t all = owned3.size() / 3,
+                    before = owned3.n_elements() > 0 ? *owned3.begin() / 3 : 0;
+  for (const unsigned int k : {2u, 1u})
+  {
+    dealii::IndexSet owned(k * all), ghosts(k * all);
+    owned.add_range(k * before, k * (before + n_moved_));
+    for (unsigned int i : share_->ghost_index)
+      ghosts.add_range(k * std::size_t(i), k * std::size_t(i) + k);
+    (k == 2 ? petsc_->strain_pairs : petsc_->plastic_average).reinit(owned, ghosts, share_->comm);
+  }
+}
+
+void DeformableSolver::averages_to_ghosts(double* values, unsigned int k)
+{
+  // The owners' numbers (complete: an owned gridpoint has all its zones
+  // here) over the ghosts' (sums of the zones held here only).
+  dealii::PETScWrappers::MPI::Vector& vec = k == 2 ? petsc_->strain_pairs : petsc_->plastic_average;
+  const std::size_t owned = std::size_t(k) * n_moved_, held = std::size_t(k) * mesh_.n_gridpoints();
+  {
+    LocalArray a(vec);
+    std::copy(values, values + owned, a.data());
+  }
+  const Vec& raw = static_cast<const Vec&>(vec);
+  VecGhostUpdateBegin(raw, INSERT_VALUES, SCATTER_FORWARD);
+  VecGhostUpdateEnd(raw, INSERT_VALUES, SCATTER_FORWARD);
+  LocalArray a(vec);
+  std::copy(a.data() + owned, a.data() + held, values + owned);
 }
 
 void DeformableSolver::refresh_ghosts()
@@ -1962,6 +2071,7 @@ void DeformableSolver::materials_changed()
   nodal_mixed_ = false;
   for (unsigned int z = 0; z < nz; ++z)
     nodal_mixed_ |= materials_[material_of_zone_[z]].nodal_mixed;
+  nodal_mixed_ |= nmd_on_ranks_[0]; // every rank takes part in the exchanges
   if (nodal_mixed_)
     plan_nodal_mixed();
 }
@@ -1980,6 +2090,7 @@ void DeformableSolver::change_material(const std::vector<char>& zones, const Zon
   for (unsigned int z = 0; z < mesh_.n_zones(); ++z)
     if (zones[z] && !zone_removed(z))
       material_of_zone_[z] = index;
+  share_nodal_mixed(); // on ranks, a collective call (as this one is)
   materials_changed();
   if (joint_stiffness_.empty() && s_.time_step <= 0.0)
   {

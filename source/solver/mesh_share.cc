@@ -30,8 +30,6 @@ MeshShare share_mesh(const TetMesh& whole, const std::vector<unsigned int>& owne
                      unsigned int rank, unsigned int ranks, MPI_Comm comm,
                      const std::vector<char>* also_ghosts)
 {
-  if (whole.quadratic() || whole.n_hexes() > 0)
-    throw std::logic_error("share_mesh: 4-node zones only");
   const unsigned int ng = whole.n_gridpoints(), nz = whole.n_zones();
   // Numbers in the whole model's vectors: rank by rank, each rank's
   // gridpoints in the mesh's order.
@@ -45,14 +43,36 @@ MeshShare share_mesh(const TetMesh& whole, const std::vector<unsigned int>& owne
   for (unsigned int g = 0; g < ng; ++g)
     number[g] = offset[owner[g]] + count[owner[g]]++;
 
+  // A zone is held when one of its nodes is owned (a 10-node zone's edge
+  // midpoints count); a hexahedral zone's ten tetrahedra go together, since
+  // its mixed discretization averages over them (eqs. 64-67).
+  const bool quadratic = whole.quadratic();
   std::vector<char> held_zone(nz, 0), held_gridpoint(ng, 0);
   for (unsigned int z = 0; z < nz; ++z)
+  {
     for (unsigned int g : whole.zone_gridpoint[z])
       held_zone[z] |= owner[g] == rank;
+    if (quadratic)
+      for (unsigned int g : whole.zone_edge_gridpoint[z])
+        held_zone[z] |= owner[g] == rank;
+  }
+  for (unsigned int h = 0; h < whole.n_hexes(); ++h)
+  {
+    char held = 0;
+    for (unsigned int g : whole.hex_gridpoint[h])
+      held |= owner[g] == rank;
+    for (unsigned int k = 0; k < TetMesh::tets_per_hex; ++k)
+      held_zone[whole.hex_first_zone[h] + k] = held;
+  }
   for (unsigned int z = 0; z < nz; ++z)
     if (held_zone[z])
+    {
       for (unsigned int g : whole.zone_gridpoint[z])
         held_gridpoint[g] = 1;
+      if (quadratic)
+        for (unsigned int g : whole.zone_edge_gridpoint[z])
+          held_gridpoint[g] = 1;
+    }
   if (also_ghosts != nullptr)
     for (unsigned int g = 0; g < ng; ++g)
       held_gridpoint[g] |= (*also_ghosts)[g];
@@ -89,11 +109,38 @@ MeshShare share_mesh(const TetMesh& whole, const std::vector<unsigned int>& owne
       s.mesh.zone_gridpoint.push_back(corners);
       s.mesh.zone_block.push_back(whole.zone_block[z]);
       s.zone.push_back(z);
+      if (quadratic)
+      {
+        std::array<unsigned int, 6> edges;
+        for (int k = 0; k < 6; ++k)
+          edges[k] = static_cast<unsigned int>(local[whole.zone_edge_gridpoint[z][k]]);
+        s.mesh.zone_edge_gridpoint.push_back(edges);
+      }
     }
   std::vector<int> local_zone(nz, -1);
   for (unsigned int z = 0, k = 0; z < nz; ++z)
     if (held_zone[z])
       local_zone[z] = static_cast<int>(k++);
+  for (unsigned int h = 0; h < whole.n_hexes(); ++h)
+    if (held_zone[whole.hex_first_zone[h]])
+    {
+      std::array<unsigned int, 8> corners;
+      for (int k = 0; k < 8; ++k)
+        corners[k] = static_cast<unsigned int>(local[whole.hex_gridpoint[h][k]]);
+      s.mesh.hex_gridpoint.push_back(corners);
+      s.mesh.hex_first_zone.push_back(
+          static_cast<unsigned int>(local_zone[whole.hex_first_zone[h]]));
+    }
+  // The second overlay's boundary triangles (no zone named): those with an
+  // owned corner, whose hexahedron is then held, and so all three corners.
+  for (const auto& face : whole.second_overlay_face_gridpoint)
+    if (owner[face[0]] == rank || owner[face[1]] == rank || owner[face[2]] == rank)
+    {
+      std::array<unsigned int, 3> corners;
+      for (int k = 0; k < 3; ++k)
+        corners[k] = static_cast<unsigned int>(local[face[k]]);
+      s.mesh.second_overlay_face_gridpoint.push_back(corners);
+    }
   for (unsigned int f = 0; f < whole.n_faces(); ++f)
     if (held_zone[whole.face_zone[f]])
     {

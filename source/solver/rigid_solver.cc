@@ -1224,7 +1224,7 @@ void RigidSolver::step()
     }
   }
   if ((step_ + 1) % Damper::servo_period == 0)
-    damper_.adjust();
+    damper_.adjust(ranks_.sums); // on ranks: the whole model's powers
   timing_.seconds_motion += seconds_since(t0);
   time_ += dt_;
   ++step_;

@@ -1,7 +1,11 @@
 #pragma once
 
+#include <talus/base/exact_sum.h>
+
 #include <algorithm>
 #include <cmath>
+#include <functional>
+#include <vector>
 
 namespace talus
 {
@@ -58,8 +62,8 @@ public:
       v = (v * (1.0 - 0.5 * c_ * h) + f * h / m) / (1.0 + 0.5 * c_ * h);
       const double v_mid = 0.5 * (v_old + v);
       fd = c_ * m * v_mid;
-      damping_power_ += fd * v_mid;
-      force_power_ += std::abs(f * v_mid);
+      damping_power_.add(fd * v_mid);
+      force_power_.add(std::abs(f * v_mid));
       return fd;
     }
     case Damping::none:
@@ -81,18 +85,30 @@ public:
   /// power of the unbalanced forces (our measure of the rate of change of
   /// kinetic energy: the sum of |F v| over all components). Call every few
   /// steps; c moves by at most 25 % per call, so it follows the system
-  /// without hunting, and c dt stays in [1e-6, 1].
-  void adjust()
+  /// without hunting, and c dt stays in [1e-6, 1]. The powers are exact
+  /// sums, so that a model split among ranks (issue 24), whose `sums` make
+  /// each rank's partial sums the whole model's (a collective call), sets
+  /// the servo to the same bits as one run.
+  void adjust(const std::function<void(std::vector<ExactSum>&)>& sums = {})
   {
     if (mode_ != Damping::adaptive_global)
       return;
-    if (force_power_ > 0.0)
+    if (sums)
     {
-      const double r = damping_power_ / force_power_;
+      std::vector<ExactSum> powers{damping_power_, force_power_};
+      sums(powers);
+      damping_power_ = powers[0];
+      force_power_ = powers[1];
+    }
+    const double damping_power = damping_power_.value(), force_power = force_power_.value();
+    if (force_power > 0.0)
+    {
+      const double r = damping_power / force_power;
       const double factor = r > 0.0 ? std::clamp(ratio_ / r, 0.8, 1.25) : 1.25;
       c_ = std::clamp(c_ * factor, 1e-6 / dt_, 1.0 / dt_);
     }
-    damping_power_ = force_power_ = 0.0;
+    damping_power_.clear();
+    force_power_.clear();
   }
 
   static constexpr unsigned int servo_period = 10; ///< steps between adjust() calls
@@ -106,9 +122,9 @@ private:
   static double sign(double x) { return (x > 0.0) - (x < 0.0); }
   Damping mode_;
   double alpha_, ratio_, dt_;
-  double c_;                                       ///< 1/s
-  double mass_damping_ = 0.0;                      ///< Rayleigh alpha, 1/s (dynamics)
-  double damping_power_ = 0.0, force_power_ = 0.0; ///< W, since the last adjust()
+  double c_;                             ///< 1/s
+  double mass_damping_ = 0.0;            ///< Rayleigh alpha, 1/s (dynamics)
+  ExactSum damping_power_, force_power_; ///< W, since the last adjust()
 };
 
 /// The factor by which the stiffness-proportional part of Rayleigh damping

@@ -221,6 +221,9 @@ public:
   }
   /// The zones whose material has nodal mixed discretization.
   unsigned int nodal_mixed_zones() const;
+  /// Zones with nodal mixed discretization and all zones, of the whole
+  /// model (split among ranks: summed over them, a collective call).
+  std::array<unsigned long, 2> whole_nodal_mixed_zones() const;
 
   /// Stages. Removes zones (`gone[z]`, an excavation): they take a null
   /// material (no stiffness, no mass, no stress) and their gridpoints lose
@@ -297,6 +300,14 @@ private:
   /// The batches of nodal_mixed_zone_forces and how far its strain stage
   /// must run ahead of each (set once, from the mesh and the materials).
   void plan_nodal_mixed();
+  /// Split among ranks (collective calls): whether any rank has a material
+  /// of nodal mixed discretization, and one that may yield
+  /// (nmd_on_ranks_), with the vectors that carry the averages to the
+  /// ghosts, made once; and that carriage, for `k` numbers a gridpoint (2:
+  /// eq. 69's pairs, 1: eq. 75's plastic pressures).
+  void share_nodal_mixed();
+  void averages_to_ghosts(double* values, unsigned int k);
+  std::array<bool, 2> nmd_on_ranks_{{false, false}};
   void move_gridpoints();
   /// The model's view of 4-node zones [first, first + n): their strain
   /// increments in `scratch`, their stresses and states.
@@ -424,6 +435,7 @@ private:
   /// volume-weighted sum of the volumetric strain increments around it
   /// (then their average), and the zone volumes around it (m^3).
   std::vector<double> strain_sums_;
+  std::vector<double> nmd_work_volume_;  ///< split among ranks: counted zones' volumes, m^3
   std::vector<double> plastic_average_;  ///< per gridpoint: plastic pressure, Pa
   std::vector<double> batch_volumetric_; ///< per zone of a batch: e, or plastic e^p
   std::vector<double> own_volumetric_;   ///< per zone of a batch: its own e (energy account)

@@ -11,7 +11,7 @@
 namespace talus
 {
 
-/// A rank's part of a mesh of 4-node zones split among MPI ranks by its
+/// A rank's part of a zone mesh (4-node, 10-node or hexahedral zones) split among MPI ranks by its
 /// gridpoints (issue 24): the zones with a gridpoint the rank owns, in the
 /// whole mesh's zone order (so that an owned gridpoint sums its zones'
 /// forces as in one run), on the rank's own gridpoints in the mesh's order
@@ -37,7 +37,8 @@ std::vector<unsigned int> gridpoint_owners(const TetMesh& mesh, const Box& domai
 /// `also_ghosts` (per gridpoint of `whole`, optional): gridpoints held as
 /// ghosts besides those of the zones held, without their zones (the
 /// surfaces of other ranks' deformable blocks near this rank's blocks).
-/// 4-node zones only (no 10-node or hexahedral zones).
+/// A zone is held when one of its nodes is owned; a hexahedral zone's ten
+/// tetrahedra are held together, when one of its eight corners is owned.
 MeshShare share_mesh(const TetMesh& whole, const std::vector<unsigned int>& owner,
                      unsigned int rank, unsigned int ranks, MPI_Comm comm,
                      const std::vector<char>* also_ghosts = nullptr);
