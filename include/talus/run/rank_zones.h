@@ -70,7 +70,7 @@ struct RankZones
 /// deformable ghosts, refreshed from their owners after each motion, on
 /// which the contacts act (GridpointShare). `history_points`: the scene's,
 /// whose reporting ranks `kept` receives with the rest.
-/// 4-node zones only (check_zones_on_ranks). Collective on the share's ranks.
+/// Collective on the share's ranks.
 BlockSystem build_block_system_on_ranks(const Scene& scene, const BlockModel& whole,
                                         BlockModel& local, const WholeZones& zones,
                                         const RankShare& share, RankZones& kept);
@@ -85,8 +85,7 @@ void add_point_values_on_ranks(std::vector<double>& row, const DeformableSolver&
                                const std::vector<int>& point_zone, MPI_Comm comm);
 
 /// Refuses, with one message naming the entry, what zones cannot yet do
-/// split among MPI ranks (`on`: what is split, for the message): 10-node,
-/// hexahedral and nodal mixed zones, global adaptive damping, water.
+/// split among MPI ranks (`on`: what is split, for the message): water.
 void check_zones_on_ranks(const Scene& scene, const std::string& on);
 
 } // namespace talus

@@ -23,8 +23,8 @@ namespace talus
 /// Sums over the whole mesh (the unbalanced ratio, the energy account, a
 /// support's reaction) add each rank's owned gridpoints and counted zones
 /// and are reduced; their order of addition is not the one of one run, so
-/// they match it to rounding. Not split yet (DeformableSolver refuses):
-/// nodal mixed, 10-node and hexahedral zones and global adaptive damping.
+/// they match it to rounding. Nodal mixed discretization carries the
+/// owners' gridpoint averages to the ghosts (DeformableSolver).
 struct GridpointShare
 {
   MPI_Comm comm = MPI_COMM_WORLD;
