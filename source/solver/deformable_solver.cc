@@ -1941,7 +1941,8 @@ void DeformableSolver::set_inertial_masses()
     added_mass_.added = sums[1];
     added_mass_.total = sums[2];
   }
-  damper_ = damper_for(s_, dt_);
+  // (The damper was made for the saved step before its state was read:
+  // made again here, it lost the servo of global adaptive damping.)
   if (!s_.dynamic && s_.damping == Damping::combined)
     last_force_.assign(3 * ng, 0.0);
 }
