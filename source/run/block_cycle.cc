@@ -409,7 +409,7 @@ std::vector<double> BlockCycle::history_row()
     share_->sum(shares);
     std::copy(shares.begin(), shares.end(), row.begin() + first);
     if (system_.zones)
-      add_point_values_on_ranks(row, *system_.zones, rank_zones_.point_gridpoint,
+      add_point_values_on_ranks(row, *system_.zones, *points_, rank_zones_.point_gridpoint,
                                 rank_zones_.point_zone, share_->comm());
   }
   else if (system_.zones)
@@ -719,6 +719,12 @@ void BlockCycle::print_end()
     Vec3 force = Vec3::Zero();
     for (std::size_t g = 0; g < built_centroid_.size(); ++g)
       force += Vec3(by_global[3 * g], by_global[3 * g + 1], by_global[3 * g + 2]);
+    if (system_.zones) // the zones' water after the blocks', as one run adds them
+    {
+      const auto [faces, zone_force] = system_.zones->whole_water();
+      by_global.back() += double(faces);
+      force += zone_force;
+    }
     std::printf(
         "%s\n",
         water_summary(solver.water(), static_cast<unsigned int>(by_global.back()), force).c_str());

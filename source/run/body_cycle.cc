@@ -148,11 +148,6 @@ BodyCycle::BodyCycle(Scene& scene, BlockModel& model, const std::string& prefix)
       moving_until_ = std::max(moving_until_, c.velocity_until);
 }
 
-void BodyCycle::check_runs_on_ranks(const Scene& scene)
-{
-  check_zones_on_ranks(scene, "a deformable body split among MPI ranks");
-}
-
 void BodyCycle::split_among_ranks(const TetMesh& whole)
 {
   // Owners from a partition of the body's box into cells, balanced by the
@@ -247,7 +242,8 @@ void BodyCycle::add_point_values(std::vector<double>& row) const
   if (!split_)
     points_->add_values(row, *solver_);
   else
-    add_point_values_on_ranks(row, *solver_, point_gridpoint_, point_zone_, MPI_COMM_WORLD);
+    add_point_values_on_ranks(row, *solver_, *points_, point_gridpoint_, point_zone_,
+                              MPI_COMM_WORLD);
 }
 
 Vec3 BodyCycle::zone_centroid(unsigned int z) const
@@ -446,9 +442,11 @@ void BodyCycle::print_end()
   const DeformableSolver& solver = *solver_;
   std::printf("Steps:        %lu (time %.6g s)\n", solver.steps_done(), solver.time());
   if (solver.water().active())
-    std::printf(
-        "%s\n",
-        water_summary(solver.water(), solver.water_faces_below(), solver.water_force()).c_str());
+  {
+    const auto [faces, force] = solver.whole_water(); // on ranks, collective
+    std::printf("%s\n",
+                water_summary(solver.water(), static_cast<unsigned int>(faces), force).c_str());
+  }
   std::printf("Unbalanced force ratio: %.3g\n", solver.unbalanced_ratio());
   std::printf("Largest displacement: %.6g m\n", largest_gridpoint_displacement(solver));
   {

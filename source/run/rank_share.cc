@@ -64,8 +64,6 @@ void check_runs_on_ranks(const Scene& scene, int ranks)
 {
   (void)ranks;
   const std::string allowed = "run it without mpirun (one rank), or leave this out";
-  // What zones cannot do on ranks: refused once the blocks are built
-  // (check_runs_on_ranks with the model).
   // 'Solver / Mode = factor of safety' runs its trials on ranks
   // (run_factor_of_safety); a stage's would need the stage's state of the
   // whole model on every rank.
@@ -77,13 +75,6 @@ void check_runs_on_ranks(const Scene& scene, int ranks)
                         "('Solver / Mode = factor of safety' runs on ranks)",
                         allowed);
   }
-}
-
-void check_runs_on_ranks(const Scene& scene, const BlockModel& model, int ranks)
-{
-  (void)ranks;
-  if (!scene.deformable.groups.empty() && model.n_blocks() != 1)
-    check_zones_on_ranks(scene, "deformable blocks among others on MPI ranks");
 }
 
 RankShare::RankShare(const BlockModel& model, double reach, MPI_Comm comm, const RankBlocks* saved,

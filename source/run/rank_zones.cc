@@ -28,6 +28,8 @@ std::unique_ptr<WholeZones> mesh_zones_on_ranks(const Scene& scene, BlockModel& 
   print_zone_estimate(scene, whole);
   auto zones = std::make_unique<WholeZones>();
   zones->mesh = mesh_deformable_blocks(scene, whole, deformable, zones->report);
+  if (has_joint_pressures(scene)) // on the blocks' own faces, as one run finds them
+    zones->face_origins = zone_face_origins(whole, zones->mesh);
   zones->vertex_gridpoint = use_zone_surfaces(whole, zones->mesh);
   zones->zones_of_block.assign(whole.n_blocks(), 0.0);
   for (unsigned int b : zones->mesh.zone_block)
@@ -177,6 +179,17 @@ BlockSystem build_block_system_on_ranks(const Scene& scene, const BlockModel& wh
       s.mesh, std::move(m.materials), std::move(m.of_zone), scene.solver,
       scene.gridpoint_conditions, scene.face_pressures,
       scene.has_initial_stress ? &scene.initial_stress : nullptr, &part.share);
+  if (!zones.face_origins.empty())
+  {
+    // The origins of the faces this rank holds.
+    const std::vector<int>& all = zones.face_origins;
+    std::vector<int> origins;
+    for (unsigned int f : part.face)
+      origins.push_back(all[f]);
+    for (unsigned int f : part.second_overlay_face)
+      origins.push_back(all[w.n_faces() + f]);
+    s.zones->set_face_origins(std::move(origins));
+  }
   SolverSettings settings = scene.solver;
   if (!scene.rock_materials.empty())
     for (unsigned int b = 0; b < local.n_blocks(); ++b)
@@ -191,7 +204,7 @@ BlockSystem build_block_system_on_ranks(const Scene& scene, const BlockModel& wh
 }
 
 void add_point_values_on_ranks(std::vector<double>& row, const DeformableSolver& zones,
-                               const std::vector<int>& point_gridpoint,
+                               const PointHistory& points, const std::vector<int>& point_gridpoint,
                                const std::vector<int>& point_zone, MPI_Comm comm)
 {
   // Every rank fills what it reports and -infinity elsewhere: the maximum
@@ -199,6 +212,7 @@ void add_point_values_on_ranks(std::vector<double>& row, const DeformableSolver&
   // zero included).
   const double none = -std::numeric_limits<double>::infinity();
   const std::vector<double> u = zones.displacements(), v = zones.velocities();
+  const std::vector<double> x = points.water ? zones.positions() : std::vector<double>();
   std::vector<double> values;
   for (std::size_t k = 0; k < point_gridpoint.size(); ++k)
   {
@@ -215,17 +229,15 @@ void add_point_values_on_ranks(std::vector<double>& row, const DeformableSolver&
         sum += zones.stress()[6 * (p * std::size_t(z) + q) + c];
       values.push_back(z >= 0 ? sum / p : none);
     }
+    if (points.water)
+      values.push_back(g >= 0 ? pore_pressure(zones.water(), points.gravity,
+                                              Vec3(x[3 * std::size_t(g)], x[3 * std::size_t(g) + 1],
+                                                   x[3 * std::size_t(g) + 2]))
+                              : none);
   }
   MPI_Allreduce(MPI_IN_PLACE, values.data(), static_cast<int>(values.size()), MPI_DOUBLE, MPI_MAX,
                 comm);
   row.insert(row.end(), values.begin(), values.end());
-}
-
-void check_zones_on_ranks(const Scene& scene, const std::string& on)
-{
-  if (has_water(scene))
-    throw scene_error(scene, "Water", "", "water: not yet on " + on,
-                      "no water on deformable blocks, or run without mpirun");
 }
 
 } // namespace talus

@@ -247,12 +247,6 @@ int Simulation::run()
   agree_on_input_errors(
       [&]()
       {
-        if (world_ranks() > 1)
-        {
-          check_runs_on_ranks(scene_, model_, world_ranks());
-          if (body_alone(scene_, model_))
-            BodyCycle::check_runs_on_ranks(scene_);
-        }
         if (body_alone(scene_, model_))
           cycle = std::make_unique<BodyCycle>(scene_, model_, prefix_);
         else

@@ -634,6 +634,7 @@ void DeformableSolver::set_water(const WaterSpec& water)
   select_water_faces();
   water_faces_below_ = 0;
   water_force_ = Vec3::Zero();
+  water_force_sum_.assign(3, ExactSum());
   if (pressed_faces_.empty() && water_faces_.empty())
     pressure_force_.clear();
   else
@@ -723,6 +724,18 @@ unsigned int DeformableSolver::nodal_mixed_zones() const
     if (materials_[material_of_zone_[batch_start_[r]]].nodal_mixed)
       n += batch_start_[r + 1] - batch_start_[r];
   return n;
+}
+
+std::pair<unsigned long, Vec3> DeformableSolver::whole_water() const
+{
+  if (!share_)
+    return {water_faces_below_, water_force_};
+  std::vector<ExactSum> sums = water_force_sum_;
+  sums.resize(4);
+  sums[3].add(double(water_faces_below_));
+  reductions_over(share_->comm).sums(sums);
+  return {static_cast<unsigned long>(sums[3].value()),
+          Vec3(sums[0].value(), sums[1].value(), sums[2].value())};
 }
 
 std::array<unsigned long, 2> DeformableSolver::whole_nodal_mixed_zones() const
@@ -915,7 +928,11 @@ unsigned int DeformableSolver::water_shares(const double* x, Add&& add) const
     }
     if (!(w.force > 0.0))
       continue;
-    ++below;
+    // Split among ranks, each face counted once over them (by the owner of
+    // its first gridpoint, which holds it); every held face loads its
+    // gridpoints.
+    const bool counted = !share_ || t[0] < n_moved_;
+    below += counted;
     // A corner sub-triangle of a 10-node zone's face gives its vertex's
     // share to its two midpoints, half each: the consistent load of a
     // uniform pressure on a 6-node triangle (none at its vertices), as
@@ -929,18 +946,20 @@ unsigned int DeformableSolver::water_shares(const double* x, Add&& add) const
     }
     const Vec3 n = (b - a).cross(c - a).normalized(); // outward
     for (int j = 0; j < 3; ++j)
-      add(t[j], Vec3(-water_weight_[k] * w.corner[j] * n));
+      add(t[j], Vec3(-water_weight_[k] * w.corner[j] * n), counted);
   }
   return below;
 }
 
 void DeformableSolver::add_water(const double* x, double* f)
 {
-  water_force_.setZero();
+  water_force_sum_.assign(3, ExactSum());
   water_faces_below_ = water_shares(x,
-                                    [&](unsigned int g, const Vec3& share)
+                                    [&](unsigned int g, const Vec3& share, bool counted)
                                     {
-                                      water_force_ += share;
+                                      if (counted)
+                                        for (int d = 0; d < 3; ++d)
+                                          water_force_sum_[d].add(share[d]);
                                       for (int d = 0; d < 3; ++d)
                                       {
                                         f[3 * g + d] += share[d];
@@ -948,6 +967,8 @@ void DeformableSolver::add_water(const double* x, double* f)
                                         pressure_force_[3 * g + d] += share[d];
                                       }
                                     });
+  water_force_ =
+      Vec3(water_force_sum_[0].value(), water_force_sum_[1].value(), water_force_sum_[2].value());
 }
 
 void DeformableSolver::zone_forces()
@@ -2240,7 +2261,7 @@ ImplicitElasticProblem DeformableSolver::implicit_problem() const
         p.nodal_force[3 * pressed_faces_[k][a] + d] += face_share_[k][a] * load[d];
   }
   water_shares(mesh_.position.data(),
-               [&](unsigned int g, const Vec3& share)
+               [&](unsigned int g, const Vec3& share, bool)
                {
                  for (int d = 0; d < 3; ++d)
                    p.nodal_force[3 * g + d] += share[d];

@@ -133,14 +133,18 @@ MeshShare share_mesh(const TetMesh& whole, const std::vector<unsigned int>& owne
     }
   // The second overlay's boundary triangles (no zone named): those with an
   // owned corner, whose hexahedron is then held, and so all three corners.
-  for (const auto& face : whole.second_overlay_face_gridpoint)
+  for (unsigned int f = 0; f < whole.second_overlay_face_gridpoint.size(); ++f)
+  {
+    const auto& face = whole.second_overlay_face_gridpoint[f];
     if (owner[face[0]] == rank || owner[face[1]] == rank || owner[face[2]] == rank)
     {
       std::array<unsigned int, 3> corners;
       for (int k = 0; k < 3; ++k)
         corners[k] = static_cast<unsigned int>(local[face[k]]);
       s.mesh.second_overlay_face_gridpoint.push_back(corners);
+      s.second_overlay_face.push_back(f);
     }
+  }
   for (unsigned int f = 0; f < whole.n_faces(); ++f)
     if (held_zone[whole.face_zone[f]])
     {
@@ -149,6 +153,7 @@ MeshShare share_mesh(const TetMesh& whole, const std::vector<unsigned int>& owne
         corners[k] = static_cast<unsigned int>(local[whole.face_gridpoint[f][k]]);
       s.mesh.face_gridpoint.push_back(corners);
       s.mesh.face_zone.push_back(static_cast<unsigned int>(local_zone[whole.face_zone[f]]));
+      s.face.push_back(f);
     }
   return s;
 }

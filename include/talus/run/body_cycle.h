@@ -54,11 +54,6 @@ public:
   /// mesh file (then ordered and made quadratic as the scene asks).
   static TetMesh zones_of(const Scene& scene, const BlockModel& model, MeshReport& report);
 
-  /// Refuses, with one message naming the entry, what a body cannot yet
-  /// do split among ranks: 10-node, hexahedral and nodal mixed zones,
-  /// global adaptive damping, water.
-  static void check_runs_on_ranks(const Scene& scene);
-
 private:
   /// On ranks: this rank's share of `whole` as the mesh the solver runs,
   /// and what the whole body's numbers need (owners, the zones counted).

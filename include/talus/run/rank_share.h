@@ -38,10 +38,6 @@ void agree_on_input_errors(const std::function<void()>& build);
 /// yet run split among ranks: a stage's factor of safety ('Solver / Mode =
 /// factor of safety' runs on ranks: run_factor_of_safety).
 void check_runs_on_ranks(const Scene& scene, int ranks);
-/// The same, once the blocks are built: what zones cannot yet do on ranks
-/// (check_zones_on_ranks), for deformable blocks among other blocks (a
-/// deformable body alone: BodyCycle::check_runs_on_ranks).
-void check_runs_on_ranks(const Scene& scene, const BlockModel& model, int ranks);
 
 /// This rank's share of a model of rigid blocks split among the ranks of
 /// `comm` (issue 24): the blocks it owns, whose centroids lie in its region

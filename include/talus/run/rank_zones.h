@@ -15,6 +15,7 @@ namespace talus
 {
 
 class RankShare;
+struct PointHistory;
 
 /// The deformable blocks of a whole model with other blocks, meshed alike
 /// on every MPI rank (as one run meshes them) before the model is split
@@ -26,6 +27,10 @@ struct WholeZones
   /// Per vertex of the whole model (its deformable blocks' faces being
   /// their zones' surfaces): the gridpoint of `mesh` there, -1 on rigid blocks.
   std::vector<int> vertex_gridpoint;
+  /// What made each boundary face of `mesh`, then each second-overlay face
+  /// (zone_face_origins, on the blocks as built), when a joint has a water
+  /// pressure of its own; else empty.
+  std::vector<int> face_origins;
   /// Zones of each block of the whole model (0 for a rigid one): the work
   /// that the split among ranks balances.
   std::vector<double> zones_of_block;
@@ -75,17 +80,13 @@ BlockSystem build_block_system_on_ranks(const Scene& scene, const BlockModel& wh
                                         BlockModel& local, const WholeZones& zones,
                                         const RankShare& share, RankZones& kept);
 
-/// Appends to `row` the history points' values (PointHistory's columns,
-/// without water) of zones split among the ranks of `comm`: point k's
-/// displacement and velocity from the rank whose local gridpoint
+/// Appends to `row` the history points' values (the columns of `points`)
+/// of zones split among the ranks of `comm`: point k's displacement,
+/// velocity and pore pressure from the rank whose local gridpoint
 /// `point_gridpoint[k]` it is, its stress from the one whose local zone
 /// `point_zone[k]` it is (-1 elsewhere). Collective.
 void add_point_values_on_ranks(std::vector<double>& row, const DeformableSolver& zones,
-                               const std::vector<int>& point_gridpoint,
+                               const PointHistory& points, const std::vector<int>& point_gridpoint,
                                const std::vector<int>& point_zone, MPI_Comm comm);
-
-/// Refuses, with one message naming the entry, what zones cannot yet do
-/// split among MPI ranks (`on`: what is split, for the message): water.
-void check_zones_on_ranks(const Scene& scene, const std::string& on);
 
 } // namespace talus

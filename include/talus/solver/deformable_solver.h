@@ -148,6 +148,9 @@ public:
   unsigned int water_faces_below() const { return water_faces_below_; }
   /// The sum of the water forces on the gridpoints at the last step (N).
   const Vec3& water_force() const { return water_force_; }
+  /// The same two of the whole model: split among ranks, summed over them
+  /// (a collective call; each face counted by one rank).
+  std::pair<unsigned long, Vec3> whole_water() const;
 
   const TetMesh& mesh() const { return mesh_; }
   /// Copies of the gridpoint state (3 per gridpoint).
@@ -523,6 +526,9 @@ private:
   std::vector<int> water_face_origin_;
   unsigned int water_faces_below_ = 0;
   Vec3 water_force_ = Vec3::Zero();
+  /// Its components as exact sums of the counted faces' shares, so that
+  /// the ranks' partial sums add up to one run's, bit for bit.
+  std::vector<ExactSum> water_force_sum_;
   /// Calls add(gridpoint, force) with each corner's share of the water on
   /// the boundary faces at positions x (N); returns the faces below the
   /// surface.

@@ -24,6 +24,9 @@ struct MeshShare
   GridpointShare share;
   std::vector<unsigned int> gridpoint; ///< per local gridpoint: its number in the whole mesh
   std::vector<unsigned int> zone;      ///< per local zone: its number in the whole mesh
+  /// Per local boundary face, then second-overlay face: its number in the
+  /// whole mesh's list of the same kind.
+  std::vector<unsigned int> face, second_overlay_face;
 };
 
 /// The rank of each gridpoint of `mesh` among `ranks`: the region of a
