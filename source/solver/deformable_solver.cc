@@ -1962,8 +1962,7 @@ void DeformableSolver::set_inertial_masses()
     added_mass_.added = sums[1];
     added_mass_.total = sums[2];
   }
-  // (The damper was made for the saved step before its state was read:
-  // made again here, it lost the servo of global adaptive damping.)
+  damper_ = damper_for(s_, dt_);
   if (!s_.dynamic && s_.damping == Damping::combined)
     last_force_.assign(3 * ng, 0.0);
 }
