@@ -13,6 +13,7 @@
 #include <chrono>
 #include <cstdio>
 #include <limits>
+#include <optional>
 
 namespace talus
 {
@@ -254,8 +255,16 @@ void restore_changes(const Scene& scene, const BlockModel& model, const BlockMod
 void BlockCycle::restore_stage(const StageSpec& stage)
 {
   // The loads' state (forces, held velocities) is in the checkpoint; what
-  // the materials are is not.
+  // the materials are is not. The dampers' running state is the
+  // checkpoint's: a rock change remakes them for the new masses.
+  const Damper damper = system_.solver->damper();
+  std::optional<DeformableSolver::DampingState> zones;
+  if (system_.zones)
+    zones = system_.zones->damping_state();
   restore_changes(scene_, model_, built_model_.get(), system_, stage);
+  system_.solver->set_damper(damper);
+  if (zones)
+    system_.zones->set_damping_state(std::move(*zones));
 }
 
 int BlockCycle::factor_of_safety(const std::vector<StageSpec>& stages, unsigned int k)

@@ -423,11 +423,14 @@ int BodyCycle::factor_of_safety(const std::vector<StageSpec>&, unsigned int)
 
 void BodyCycle::restore_stage(const StageSpec& stage)
 {
+  // The checkpoint's damping state is the run's: the rock remakes the damper.
+  DeformableSolver::DampingState damping = solver_->damping_state();
   change_rock_materials(stage, false);
   if (stage.changes_water)
     solver_->set_water(stage.water);
   if (stage.changes_boundaries)
     solver_->set_boundaries(stage.boundaries.gridpoint_conditions, stage.boundaries.face_pressures);
+  solver_->set_damping_state(std::move(damping));
 }
 
 std::string BodyCycle::displacement_text() const

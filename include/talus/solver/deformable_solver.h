@@ -281,6 +281,21 @@ public:
   /// time and step.
   void save_state(CheckpointWriter& out) const;
   void load_state(CheckpointReader& in);
+  /// The damping's running state: the servo of global adaptive damping
+  /// (eq. 77) and combined damping's forces of the last step. A checkpoint
+  /// holds it; a restart keeps it across the stage changes it sets again
+  /// (a rock material remakes the damper for the zones' new masses).
+  struct DampingState
+  {
+    Damper damper;
+    std::vector<double> last_force;
+  };
+  DampingState damping_state() const { return {damper_, last_force_}; }
+  void set_damping_state(DampingState state)
+  {
+    damper_ = state.damper;
+    last_force_ = std::move(state.last_force);
+  }
 
 private:
   struct PetscState;

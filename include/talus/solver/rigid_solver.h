@@ -338,6 +338,11 @@ public:
   /// continues the run it came from.
   void save_state(CheckpointWriter& out) const;
   void load_state(CheckpointReader& in);
+  /// The damper with its running state (the servo of global adaptive
+  /// damping, eq. 77): a restart keeps it across the stage changes it sets
+  /// again, which remake it with the blocks' masses.
+  const Damper& damper() const { return damper_; }
+  void set_damper(const Damper& damper) { damper_ = damper; }
 
 private:
   /// Moves blocks, their state and contacts between ranks (block_migration.h).
