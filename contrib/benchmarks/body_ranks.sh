@@ -8,6 +8,11 @@
 # history rows every 100 steps), without the meshing and the set-up, which
 # every rank does whole. Prints zone-cycles per second and the speed-up.
 #
+# Then, when benchmark_core_ceiling is built beside talus (cmake --build
+# build --target benchmark_core_ceiling), it prints this machine's own
+# two-rank ceiling in the same run (core_ceiling.cc): arithmetic held in
+# cache, and memory streamed beyond the last-level cache.
+#
 # Usage: contrib/benchmarks/body_ranks.sh [talus executable] [edge length, m] [brick|cube]
 #   (defaults: build/talus, 0.1 m: 640,000 zones, brick; "cube": a 10 m
 #   cube instead, at 0.17 m the mesh of benchmark_zone_ranks 59)
@@ -84,3 +89,9 @@ awk -v z="$zones" -v n="$steps" -v a="$serial1" -v b="$serial2" -v c="$split1" -
   printf "2 ranks:   %.3f s, %.3g zone-cycles/s\n", d - c, two
   printf "speed-up:  %.2f\n", two / one
 }'
+ceiling="$(dirname "$talus")/contrib/benchmarks/benchmark_core_ceiling"
+if [ -x "$ceiling" ]; then
+  mpirun -np 2 "$ceiling" 10 | sed -n 's/^\(arithmetic\|memory\)/machine\x27s ceiling, \1/p'
+else
+  echo "(the machine's ceiling: build benchmark_core_ceiling beside $talus)"
+fi
