@@ -19,31 +19,40 @@ namespace talus
 
 namespace
 {
+/// Why the implicit check cannot be made for this scene (empty: it can).
+std::string implicit_check_refusal(const Scene& scene)
+{
+  if (scene.solver.dynamic)
+    return "the run is dynamic";
+  if (scene.deformable.material.model != ZoneModel::elastic)
+    return "the zones are not elastic";
+  if (scene.has_initial_stress)
+    return "the zones have an initial stress";
+  if (!scene.stages.empty())
+    return "the run has stages";
+  for (const GridpointCondition& c : scene.gridpoint_conditions)
+    if (c.velocity.norm() > 0.0 || c.velocity_gradient.norm() > 0.0)
+      return "a boundary moves at a velocity";
+  return "";
+}
+
 /// Solves the static elastic problem of the body implicitly, the explicit
-/// kernels' own discrete problem, and prints how far the explicit answer is
-/// from it: at the history points (or the gridpoint of largest
-/// displacement) and the largest difference anywhere.
-void implicit_check(const Scene& scene, DeformableSolver& solver)
+/// kernels' own discrete problem, and prints how far the explicit answer
+/// (`explicit_u`, or the solver's own) is from it: at the history points
+/// (or the gridpoint of largest displacement) and the largest difference
+/// anywhere.
+void implicit_check(const Scene& scene, DeformableSolver& solver,
+                    const std::vector<double>* explicit_u = nullptr)
 {
   const auto refuse = [](const std::string& why)
   { std::printf("Implicit check: not made (%s)\n", why.c_str()); };
-  if (scene.solver.dynamic)
-    return refuse("the run is dynamic");
-  if (scene.deformable.material.model != ZoneModel::elastic)
-    return refuse("the zones are not elastic");
-  if (scene.has_initial_stress)
-    return refuse("the zones have an initial stress");
-  if (!scene.stages.empty())
-    return refuse("the run has stages");
-  if (solver.share() != nullptr)
-    return refuse("the body is split among MPI ranks");
-  for (const GridpointCondition& c : scene.gridpoint_conditions)
-    if (c.velocity.norm() > 0.0 || c.velocity_gradient.norm() > 0.0)
-      return refuse("a boundary moves at a velocity");
+  const std::string why = implicit_check_refusal(scene);
+  if (!why.empty())
+    return refuse(why);
   ImplicitCheck check;
   try
   {
-    check = check_implicitly(solver, scene.solver.history_points);
+    check = check_implicitly(solver, scene.solver.history_points, 1e-10, explicit_u);
   }
   catch (const SolverError& e)
   {
@@ -478,8 +487,55 @@ void BodyCycle::print_end()
                 f[2]);
   }
   if (scene_.deformable.implicit_check)
-    implicit_check(scene_, *solver_);
+  {
+    if (split_)
+      implicit_check_on_ranks();
+    else
+      implicit_check(scene_, *solver_);
+  }
   std::printf("Output:       %s_zones.pvd, %s_history.csv\n", prefix_.c_str(), prefix_.c_str());
+}
+
+void BodyCycle::implicit_check_on_ranks()
+{
+  const std::string why = implicit_check_refusal(scene_);
+  if (!why.empty())
+  {
+    std::printf("Implicit check: not made (%s)\n", why.c_str());
+    return;
+  }
+  // Each rank's own gridpoints: the whole mesh's number, then u.
+  const std::vector<double> u = solver_->displacements();
+  std::vector<double> mine;
+  mine.reserve(4 * std::size_t(share_.n_owned));
+  for (unsigned int i = 0; i < share_.n_owned; ++i)
+  {
+    mine.push_back(share_.whole_gridpoint[i]);
+    mine.insert(mine.end(), &u[3 * std::size_t(i)], &u[3 * std::size_t(i)] + 3);
+  }
+  const int rank = world_rank(), ranks = world_ranks();
+  int count = static_cast<int>(mine.size());
+  std::vector<int> counts(static_cast<std::size_t>(ranks)), starts(counts.size(), 0);
+  MPI_Gather(&count, 1, MPI_INT, counts.data(), 1, MPI_INT, 0, MPI_COMM_WORLD);
+  for (std::size_t r = 1; r < counts.size(); ++r)
+    starts[r] = starts[r - 1] + counts[r - 1];
+  std::vector<double> all(rank == 0 ? std::size_t(starts.back()) + counts.back() : 0);
+  MPI_Gatherv(mine.data(), count, MPI_DOUBLE, all.data(), counts.data(), starts.data(), MPI_DOUBLE,
+              0, MPI_COMM_WORLD);
+  if (rank != 0)
+    return;
+  // The whole body again (the mesher is deterministic), its solver made
+  // as one run makes it: the same operator, loads and held components.
+  MeshReport report;
+  TetMesh whole = zones_of(scene_, model_, report);
+  std::vector<double> whole_u(3 * std::size_t(whole.n_gridpoints()), 0.0);
+  for (std::size_t k = 0; k + 3 < all.size(); k += 4)
+    std::copy(&all[k + 1], &all[k + 4], &whole_u[3 * static_cast<std::size_t>(all[k])]);
+  ZoneMaterials materials = zone_materials(scene_, model_, whole);
+  DeformableSolver solver(whole, std::move(materials.materials), std::move(materials.of_zone),
+                          scene_.solver, scene_.gridpoint_conditions, scene_.face_pressures,
+                          nullptr, nullptr);
+  implicit_check(scene_, solver, &whole_u);
 }
 
 std::string BodyCycle::unbalanced_where() const

@@ -1,3 +1,4 @@
+#include <talus/base/exceptions.h>
 #include <talus/solver/implicit_check.h>
 
 #include <algorithm>
@@ -7,7 +8,7 @@ namespace talus
 {
 
 ImplicitCheck check_implicitly(DeformableSolver& solver, const std::vector<Vec3>& points,
-                               double tolerance)
+                               double tolerance, const std::vector<double>* explicit_u)
 {
   ImplicitElasticProblem problem = solver.implicit_problem();
   problem.tolerance = tolerance;
@@ -15,7 +16,9 @@ ImplicitCheck check_implicitly(DeformableSolver& solver, const std::vector<Vec3>
   ImplicitCheck check;
   check.implicit = solve_implicit_elastic(problem);
   const std::vector<double>& implicit = check.implicit.displacement;
-  const std::vector<double> u = solver.displacements();
+  const std::vector<double> u = explicit_u ? *explicit_u : solver.displacements();
+  if (u.size() != implicit.size())
+    throw SolverError("internal: the explicit displacements are not of the solver's mesh");
   for (std::size_t i = 0; i < u.size(); ++i)
   {
     check.largest = std::max(check.largest, std::abs(implicit[i]));

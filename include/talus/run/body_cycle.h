@@ -58,6 +58,10 @@ private:
   /// On ranks: this rank's share of `whole` as the mesh the solver runs,
   /// and what the whole body's numbers need (owners, the zones counted).
   void split_among_ranks(const TetMesh& whole);
+  /// The implicit check of a body split among ranks: the gridpoints'
+  /// displacements gathered on rank 0, which checks them with a solver of
+  /// the whole mesh made for it (collective; rank 0 prints).
+  void implicit_check_on_ranks();
   /// The zones this rank counts (each zone once over the ranks), of a
   /// stage's excavation and the summary.
   bool counts(unsigned int z) const

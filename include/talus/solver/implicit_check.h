@@ -41,7 +41,11 @@ struct ImplicitCheck
 /// that this is the run's problem (static, elastic zones, no initial
 /// stress, boundaries at rest). Throws SolverError as
 /// solve_implicit_elastic does.
+/// `explicit_u` (m, 3 per gridpoint), when given, is the explicit answer in
+/// place of the solver's own displacements: a body split among ranks
+/// gathers its own into a solver of the whole mesh made for the check.
 ImplicitCheck check_implicitly(DeformableSolver& solver, const std::vector<Vec3>& points,
-                               double tolerance = 1e-10);
+                               double tolerance = 1e-10,
+                               const std::vector<double>* explicit_u = nullptr);
 
 } // namespace talus
