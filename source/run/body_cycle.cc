@@ -511,7 +511,8 @@ void BodyCycle::implicit_check_on_ranks()
   for (unsigned int i = 0; i < share_.n_owned; ++i)
   {
     mine.push_back(share_.whole_gridpoint[i]);
-    mine.insert(mine.end(), &u[3 * std::size_t(i)], &u[3 * std::size_t(i)] + 3);
+    mine.insert(mine.end(), u.begin() + 3 * std::ptrdiff_t(i),
+                u.begin() + 3 * std::ptrdiff_t(i) + 3);
   }
   const int rank = world_rank(), ranks = world_ranks();
   int count = static_cast<int>(mine.size());
@@ -530,7 +531,8 @@ void BodyCycle::implicit_check_on_ranks()
   TetMesh whole = zones_of(scene_, model_, report);
   std::vector<double> whole_u(3 * std::size_t(whole.n_gridpoints()), 0.0);
   for (std::size_t k = 0; k + 3 < all.size(); k += 4)
-    std::copy(&all[k + 1], &all[k + 4], &whole_u[3 * static_cast<std::size_t>(all[k])]);
+    std::copy(all.begin() + k + 1, all.begin() + k + 4,
+              whole_u.begin() + 3 * static_cast<std::ptrdiff_t>(all[k]));
   ZoneMaterials materials = zone_materials(scene_, model_, whole);
   DeformableSolver solver(whole, std::move(materials.materials), std::move(materials.of_zone),
                           scene_.solver, scene_.gridpoint_conditions, scene_.face_pressures,
