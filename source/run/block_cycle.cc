@@ -255,14 +255,16 @@ void restore_changes(const Scene& scene, const BlockModel& model, const BlockMod
 void BlockCycle::restore_stage(const StageSpec& stage)
 {
   // The loads' state (forces, held velocities) is in the checkpoint; what
-  // the materials are is not. The dampers' running state is the
-  // checkpoint's: a rock change remakes them for the new masses.
+  // the materials are is not. The dampers' running state and the time
+  // step are the checkpoint's: a rock change makes them anew.
   const Damper damper = system_.solver->damper();
+  const std::pair<double, double> steps = system_.solver->time_steps();
   std::optional<DeformableSolver::DampingState> zones;
   if (system_.zones)
     zones = system_.zones->damping_state();
   restore_changes(scene_, model_, built_model_.get(), system_, stage);
   system_.solver->set_damper(damper);
+  system_.solver->set_time_steps(steps);
   if (zones)
     system_.zones->set_damping_state(std::move(*zones));
 }

@@ -20,6 +20,7 @@
 #include <functional>
 #include <string>
 #include <unordered_map>
+#include <utility>
 #include <vector>
 
 namespace talus
@@ -343,6 +344,16 @@ public:
   /// again, which remake it with the blocks' masses.
   const Damper& damper() const { return damper_; }
   void set_damper(const Damper& damper) { damper_ = damper; }
+  /// The time step (s) and the step without Rayleigh's stiffness term,
+  /// likewise kept by a restart: made anew they would come from the
+  /// blocks' face areas in their turned geometry, last bits off the
+  /// stage start's.
+  std::pair<double, double> time_steps() const { return {dt_, dt_without_stiffness_damping_}; }
+  void set_time_steps(const std::pair<double, double>& steps)
+  {
+    dt_ = steps.first;
+    dt_without_stiffness_damping_ = steps.second;
+  }
 
 private:
   /// Moves blocks, their state and contacts between ranks (block_migration.h).
