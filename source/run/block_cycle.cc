@@ -260,13 +260,20 @@ void BlockCycle::restore_stage(const StageSpec& stage)
   const Damper damper = system_.solver->damper();
   const std::pair<double, double> steps = system_.solver->time_steps();
   std::optional<DeformableSolver::DampingState> zones;
+  std::optional<DeformableSolver::StepState> zone_steps;
   if (system_.zones)
+  {
     zones = system_.zones->damping_state();
+    zone_steps = system_.zones->step_state();
+  }
   restore_changes(scene_, model_, built_model_.get(), system_, stage);
   system_.solver->set_damper(damper);
   system_.solver->set_time_steps(steps);
   if (zones)
+  {
     system_.zones->set_damping_state(std::move(*zones));
+    system_.zones->set_step_state(*zone_steps);
+  }
 }
 
 int BlockCycle::factor_of_safety(const std::vector<StageSpec>& stages, unsigned int k)

@@ -1967,6 +1967,23 @@ void DeformableSolver::set_inertial_masses()
     last_force_.assign(3 * ng, 0.0);
 }
 
+DeformableSolver::StepState DeformableSolver::step_state() const
+{
+  StepState state{dt_, joint_stiffness_, {}, added_mass_};
+  LocalArray m(petsc_->inertial_mass);
+  state.inertial_mass.assign(m.data(), m.data() + 3 * std::size_t(mesh_.n_gridpoints()));
+  return state;
+}
+
+void DeformableSolver::set_step_state(const StepState& state)
+{
+  dt_ = state.dt;
+  joint_stiffness_ = state.joint_stiffness;
+  added_mass_ = state.added_mass;
+  LocalArray m(petsc_->inertial_mass);
+  std::copy(state.inertial_mass.begin(), state.inertial_mass.end(), m.data());
+}
+
 void DeformableSolver::set_dynamic(bool dynamic)
 {
   if (s_.dynamic && !dynamic && s_.density_scaling)

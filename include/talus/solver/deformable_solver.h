@@ -291,6 +291,18 @@ public:
     std::vector<double> last_force;
   };
   DampingState damping_state() const { return {damper_, last_force_}; }
+  /// The time step (s) with what it set (the joint stiffness behind it and
+  /// the inertial masses, kg): a restart keeps them too, since deformable
+  /// blocks among others take them anew from the joints over the current
+  /// face areas, last bits off the stage start's.
+  struct StepState
+  {
+    double dt = 0.0;
+    std::vector<double> joint_stiffness, inertial_mass;
+    AddedMass added_mass;
+  };
+  StepState step_state() const;
+  void set_step_state(const StepState& state);
   void set_damping_state(DampingState state)
   {
     damper_ = state.damper;
