@@ -13,8 +13,22 @@ namespace talus
 
 void write_contacts_vtu(const std::string& path, const ContactSet& cs, const BlockModel& model,
                         const JointNumbers& joints, VtuEncoding encoding, const WaterSpec* water,
-                        double gravity, const std::vector<unsigned int>* subcontacts)
+                        double gravity, const std::vector<unsigned int>* subcontacts,
+                        bool ids_in_pair_order)
 {
+  std::vector<unsigned int> id(cs.n_slots());
+  for (unsigned int c = 0; c < cs.n_slots(); ++c)
+    id[c] = c;
+  if (ids_in_pair_order)
+  {
+    std::vector<std::pair<std::pair<unsigned int, unsigned int>, unsigned int>> live;
+    for (unsigned int c = 0; c < cs.n_slots(); ++c)
+      if (cs.alive[c])
+        live.push_back({{cs.block_a[c], cs.block_b[c]}, c});
+    std::sort(live.begin(), live.end());
+    for (unsigned int k = 0; k < live.size(); ++k)
+      id[live[k].second] = k;
+  }
   // The joint of each contact slot, as the numbers of its subsections.
   std::vector<int> joint_set(cs.n_slots(), 0), joint(cs.n_slots(), 0), origin_of(cs.n_slots(), 0);
   for (unsigned int c = 0; c < cs.n_slots(); ++c)
@@ -26,8 +40,8 @@ void write_contacts_vtu(const std::string& path, const ContactSet& cs, const Blo
       else if (origin < 0)
         joint[c] = joints.joint_number.at(static_cast<std::size_t>(-origin - 1));
     }
-  const unsigned int n = subcontacts ? static_cast<unsigned int>(subcontacts->size())
-                                     : cs.n_subcontacts();
+  const unsigned int n =
+      subcontacts ? static_cast<unsigned int>(subcontacts->size()) : cs.n_subcontacts();
   // The k-th sub-contact written.
   const auto pick = [&](std::size_t k) -> std::size_t
   { return subcontacts ? (*subcontacts)[k] : k; };
@@ -105,7 +119,7 @@ void write_contacts_vtu(const std::string& path, const ContactSet& cs, const Blo
         integers(out, "joint", [&](std::size_t i) { return joint[cs.sc_contact[i]]; });
         // 0: 'Joint properties'; k: the k-th 'Joint material N' of the file.
         integers(out, "material", [&](std::size_t i) { return cs.sc_material[i]; });
-        integers(out, "contact_id", [&](std::size_t i) { return cs.sc_contact[i]; });
+        integers(out, "contact_id", [&](std::size_t i) { return id[cs.sc_contact[i]]; });
         if (water != nullptr && water->active())
         {
           // The pressure the joint's water puts on both faces there: its

@@ -24,8 +24,11 @@ void write_mechanism(const Scene& scene, const TrialView& view, const std::strin
   const BlockSystem& system = view.system;
   const BlockModel& model = view.model;
   const RigidSolver& solver = *system.solver;
-  const std::string& folder = scene.output.directory;
-  const std::string& base = scene.output.base_name;
+  // The frames are named after `prefix`, in its folder: a stage's
+  // mechanism must not take the name of the run's first frame.
+  const std::size_t slash = prefix.rfind('/');
+  const std::string folder = slash == std::string::npos ? "." : prefix.substr(0, slash);
+  const std::string base = slash == std::string::npos ? prefix : prefix.substr(slash + 1);
   std::vector<BlockField> fields{{"displacement", 3, {}}, {"velocity", 3, {}}, {"rotation", 3, {}}};
   for (unsigned int b = 0; b < model.n_blocks(); ++b)
     for (int d = 0; d < 3; ++d)
@@ -42,8 +45,10 @@ void write_mechanism(const Scene& scene, const TrialView& view, const std::strin
     joints.joint_set_number.push_back(std::stoi(section.substr(section.rfind(' ') + 1)));
   for (const std::string& section : scene.joint_plane_sections)
     joints.joint_number.push_back(std::stoi(section.substr(section.rfind(' ') + 1)));
+  // (contacts numbered in block-pair order: the trial's slots depend on
+  // the layout of the state it started from, a gathered one on ranks)
   write_contacts_vtu(folder + "/" + base + "_contacts_00000.vtu", solver.contacts(), model, joints,
-                     scene.output.vtu_encoding);
+                     scene.output.vtu_encoding, nullptr, 0.0, nullptr, true);
   PvdSeries(prefix + "_contacts.pvd").add(solver.time(), base + "_contacts_00000.vtu");
   if (!system.zones)
     return;
@@ -66,11 +71,6 @@ void write_mechanism(const Scene& scene, const TrialView& view, const std::strin
              {{"displacement", 3, u}, {"velocity", 3, zones.velocities()}}, cells, zones.time());
   PvdSeries(prefix + "_zones.pvd").add(zones.time(), base + "_zones_00000.vtu");
 }
-
-namespace
-{
-
-} // namespace
 
 int run_factor_of_safety(Scene& scene, BlockModel& model, const std::string& prefix, MPI_Comm comm)
 {

@@ -64,15 +64,16 @@ void check_runs_on_ranks(const Scene& scene, int ranks)
 {
   (void)ranks;
   const std::string allowed = "run it without mpirun (one rank), or leave this out";
-  // 'Solver / Mode = factor of safety' runs its trials on ranks
-  // (run_factor_of_safety); a stage's would need the stage's state of the
-  // whole model on every rank.
+  // A stage's factor of safety runs its trials on ranks from the state
+  // gathered in one run's layout (BlockMigration::gather_whole), which has
+  // no zones yet.
   for (const StageSpec& stage : scene.stages)
   {
-    if (stage.factor_of_safety)
+    if (stage.factor_of_safety && !scene.deformable.groups.empty())
       throw scene_error(scene, stage.section, "Mode",
-                        "a stage's factor of safety: talus runs it on one rank only so far "
-                        "('Solver / Mode = factor of safety' runs on ranks)",
+                        "a stage's factor of safety with deformable blocks: on MPI ranks talus "
+                        "runs it for rigid blocks only so far ('Solver / Mode = factor of "
+                        "safety' runs on ranks with deformable blocks too)",
                         allowed);
   }
 }

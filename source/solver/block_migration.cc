@@ -1,3 +1,5 @@
+#include "block_arrays.h"
+
 #include <talus/base/exceptions.h>
 #include <talus/joint/continuously_yielding.h>
 #include <talus/solver/block_migration.h>
@@ -166,48 +168,6 @@ std::vector<std::vector<char>> trade(const std::vector<std::vector<char>>& out, 
 }
 
 } // namespace
-
-template <typename Visit>
-void BlockMigration::visit_block_arrays(RigidSolver& s, Visit&& visit)
-{
-  visit(s.mass);
-  visit(s.inertial_mass);
-  visit(s.inertia);
-  visit(s.velocity);
-  visit(s.spin);
-  visit(s.force);
-  visit(s.moment);
-  visit(s.displacement);
-  visit(s.rotation);
-  visit(s.fixed);
-  visit(s.applied_force);
-  visit(s.applied_force_rate);
-  visit(s.prescribed);
-  visit(s.moved);
-  visit(s.path);
-  visit(s.last_force_);
-  visit(s.last_moment_);
-  visit(s.motion_dx_);
-  visit(s.motion_dtheta_);
-  visit(s.damping_force_);
-  visit(s.damping_moment_);
-  visit(s.is_deformable_);
-  visit(s.removed_);
-  visit(s.true_inertia_);
-  visit(s.envelopes_);
-  if (s.s_.principal_inertia)
-  {
-    visit(s.principal_moments);
-    visit(s.axes);
-    visit(s.true_principal_);
-  }
-  if (!s.timed_force_.empty())
-  {
-    visit(s.timed_force_);
-    visit(s.timed_velocity_);
-    visit(s.timed_held_);
-  }
-}
 
 BlockMigration::BlockMigration(const RigidSolver& solver, const RankBlocks& blocks,
                                const CellPartition& partition, double reach, unsigned int layers,

@@ -247,8 +247,10 @@ int main(int argc, char** argv)
   double relative = 0.0; // "# parallel test: relative R"
   // "# parallel test: same files": every file the serial run writes (the
   // output's VTU, PVD and parameter files too) must be written by every
-  // split run with the same bytes.
+  // split run with the same bytes; "# parallel test: same files NAME": those
+  // whose names hold NAME (a run's own frames are pieces per rank).
   bool same_files = false;
+  std::string same_files_named;
   // "# parallel test: steps N": every run stops after N steps
   // (TALUS_MAX_STEPS), for a long verification scene shared with another
   // test.
@@ -260,7 +262,10 @@ int main(int argc, char** argv)
     else if (line.rfind("# parallel test: relative", 0) == 0)
       relative = std::strtod(line.c_str() + 25, nullptr);
     else if (line.rfind("# parallel test: same files", 0) == 0)
+    {
       same_files = true;
+      std::istringstream(line.substr(27)) >> same_files_named;
+    }
     else if (line.rfind("# parallel test: steps", 0) == 0)
     {
       std::istringstream value(line.substr(22));
@@ -340,8 +345,16 @@ int main(int argc, char** argv)
     all &= same && same_history;
     if (same_files)
     {
-      const std::vector<std::string> names = files("serial_output");
-      bool all_same = !names.empty() && files(folder) == names;
+      const auto named = [&](std::vector<std::string> all_names)
+      {
+        std::vector<std::string> kept;
+        for (std::string& name : all_names)
+          if (name.find(same_files_named) != std::string::npos)
+            kept.push_back(std::move(name));
+        return kept;
+      };
+      const std::vector<std::string> names = named(files("serial_output"));
+      bool all_same = !names.empty() && named(files(folder)) == names;
       for (const std::string& name : names)
         if (read_file("serial_output/" + name) != read_file(folder + "/" + name))
         {

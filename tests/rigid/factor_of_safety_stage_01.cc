@@ -11,6 +11,10 @@
 //     were the material not changed, 1.4527 were the water not set again;
 //  4. static again: the model went on unchanged through stage 3 (the
 //     slider where stage 2 left it, to 1e-12 m).
+// The mechanism's frames are files of their own
+// (talus_stage3_mechanism_blocks_00000.vtu): they once took the name of the
+// run's first frame, talus_blocks_00000.vtu, which then showed the
+// mechanism in the run's series.
 // The before figure: 'factor of safety' is not a stage's 'Mode' (refused).
 
 #include <talus/base/parallel_environment.h>
@@ -19,6 +23,7 @@
 #include <cstdio>
 #include <fstream>
 #include <sstream>
+#include <string>
 
 #include "../scenes/stage_history.h"
 #include "../tests.h"
@@ -27,8 +32,7 @@
 int main(int argc, char** argv)
 {
   talus::ParallelEnvironment env(argc, argv);
-  const double deg = M_PI / 180.0, a = 30 * deg, g = 9.81, A = 2.0, p = 500,
-               W = 2650 * 0.4 * g;
+  const double deg = M_PI / 180.0, a = 30 * deg, g = 9.81, A = 2.0, p = 500, W = 2650 * 0.4 * g;
   const std::string file = "factor_of_safety_stage_01_scene.prm";
   write_slider_scene(file, 30, "  set Steps = 5000\n  set History blocks = 1",
                      R"(subsection Joint properties
@@ -48,7 +52,8 @@ end
 subsection Stage 2
   set Name = water in the joint
   subsection Water
-    set Joint pressures = 1, )" + std::to_string(p) +
+    set Joint pressures = 1, )" +
+                         std::to_string(p) +
                          R"(
   end
 end
@@ -62,7 +67,6 @@ subsection Stage 4
 end
 subsection Output
   set Directory = output_factor_of_safety_stage_01
-  set Write VTU = false
 end
 )");
   // Run with the summary kept, for its factor of safety.
@@ -95,8 +99,7 @@ end
                            (W * std::cos(a) - p * A) * std::tan(40 * deg) / (W * std::sin(a)),
                            0.005);
   std::vector<std::string> columns;
-  const auto rows =
-      read_history("output_factor_of_safety_stage_01/talus_history.csv", columns);
+  const auto rows = read_history("output_factor_of_safety_stage_01/talus_history.csv", columns);
   double moved = 0.0;
   for (const char* q : {"block 1 ux (m)", "block 1 uy (m)", "block 1 uz (m)"})
     moved = std::max(moved, std::abs(column(last_of_stage(rows, columns, 4), columns, q) -
@@ -104,4 +107,18 @@ end
   std::fprintf(stderr, "stage 4 moved the slider %.3g m from where stage 2 left it\n", moved);
   std::printf("stage 4: the slider where stage 2 left it (stage 3 changed nothing): %s\n",
               talus_test::verdict(moved < 1e-12));
+  const auto text = [](const std::string& path)
+  {
+    std::ifstream in(path, std::ios::binary);
+    std::stringstream all;
+    all << in.rdbuf();
+    return all.str();
+  };
+  const std::string folder = "output_factor_of_safety_stage_01/",
+                    own = "talus_stage3_mechanism_blocks_00000.vtu";
+  const std::string series = text(folder + "talus_stage3_mechanism_blocks.pvd"),
+                    mechanism = text(folder + own), first = text(folder + "talus_blocks_00000.vtu");
+  std::printf("mechanism frame in a file of its own, the run's first frame not it: %s\n",
+              talus_test::verdict(series.find("file=\"" + own + "\"") != std::string::npos &&
+                                  !mechanism.empty() && !first.empty() && mechanism != first));
 }

@@ -28,13 +28,18 @@ struct JointNumbers
 /// face-face, 5 vertex-edge, 6 vertex-vertex); `joint_set` and `joint` (N
 /// of the 'Joint set N' or 'Joint N' whose plane the contact lies on, 0 for
 /// none: contacts made by motion, or between faces of different joints);
-/// and `contact_id` (the contact's slot). With `water` active, also
-/// `pore_pressure` (Pa): the water pressure at the sub-contact's position.
-/// `subcontacts`: the sub-contacts to write (a rank's share); null: all.
+/// and `contact_id` (the contact's slot, which it keeps while it lasts;
+/// with `ids_in_pair_order`, its place among the live contacts ordered by
+/// their blocks, which does not depend on how slots were reused: a single
+/// frame, such as a mechanism, made alike from states of different slot
+/// layouts). With `water` active, also `pore_pressure` (Pa): the water
+/// pressure at the sub-contact's position. `subcontacts`: the sub-contacts
+/// to write (a rank's share); null: all.
 void write_contacts_vtu(const std::string& path, const ContactSet& contacts,
                         const BlockModel& model, const JointNumbers& joints,
                         VtuEncoding encoding = VtuEncoding::binary,
                         const WaterSpec* water = nullptr, double gravity = 0.0,
-                        const std::vector<unsigned int>* subcontacts = nullptr);
+                        const std::vector<unsigned int>* subcontacts = nullptr,
+                        bool ids_in_pair_order = false);
 
 } // namespace talus

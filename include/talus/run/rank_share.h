@@ -35,8 +35,9 @@ int world_rank();
 void agree_on_input_errors(const std::function<void()>& build);
 
 /// Refuses, with one message naming the entry, a scene that talus cannot
-/// yet run split among ranks: a stage's factor of safety ('Solver / Mode =
-/// factor of safety' runs on ranks: run_factor_of_safety).
+/// yet run split among ranks: a stage's factor of safety with deformable
+/// blocks (its trials start from the whole model's state, gathered for
+/// rigid blocks alone: BlockMigration::gather_whole).
 void check_runs_on_ranks(const Scene& scene, int ranks);
 
 /// This rank's share of a model of rigid blocks split among the ranks of

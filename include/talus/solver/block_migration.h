@@ -90,6 +90,18 @@ public:
   unsigned long received() const { return received_; }
   unsigned long dropped() const { return dropped_; }
 
+  /// A stage's factor of safety on ranks, whose trials are serial runs of
+  /// the whole model: `whole`, a solver built on a copy of the whole model
+  /// as built (on every rank), takes the state of every block and contact
+  /// of the model split among the ranks of `comm` (`solver` holding
+  /// `blocks`) as one rank's run would hold it now, blocks by their global
+  /// numbers and contacts in block-pair order, so that its save_state is
+  /// what the serial run's would load as. Each owner sends its blocks and
+  /// the contacts whose first block it owns to every rank (one
+  /// MPI_Allgatherv). Rigid blocks only (std::logic_error with zones).
+  static void gather_whole(const RigidSolver& solver, const RankBlocks& blocks, RigidSolver& whole,
+                           MPI_Comm comm);
+
   /// The paths at the last choice and the counters, in a checkpoint
   /// (defined in io/rank_checkpoint.cc).
   void save_state(CheckpointWriter& out) const;
