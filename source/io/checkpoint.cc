@@ -14,6 +14,7 @@
 #include <talus/solver/deformable_solver.h>
 #include <talus/solver/rigid_solver.h>
 
+#include <algorithm>
 #include <csignal>
 #include <cstdlib>
 #include <filesystem>
@@ -507,18 +508,39 @@ unsigned long Checkpoint::restore(const std::string& file)
 
 // ---- Hooks of the classes whose state is saved ---------------------------------
 
+namespace
+{
+/// An exact sum by its words, normalized: not the object's bytes, whose
+/// padding is whatever the memory held (checkpoints of one state are then
+/// the same bytes).
+void put_sum(CheckpointWriter& out, ExactSum sum)
+{
+  sum.normalize();
+  out.put(sum.words());
+  out.put(sum.special());
+}
+
+ExactSum get_sum(CheckpointReader& in)
+{
+  ExactSum sum;
+  in.get(sum.words());
+  in.get(sum.special());
+  return sum;
+}
+} // namespace
+
 void Damper::save_state(CheckpointWriter& out) const
 {
   out.put(c_);
-  out.put(damping_power_);
-  out.put(force_power_);
+  put_sum(out, damping_power_);
+  put_sum(out, force_power_);
 }
 
 void Damper::load_state(CheckpointReader& in)
 {
   in.get(c_);
-  in.get(damping_power_);
-  in.get(force_power_);
+  damping_power_ = get_sum(in);
+  force_power_ = get_sum(in);
 }
 
 void EnergyGrowthWatch::save_state(CheckpointWriter& out) const
@@ -577,9 +599,14 @@ void ContactSet::save_state(CheckpointWriter& out) const
   out.put(sc_weight);
   out.put(free_);
   out.put(n_alive_);
+  // In the order of the pairs, not of the hash map, which differs between
+  // a run and its restart: one state, the same bytes.
+  std::vector<std::pair<std::uint64_t, unsigned int>> live(slot_of_pair_.begin(),
+                                                           slot_of_pair_.end());
+  std::sort(live.begin(), live.end());
   std::vector<std::uint64_t> pairs;
   std::vector<unsigned int> slots;
-  for (const auto& [key, c] : slot_of_pair_)
+  for (const auto& [key, c] : live)
   {
     pairs.push_back(key);
     slots.push_back(c);
@@ -682,6 +709,11 @@ void RigidSolver::save_state(CheckpointWriter& out) const
   out.put(axes);
   out.put(last_force_);
   out.put(last_moment_);
+  // The last motion the contacts take their increments from: a deformable
+  // block's is its surface's move, which its velocity times the step gives
+  // back only to round-off.
+  out.put(motion_dx_);
+  out.put(motion_dtheta_);
   damper_.save_state(out);
   cells_.save_state(out);
   contacts_.save_state(out);
@@ -738,6 +770,8 @@ void RigidSolver::load_state(CheckpointReader& in)
   in.get(axes, axes.size(), "blocks with principal axes");
   in.get(last_force_, nb, "blocks");
   in.get(last_moment_, nb, "blocks");
+  in.get(motion_dx_, nb, "blocks");
+  in.get(motion_dtheta_, nb, "blocks");
   damper_.load_state(in);
   cells_.load_state(in);
   cells_.define(cells_.bounds(), static_cast<unsigned int>(nb));
@@ -757,11 +791,6 @@ void RigidSolver::load_state(CheckpointReader& in)
   in.get(step_);
   in.get(last_output_);
   // A checkpoint follows a step, whose motion the velocities still are.
-  for (std::size_t b = 0; b < nb; ++b)
-  {
-    motion_dx_[b] = step_ > 0 ? Vec3(velocity[b] * dt_) : Vec3::Zero();
-    motion_dtheta_[b] = step_ > 0 ? Vec3(spin[b] * dt_) : Vec3::Zero();
-  }
   // The rotational inertia follows the density scaling of the masses.
   for (std::size_t b = 0; b < nb; ++b)
   {

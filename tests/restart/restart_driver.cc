@@ -198,14 +198,16 @@ std::string with_includes(const std::string& prm, const fs::path& folder)
   return text;
 }
 
-/// Every file of a folder, by name (checkpoints and temporary files left out).
-std::map<std::string, std::string> folder_files(const fs::path& folder)
+/// Every file of a folder, by name (temporary files left out): the
+/// checkpoints alone, or every other file.
+std::map<std::string, std::string> folder_files(const fs::path& folder, bool checkpoints = false)
 {
   std::map<std::string, std::string> files;
   for (const fs::directory_entry& e : fs::directory_iterator(folder))
   {
     const std::string name = e.path().filename().string();
-    if (name.find("_checkpoint.bin") == std::string::npos && name.find(".tmp") == std::string::npos)
+    if ((name.find("_checkpoint.bin") != std::string::npos) == checkpoints &&
+        name.find(".tmp") == std::string::npos)
       files[name] = read_file(e.path());
   }
   return files;
@@ -270,6 +272,10 @@ int main(int argc, char** argv)
   const Result whole = run_talus({scene.string()});
   show("uninterrupted run", whole);
   const std::map<std::string, std::string> reference = folder_files(output);
+  // The checkpoints the run leaves (at the end of a stage, or by
+  // 'Checkpoint interval'): the restarted run's must be the same bytes,
+  // the whole state at the end and not only what the files show of it.
+  const std::map<std::string, std::string> reference_checkpoints = folder_files(output, true);
   check(whole.exit_code == finished, "uninterrupted run finished");
   const fs::path last_checkpoint = fs::absolute("last_checkpoint.bin");
   if (std::stoul("0" + entry(source, "Checkpoint interval")) > 0)
@@ -374,6 +380,10 @@ int main(int argc, char** argv)
   std::printf("VTU files identical to the uninterrupted run: %u of %u\n", vtu_same, vtu);
   good &= vtu_same == vtu;
   check(after.size() == reference.size(), "no file more or less than the uninterrupted run");
+  if (!reference_checkpoints.empty())
+    check(folder_files(output, true) == reference_checkpoints,
+          (std::to_string(reference_checkpoints.size()) +
+           " checkpoint file(s) at the end, each the uninterrupted run's byte for byte"));
 
   // 4. A finished run extended.
   const std::size_t extend = source.find("# restart test: extend to ");

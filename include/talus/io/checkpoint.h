@@ -42,8 +42,10 @@ struct Scene;
 /// the stages begun (a stage may be appended to a finished run); 8: the
 /// work of nodal mixed discretization in the zones' energy account; 9: the
 /// rank and the number of ranks after the first tag, and on several ranks
-/// each rank's share (io/rank_checkpoint.h) after the step.
-constexpr std::uint32_t checkpoint_format_version = 9;
+/// each rank's share (io/rank_checkpoint.h) after the step; 10: the
+/// blocks' last motion (a deformable block's is not its velocity times the
+/// step to the last bit).
+constexpr std::uint32_t checkpoint_format_version = 10;
 
 /// FNV-1a, 64 bits: a fingerprint, not a cryptographic hash.
 std::uint64_t fnv1a(const void* data, std::size_t size,
