@@ -4,11 +4,165 @@
 // block carries between ranks (block_migration.cc) and into the whole
 // model's state (whole_state.cc).
 
+#include <talus/contact/contact_set.h>
+#include <talus/joint/continuously_yielding.h>
 #include <talus/solver/block_migration.h>
 #include <talus/solver/rigid_solver.h>
 
+#include <cstring>
+#include <vector>
+
 namespace talus
 {
+
+inline unsigned int BlockMigration::append_contact_slot(ContactSet& laid, std::uint64_t key)
+{
+  const unsigned int c = laid.n_slots();
+  laid.block_a.push_back(static_cast<unsigned int>(key >> 32));
+  laid.block_b.push_back(static_cast<unsigned int>(key & 0xffffffffu));
+  laid.alive.push_back(1);
+  laid.slot_of_pair_[key] = c;
+  ++laid.n_alive_;
+  return c;
+}
+
+namespace block_records
+{
+
+/// Values appended bit for bit (plain numbers, and Eigen's fixed-size
+/// vectors and matrices, which are their numbers).
+struct Bytes
+{
+  std::vector<char> data;
+  template <typename T>
+  void put(const T& x)
+  {
+    const char* p = reinterpret_cast<const char*>(&x);
+    data.insert(data.end(), p, p + sizeof(T));
+  }
+};
+
+/// Reads what Bytes wrote, in the same order.
+struct Reader
+{
+  const char* at;
+  template <typename T>
+  T get()
+  {
+    T x;
+    std::memcpy(static_cast<void*>(&x), at, sizeof(T));
+    at += sizeof(T);
+    return x;
+  }
+};
+
+/// The bytes of a contact's record before its sub-contacts, after its two
+/// block numbers (put_contact).
+constexpr std::size_t contact_head_size = sizeof(CommonPlane) + sizeof(double) +
+                                          sizeof(ContactType) + sizeof(unsigned char) +
+                                          sizeof(double) + sizeof(unsigned int);
+
+/// The bytes of one sub-contact's record (put_contact).
+inline std::size_t subcontact_size(bool dilation, bool yielding, bool nodes)
+{
+  return sizeof(Vec3) + 9 * sizeof(double) + 3 * sizeof(unsigned char) +
+         (dilation ? sizeof(double) : 0) + (yielding ? yield_state_size * sizeof(double) : 0) +
+         (nodes ? 6 * (sizeof(int) + sizeof(double)) : 0);
+}
+
+/// Each contact slot's sub-contacts, [begin[c], end[c]): contiguous, in
+/// block-pair order (empty for a contact without any).
+inline void subcontact_ranges(const ContactSet& cs, std::vector<unsigned int>& begin,
+                              std::vector<unsigned int>& end)
+{
+  begin.assign(cs.n_slots(), 0);
+  end.assign(cs.n_slots(), 0);
+  for (unsigned int k = 0; k < cs.n_subcontacts(); ++k)
+  {
+    const unsigned int c = cs.sc_contact[k];
+    if (end[c] == 0)
+      begin[c] = k;
+    end[c] = k + 1;
+  }
+}
+
+/// Appends contact c of `cs` between blocks numbered `a` and `b` (as the
+/// receiver knows them): its plane and state, then its sub-contacts
+/// [begin, end) with theirs; `put_nodes(out, k)` adds sub-contact k's
+/// gridpoints, if the record has them.
+template <typename PutNodes>
+void put_contact(Bytes& out, const ContactSet& cs, unsigned int c, unsigned int a, unsigned int b,
+                 unsigned int begin, unsigned int end, bool dilation, bool yielding,
+                 PutNodes&& put_nodes)
+{
+  out.put(a);
+  out.put(b);
+  out.put(cs.plane[c]);
+  out.put(cs.gap[c]);
+  out.put(cs.type[c]);
+  out.put(cs.material[c]);
+  out.put(cs.path_at_update[c]);
+  out.put(end - begin);
+  for (unsigned int k = begin; k < end; ++k)
+  {
+    out.put(cs.sc_position[k]);
+    out.put(cs.sc_area[k]);
+    out.put(cs.sc_un[k]);
+    out.put(cs.sc_fn[k]);
+    for (int d = 0; d < 3; ++d)
+      out.put(cs.sc_fs[3 * k + d]);
+    for (int d = 0; d < 3; ++d)
+      out.put(cs.sc_us[3 * k + d]);
+    out.put(cs.sc_state[k]);
+    out.put(cs.sc_material[k]);
+    out.put(cs.sc_fresh[k]);
+    if (dilation)
+      out.put(cs.sc_dilation[k]);
+    if (yielding)
+      for (unsigned int y = 0; y < yield_state_size; ++y)
+        out.put(cs.sc_yield[yield_state_size * k + y]);
+    put_nodes(out, k);
+  }
+}
+
+/// Reads a record of put_contact, from after its block numbers, into slot
+/// c of `laid` (the last made, its blocks set): the contact's plane and
+/// state, and its sub-contacts appended; `get_nodes(in)` reads a
+/// sub-contact's gridpoints, if the record has them.
+template <typename GetNodes>
+void get_contact(Reader& in, ContactSet& laid, unsigned int c, bool dilation, bool yielding,
+                 GetNodes&& get_nodes)
+{
+  laid.plane.push_back(in.get<CommonPlane>());
+  laid.gap.push_back(in.get<double>());
+  laid.type.push_back(in.get<ContactType>());
+  laid.material.push_back(in.get<unsigned char>());
+  laid.path_at_update.push_back(in.get<double>());
+  const unsigned int n_sc = in.get<unsigned int>();
+  for (unsigned int k = 0; k < n_sc; ++k)
+  {
+    laid.sc_contact.push_back(c);
+    laid.sc_position.push_back(in.get<Vec3>());
+    laid.sc_area.push_back(in.get<double>());
+    laid.sc_un.push_back(in.get<double>());
+    laid.sc_fn.push_back(in.get<double>());
+    for (int d = 0; d < 3; ++d)
+      laid.sc_fs.push_back(in.get<double>());
+    for (int d = 0; d < 3; ++d)
+      laid.sc_us.push_back(in.get<double>());
+    laid.sc_state.push_back(in.get<unsigned char>());
+    laid.sc_material.push_back(in.get<unsigned char>());
+    laid.sc_fresh.push_back(in.get<unsigned char>());
+    if (dilation)
+      laid.sc_dilation.push_back(in.get<double>());
+    if (yielding)
+      for (unsigned int y = 0; y < yield_state_size; ++y)
+        laid.sc_yield.push_back(in.get<double>());
+    get_nodes(in);
+  }
+}
+
+} // namespace block_records
 
 template <typename Visit>
 void BlockMigration::visit_block_arrays(RigidSolver& s, Visit&& visit)

@@ -21,32 +21,8 @@ namespace talus
 namespace
 {
 
-/// Values appended bit for bit (plain numbers, and Eigen's fixed-size
-/// vectors and matrices, which are their numbers).
-struct Bytes
-{
-  std::vector<char> data;
-  template <typename T>
-  void put(const T& x)
-  {
-    const char* p = reinterpret_cast<const char*>(&x);
-    data.insert(data.end(), p, p + sizeof(T));
-  }
-};
-
-/// Reads what Bytes wrote, in the same order.
-struct Reader
-{
-  const char* at;
-  template <typename T>
-  T get()
-  {
-    T x;
-    std::memcpy(static_cast<void*>(&x), at, sizeof(T));
-    at += sizeof(T);
-    return x;
-  }
-};
+using block_records::Bytes;
+using block_records::Reader;
 
 std::uint64_t pair_key(unsigned int a, unsigned int b)
 {
@@ -406,14 +382,8 @@ void BlockMigration::migrate(RigidSolver& s, RankBlocks& blocks)
   // 3. Replies: each block asked for with its geometry, its state in the
   // solver and every contact it has (an owned block has all of its own).
   // The sub-contacts of a contact are contiguous (ContactSet's pair order).
-  std::vector<unsigned int> sc_begin(cs.n_slots(), 0), sc_end(cs.n_slots(), 0);
-  for (unsigned int k = 0; k < cs.n_subcontacts(); ++k)
-  {
-    const unsigned int c = cs.sc_contact[k];
-    if (sc_end[c] == 0)
-      sc_begin[c] = k;
-    sc_end[c] = k + 1;
-  }
+  std::vector<unsigned int> sc_begin, sc_end;
+  block_records::subcontact_ranges(cs, sc_begin, sc_end);
   std::vector<std::vector<unsigned int>> contacts_of(n_old);
   for (unsigned int c = 0; c < cs.n_slots(); ++c)
     if (cs.alive[c])
@@ -435,42 +405,21 @@ void BlockMigration::migrate(RigidSolver& s, RankBlocks& blocks)
   // A contact with its sub-contacts, blocks by global number.
   const auto put_contact = [&](Bytes& out, unsigned int c)
   {
-    out.put(old_local[cs.block_a[c]]);
-    out.put(old_local[cs.block_b[c]]);
-    out.put(cs.plane[c]);
-    out.put(cs.gap[c]);
-    out.put(cs.type[c]);
-    out.put(cs.material[c]);
-    out.put(cs.path_at_update[c]);
-    out.put<unsigned int>(sc_end[c] - sc_begin[c]);
-    for (unsigned int k = sc_begin[c]; k < sc_end[c]; ++k)
-    {
-      out.put(cs.sc_position[k]);
-      out.put(cs.sc_area[k]);
-      out.put(cs.sc_un[k]);
-      out.put(cs.sc_fn[k]);
-      for (int d = 0; d < 3; ++d)
-        out.put(cs.sc_fs[3 * k + d]);
-      for (int d = 0; d < 3; ++d)
-        out.put(cs.sc_us[3 * k + d]);
-      out.put(cs.sc_state[k]);
-      out.put(cs.sc_material[k]);
-      out.put(cs.sc_fresh[k]);
-      if (dilation)
-        out.put(cs.sc_dilation[k]);
-      if (yielding)
-        for (unsigned int y = 0; y < yield_state_size; ++y)
-          out.put(cs.sc_yield[yield_state_size * k + y]);
-      if (nodes)
-        for (unsigned int n = 6 * k; n < 6 * k + 6; ++n)
+    block_records::put_contact(
+        out, cs, c, old_local[cs.block_a[c]], old_local[cs.block_b[c]], sc_begin[c], sc_end[c],
+        dilation, yielding,
+        [&](Bytes& to, unsigned int k)
         {
-          out.put<int>(
-              cs.sc_node[n] < 0
-                  ? -1
-                  : static_cast<int>(gridpoints->whole_gridpoint[std::size_t(cs.sc_node[n])]));
-          out.put(cs.sc_weight[n]);
-        }
-    }
+          if (nodes)
+            for (unsigned int n = 6 * k; n < 6 * k + 6; ++n)
+            {
+              to.put<int>(
+                  cs.sc_node[n] < 0
+                      ? -1
+                      : static_cast<int>(gridpoints->whole_gridpoint[std::size_t(cs.sc_node[n])]));
+              to.put(cs.sc_weight[n]);
+            }
+        });
   };
   std::vector<std::vector<char>> reply(n_ranks);
   for (int r = 0; r < n_ranks; ++r)
@@ -507,13 +456,9 @@ void BlockMigration::migrate(RigidSolver& s, RankBlocks& blocks)
   {
     const char* start = in.at;
     const unsigned int a = in.get<unsigned int>(), b = in.get<unsigned int>();
-    in.at += sizeof(CommonPlane) + sizeof(double) + sizeof(ContactType) + sizeof(unsigned char) +
-             sizeof(double);
+    in.at += block_records::contact_head_size - sizeof(unsigned int);
     const unsigned int n_sc = in.get<unsigned int>();
-    in.at += n_sc *
-             (sizeof(Vec3) + 9 * sizeof(double) + 3 * sizeof(unsigned char) +
-              (dilation ? sizeof(double) : 0) + (yielding ? yield_state_size * sizeof(double) : 0) +
-              (nodes ? 6 * (sizeof(int) + sizeof(double)) : 0));
+    in.at += n_sc * block_records::subcontact_size(dilation, yielding, nodes);
     const int la = local_of(next.local, a), lb = local_of(next.local, b);
     if (la >= 0 && lb >= 0 && (next.owned[la] || next.owned[lb]) &&
         have.insert(pair_key(la, lb)).second)
@@ -601,16 +546,7 @@ void BlockMigration::migrate(RigidSolver& s, RankBlocks& blocks)
       kept.emplace_back(pair_key(new_of[cs.block_a[c]], new_of[cs.block_b[c]]), c);
   std::sort(received_contacts.begin(), received_contacts.end());
   ContactSet laid;
-  const auto add_contact = [&](std::uint64_t key)
-  {
-    const unsigned int c = laid.n_slots();
-    laid.block_a.push_back(static_cast<unsigned int>(key >> 32));
-    laid.block_b.push_back(static_cast<unsigned int>(key & 0xffffffffu));
-    laid.alive.push_back(1);
-    laid.slot_of_pair_[key] = c;
-    ++laid.n_alive_;
-    return c;
-  };
+  const auto add_contact = [&](std::uint64_t key) { return append_contact_slot(laid, key); };
   const auto add_kept = [&](std::uint64_t key, unsigned int old)
   {
     const unsigned int c = add_contact(key);
@@ -647,47 +583,27 @@ void BlockMigration::migrate(RigidSolver& s, RankBlocks& blocks)
   {
     Reader in{record + 2 * sizeof(unsigned int)};
     const unsigned int c = add_contact(key);
-    laid.plane.push_back(in.get<CommonPlane>());
-    laid.gap.push_back(in.get<double>());
-    laid.type.push_back(in.get<ContactType>());
-    laid.material.push_back(in.get<unsigned char>());
-    laid.path_at_update.push_back(in.get<double>());
-    const unsigned int n_sc = in.get<unsigned int>();
-    for (unsigned int k = 0; k < n_sc; ++k)
-    {
-      laid.sc_contact.push_back(c);
-      laid.sc_position.push_back(in.get<Vec3>());
-      laid.sc_area.push_back(in.get<double>());
-      laid.sc_un.push_back(in.get<double>());
-      laid.sc_fn.push_back(in.get<double>());
-      for (int d = 0; d < 3; ++d)
-        laid.sc_fs.push_back(in.get<double>());
-      for (int d = 0; d < 3; ++d)
-        laid.sc_us.push_back(in.get<double>());
-      laid.sc_state.push_back(in.get<unsigned char>());
-      laid.sc_material.push_back(in.get<unsigned char>());
-      laid.sc_fresh.push_back(in.get<unsigned char>());
-      if (dilation)
-        laid.sc_dilation.push_back(in.get<double>());
-      if (yielding)
-        for (unsigned int y = 0; y < yield_state_size; ++y)
-          laid.sc_yield.push_back(in.get<double>());
-      if (nodes)
-        for (int n = 0; n < 6; ++n)
+    block_records::get_contact(
+        in, laid, c, dilation, yielding,
+        [&](Reader& from)
         {
-          const int whole = in.get<int>();
-          int node = -1;
-          if (whole >= 0)
+          if (!nodes)
+            return;
+          for (int n = 0; n < 6; ++n)
           {
-            const auto it = local_gridpoint.find(static_cast<unsigned int>(whole));
-            if (it == local_gridpoint.end())
-              throw std::logic_error("BlockMigration: a contact's gridpoint is not held here");
-            node = it->second;
+            const int whole = from.get<int>();
+            int node = -1;
+            if (whole >= 0)
+            {
+              const auto it = local_gridpoint.find(static_cast<unsigned int>(whole));
+              if (it == local_gridpoint.end())
+                throw std::logic_error("BlockMigration: a contact's gridpoint is not held here");
+              node = it->second;
+            }
+            laid.sc_node.push_back(node);
+            laid.sc_weight.push_back(from.get<double>());
           }
-          laid.sc_node.push_back(node);
-          laid.sc_weight.push_back(in.get<double>());
-        }
-    }
+        });
   };
   for (std::size_t k = 0, r = 0; k < kept.size() || r < received_contacts.size();)
     if (r == received_contacts.size() ||

@@ -12,34 +12,11 @@
 namespace talus
 {
 
+using block_records::Bytes;
+using block_records::Reader;
+
 namespace
 {
-
-/// Values appended bit for bit.
-struct Packer
-{
-  std::vector<char> data;
-  template <typename T>
-  void put(const T& x)
-  {
-    const char* p = reinterpret_cast<const char*>(&x);
-    data.insert(data.end(), p, p + sizeof(T));
-  }
-};
-
-/// Reads what Packer wrote, in the same order.
-struct Unpacker
-{
-  const char* at;
-  template <typename T>
-  T get()
-  {
-    T x;
-    std::memcpy(static_cast<void*>(&x), at, sizeof(T));
-    at += sizeof(T);
-    return x;
-  }
-};
 
 std::vector<char> all_gathered(const std::vector<char>& mine, MPI_Comm comm,
                                std::vector<int>& counts, std::vector<int>& starts)
@@ -94,7 +71,7 @@ void BlockMigration::gather_whole(const RigidSolver& split, const RankBlocks& bl
     throw std::logic_error("BlockMigration::gather_whole: the solvers keep other block arrays");
 
   // Owned blocks: global number, geometry, solver arrays.
-  Packer out;
+  Bytes out;
   std::vector<unsigned int> owned;
   for (unsigned int i = 0; i < blocks.local.size(); ++i)
     if (blocks.owned[i])
@@ -117,15 +94,10 @@ void BlockMigration::gather_whole(const RigidSolver& split, const RankBlocks& bl
   // Contacts whose first block this rank owns (each contact on one rank),
   // with their sub-contacts, which are contiguous (block-pair order).
   const ContactSet& cs = s.contacts_;
-  std::vector<unsigned int> sc_begin(cs.n_slots(), 0), sc_end(cs.n_slots(), 0);
-  for (unsigned int k = 0; k < cs.n_subcontacts(); ++k)
-  {
-    const unsigned int c = cs.sc_contact[k];
-    if (sc_end[c] == 0)
-      sc_begin[c] = k;
-    sc_end[c] = k + 1;
-  }
-  const bool dilation = !cs.sc_dilation.empty(), yielding = !cs.sc_yield.empty();
+  std::vector<unsigned int> sc_begin, sc_end;
+  block_records::subcontact_ranges(cs, sc_begin, sc_end);
+  // (as the settings say, alike on every rank: a rank may have no sub-contacts)
+  const bool dilation = s.s_.contact.dilation, yielding = s.s_.contact.yielding;
   unsigned int n_contacts = 0;
   for (unsigned int c = 0; c < cs.n_slots(); ++c)
     n_contacts += cs.alive[c] && blocks.owned[cs.block_a[c]];
@@ -134,33 +106,9 @@ void BlockMigration::gather_whole(const RigidSolver& split, const RankBlocks& bl
   {
     if (!cs.alive[c] || !blocks.owned[cs.block_a[c]])
       continue;
-    out.put(blocks.local[cs.block_a[c]]);
-    out.put(blocks.local[cs.block_b[c]]);
-    out.put(cs.plane[c]);
-    out.put(cs.gap[c]);
-    out.put(cs.type[c]);
-    out.put(cs.material[c]);
-    out.put(cs.path_at_update[c]);
-    out.put(sc_end[c] - sc_begin[c]);
-    for (unsigned int k = sc_begin[c]; k < sc_end[c]; ++k)
-    {
-      out.put(cs.sc_position[k]);
-      out.put(cs.sc_area[k]);
-      out.put(cs.sc_un[k]);
-      out.put(cs.sc_fn[k]);
-      for (int d = 0; d < 3; ++d)
-        out.put(cs.sc_fs[3 * k + d]);
-      for (int d = 0; d < 3; ++d)
-        out.put(cs.sc_us[3 * k + d]);
-      out.put(cs.sc_state[k]);
-      out.put(cs.sc_material[k]);
-      out.put(cs.sc_fresh[k]);
-      if (dilation)
-        out.put(cs.sc_dilation[k]);
-      if (yielding)
-        for (unsigned int y = 0; y < yield_state_size; ++y)
-          out.put(cs.sc_yield[yield_state_size * k + y]);
-    }
+    block_records::put_contact(out, cs, c, blocks.local[cs.block_a[c]], blocks.local[cs.block_b[c]],
+                               sc_begin[c], sc_end[c], dilation, yielding,
+                               [](Bytes&, unsigned int) {});
   }
 
   std::vector<int> counts, starts;
@@ -171,7 +119,7 @@ void BlockMigration::gather_whole(const RigidSolver& split, const RankBlocks& bl
   std::vector<std::pair<std::uint64_t, const char*>> contacts;
   for (std::size_t r = 0; r < counts.size(); ++r)
   {
-    Unpacker in{all.data() + starts[r]};
+    Reader in{all.data() + starts[r]};
     const unsigned int n = in.get<unsigned int>();
     for (unsigned int k = 0; k < n; ++k)
     {
@@ -202,12 +150,9 @@ void BlockMigration::gather_whole(const RigidSolver& split, const RankBlocks& bl
     {
       const char* start = in.at;
       const unsigned int a = in.get<unsigned int>(), b = in.get<unsigned int>();
-      in.at += sizeof(CommonPlane) + sizeof(double) + sizeof(ContactType) + sizeof(unsigned char) +
-               sizeof(double);
+      in.at += block_records::contact_head_size - sizeof(unsigned int);
       const unsigned int n_sc = in.get<unsigned int>();
-      in.at += n_sc * (sizeof(Vec3) + 9 * sizeof(double) + 3 * sizeof(unsigned char) +
-                       (dilation ? sizeof(double) : 0) +
-                       (yielding ? yield_state_size * sizeof(double) : 0));
+      in.at += n_sc * block_records::subcontact_size(dilation, yielding, false);
       contacts.emplace_back((static_cast<std::uint64_t>(a) << 32) | b, start);
     }
   }
@@ -220,39 +165,9 @@ void BlockMigration::gather_whole(const RigidSolver& split, const RankBlocks& bl
   ContactSet laid;
   for (const auto& [key, record_at] : contacts)
   {
-    const unsigned int c = laid.n_slots();
-    laid.block_a.push_back(static_cast<unsigned int>(key >> 32));
-    laid.block_b.push_back(static_cast<unsigned int>(key & 0xffffffffu));
-    laid.alive.push_back(1);
-    laid.slot_of_pair_[key] = c;
-    ++laid.n_alive_;
-    Unpacker in{record_at + 2 * sizeof(unsigned int)};
-    laid.plane.push_back(in.get<CommonPlane>());
-    laid.gap.push_back(in.get<double>());
-    laid.type.push_back(in.get<ContactType>());
-    laid.material.push_back(in.get<unsigned char>());
-    laid.path_at_update.push_back(in.get<double>());
-    const unsigned int n_sc = in.get<unsigned int>();
-    for (unsigned int k = 0; k < n_sc; ++k)
-    {
-      laid.sc_contact.push_back(c);
-      laid.sc_position.push_back(in.get<Vec3>());
-      laid.sc_area.push_back(in.get<double>());
-      laid.sc_un.push_back(in.get<double>());
-      laid.sc_fn.push_back(in.get<double>());
-      for (int d = 0; d < 3; ++d)
-        laid.sc_fs.push_back(in.get<double>());
-      for (int d = 0; d < 3; ++d)
-        laid.sc_us.push_back(in.get<double>());
-      laid.sc_state.push_back(in.get<unsigned char>());
-      laid.sc_material.push_back(in.get<unsigned char>());
-      laid.sc_fresh.push_back(in.get<unsigned char>());
-      if (dilation)
-        laid.sc_dilation.push_back(in.get<double>());
-      if (yielding)
-        for (unsigned int y = 0; y < yield_state_size; ++y)
-          laid.sc_yield.push_back(in.get<double>());
-    }
+    const unsigned int c = append_contact_slot(laid, key);
+    Reader in{record_at + 2 * sizeof(unsigned int)};
+    block_records::get_contact(in, laid, c, dilation, yielding, [](Reader&) {});
   }
   laid.is_deformable_ = whole.contacts_.is_deformable_;
   laid.vertex_gridpoint_ = whole.contacts_.vertex_gridpoint_;
