@@ -13,6 +13,7 @@ namespace talus
 {
 
 class CheckpointReader;
+class ContactSet;
 class CheckpointWriter;
 class RigidSolver;
 
