@@ -2,10 +2,12 @@
 // settling scene of rigid_settling.cc (n x n x n unit cubes on a fixed
 // floor layer, static with local damping), first whole on rank 0 alone
 // while the other ranks wait, then split among all ranks by a CellPartition
-// with RankShare's layers of ghosts refreshed after every step (GhostExchange) and
-// owners that follow the blocks (BlockMigration's check after every step).
-// Prints both rates, the speed-up measured in this one run, the blocks each
-// rank holds and the exchange volume per step.
+// with RankShare's layers of ghosts refreshed after every step (GhostExchange),
+// each contact across ranks computed by one rank (SubContactExchange), and
+// owners that follow the blocks (BlockMigration's check after every step);
+// then split again with those contacts computed on both sides, for the
+// ratio. Prints the rates, the speed-ups measured in this one run, the
+// blocks each rank holds and the exchange volume per step.
 //   cmake --build build --target benchmark_rigid_ranks
 //   mpirun -np 2 build/contrib/benchmarks/benchmark_rigid_ranks [n] [steps]
 
@@ -22,6 +24,7 @@
 #include <talus/solver/block_migration.h>
 #include <talus/solver/ghost_exchange.h>
 #include <talus/solver/rigid_solver.h>
+#include <talus/solver/subcontact_exchange.h>
 
 #include <mpi.h>
 
@@ -90,6 +93,8 @@ int main(int argc, char** argv)
     ghost[i] = !mine.owned[i];
   solver.split_among_ranks(ghost, reductions_over(comm));
   GhostExchange exchange(mine, comm);
+  SubContactExchange shared(mine, comm);
+  solver.share_subcontacts(&shared);
   BlockMigration migration(solver, mine, partition, reach, layers, comm);
   MPI_Barrier(comm);
   const auto start = std::chrono::steady_clock::now();
@@ -103,6 +108,8 @@ int main(int argc, char** argv)
     migration.update(solver, mine);
   }
   const double mine_seconds = seconds_since(start);
+  const std::size_t subcontacts_sent = shared.sent(), subcontacts_taken = shared.received();
+
   // The split run must be the whole run: every owned block's centroid,
   // velocity and spin, gathered on rank 0 and compared bit for bit (this
   // is what a run on oversubscribed ranks checks).
@@ -134,6 +141,38 @@ int main(int argc, char** argv)
       rank == 1 ? (peak_memory() - memory_before) / double(mine.local.size()) : 0.0;
   MPI_Allreduce(MPI_IN_PLACE, &memory_per_block, 1, MPI_DOUBLE, MPI_MAX, comm);
 
+  // 3. The same split with the contacts across ranks computed on both
+  // sides (no SubContactExchange): the time, and the same answer.
+  double both_sides_seconds = 0.0;
+  unsigned long both_differ = 0;
+  {
+    RankBlocks mine_again =
+        decompose_blocks(model, partition, static_cast<unsigned int>(rank), reach, layers);
+    BlockModel local_again = model.subset(mine_again.local);
+    RigidSolver again(local_again, 2650.0, s);
+    again.split_among_ranks(ghost, reductions_over(comm));
+    GhostExchange exchange_again(mine_again, comm);
+    BlockMigration migration_again(again, mine_again, partition, reach, layers, comm);
+    MPI_Barrier(comm);
+    const auto again_start = std::chrono::steady_clock::now();
+    for (unsigned long k = 0; k < steps; ++k)
+    {
+      again.step();
+      exchange_again.refresh(again);
+      migration_again.update(again, mine_again);
+    }
+    const double again_seconds = seconds_since(again_start);
+    MPI_Reduce(&again_seconds, &both_sides_seconds, 1, MPI_DOUBLE, MPI_MAX, 0, comm);
+    if (mine_again.local == mine.local)
+      for (std::size_t i = 0; i < mine.local.size(); ++i)
+        both_differ += mine.owned[i] &&
+                       (local_again.centroid[i] != local.centroid[i] ||
+                        again.velocity[i] != solver.velocity[i] || again.spin[i] != solver.spin[i]);
+    else
+      both_differ = mine.local.size();
+    MPI_Allreduce(MPI_IN_PLACE, &both_differ, 1, MPI_UNSIGNED_LONG, MPI_SUM, comm);
+  }
+
   // This machine's MPI between ranks 0 and 1, for the exchange model.
   const rank_figures::MpiFigures mpi_figures = rank_figures::measure_mpi(comm);
   const double latency = mpi_figures.latency, bandwidth = mpi_figures.bandwidth,
@@ -156,9 +195,13 @@ int main(int argc, char** argv)
   std::fprintf(stderr, "rank %d: %u owned, %zu held, %.0f doubles sent per step, %.3f s\n", rank,
                mine.n_owned(), mine.local.size(), double(exchange.sent()), mine_seconds);
   long held = static_cast<long>(mine.local.size()), held_all = 0;
-  double sent = static_cast<double>(exchange.sent()) * 8.0, sent_all = 0.0;
+  double sent = static_cast<double>(exchange.sent() + subcontacts_sent) * 8.0, sent_all = 0.0;
+  double sent_subcontacts = static_cast<double>(subcontacts_sent) * 8.0, sent_subcontacts_all = 0.0;
+  unsigned long taken = subcontacts_taken, taken_all = 0;
   MPI_Reduce(&held, &held_all, 1, MPI_LONG, MPI_SUM, 0, comm);
   MPI_Reduce(&sent, &sent_all, 1, MPI_DOUBLE, MPI_SUM, 0, comm);
+  MPI_Reduce(&sent_subcontacts, &sent_subcontacts_all, 1, MPI_DOUBLE, MPI_SUM, 0, comm);
+  MPI_Reduce(&taken, &taken_all, 1, MPI_UNSIGNED_LONG, MPI_SUM, 0, comm);
   double exchange_all = 0.0;
   MPI_Reduce(&exchange_seconds, &exchange_all, 1, MPI_DOUBLE, MPI_MAX, 0, comm);
   if (rank == 0)
@@ -176,9 +219,17 @@ int main(int argc, char** argv)
     std::printf("split on %d ranks: %.3f s, %.0f block-cycles/s; speed-up %.2f\n", ranks,
                 split_seconds, double(model.n_blocks()) * steps / split_seconds,
                 serial_seconds / split_seconds);
+    std::printf("split again, contacts across ranks computed on both sides: %.3f s, %.0f "
+                "block-cycles/s; speed-up %.2f; computed once against both sides %.3f; %lu "
+                "blocks differ from the first split run, bit for bit\n",
+                both_sides_seconds, double(model.n_blocks()) * steps / both_sides_seconds,
+                serial_seconds / both_sides_seconds, both_sides_seconds / split_seconds,
+                both_differ);
     std::printf("blocks held %.3f times the model (ghosts); exchange %.0f bytes per step in "
-                "all, %.0f bytes per block-step\n",
-                double(held_all) / model.n_blocks(), sent_all, sent_all / model.n_blocks());
+                "all (%.0f of them sub-contacts' state, %lu sub-contacts taken), %.0f bytes "
+                "per block-step\n",
+                double(held_all) / model.n_blocks(), sent_all, sent_subcontacts_all, taken_all,
+                sent_all / model.n_blocks());
     std::printf("migration events %lu, blocks that changed owner %lu; one event forced "
                 "after the steps took %.3f s on rank 0 and chose %s\n",
                 migration.events() - 1, migration.owner_changes(), event_seconds,
@@ -199,8 +250,8 @@ int main(int argc, char** argv)
     // layers of ghosts on every side). It moves its m at the whole run's
     // rate (t per block-step) and pays, per ghost it holds, what a ghost
     // cost here: the split run's time beyond its owned blocks' share of the
-    // whole run's, less the exchange, over the ghosts (its contacts with
-    // owned blocks are computed on both sides). It sends each of its blocks
+    // whole run's, less the ghosts' exchange, over the ghosts (the
+    // sub-contacts' exchange is in it). It sends each of its blocks
     // within g layers of a face to that neighbour ((L + 2 g)^3 - L^3 in all)
     // at the measured bytes per ghost, to 26 neighbours (latency each), and
     // takes part in 5 reductions of log2 P latencies each.

@@ -735,6 +735,7 @@ void RigidSolver::save_state(CheckpointWriter& out) const
 
 void RigidSolver::load_state(CheckpointReader& in)
 {
+  subcontacts_stale_ = true; // on every rank: all load together
   const std::size_t nb = m_.n_blocks();
   in.tag("stages");
   in.get(removed_, nb, "blocks");

@@ -123,6 +123,8 @@ ExactSum continuously_yielding(const std::vector<JointProperties>& joints, SubCo
   ExactSum dissipated;
   for (unsigned int i = 0; i < s.size; ++i)
   {
+    if (s.computed != nullptr && !s.computed[i])
+      continue;
     const unsigned char material = s.material != nullptr ? s.material[i] : 0;
     const YieldingRow& row = rows[material];
     if (!row.active)

@@ -46,6 +46,8 @@ ExactSum coulomb_slip(const std::vector<JointProperties>& joints, SubContactBatc
   ExactSum dissipated;
   for (unsigned int i = 0; i < s.size; ++i)
   {
+    if (s.computed != nullptr && !s.computed[i])
+      continue;
     const unsigned char material = s.material != nullptr ? s.material[i] : 0;
     if (mixed && other_model[material])
       continue;

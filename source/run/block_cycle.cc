@@ -106,6 +106,7 @@ BlockCycle::BlockCycle(Scene& scene, BlockModel& model, const std::string& prefi
   if (share_)
   {
     system_.solver->split_among_ranks(share_->ghost_flags(), reductions_over(share_->comm()));
+    system_.solver->share_subcontacts(share_->subcontacts());
     system_.solver->localize_loads(share_->blocks().local);
     // 'Boundary N' face loads selected on the whole model, as on one rank.
     if (!scene.face_pressures.empty())

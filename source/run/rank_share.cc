@@ -108,6 +108,7 @@ RankShare::RankShare(const BlockModel& model, double reach, MPI_Comm comm, const
                                      ghost_layers);
   local_ = model.subset(blocks_.local);
   exchange_ = std::make_unique<GhostExchange>(blocks_, comm_);
+  subcontacts_ = std::make_unique<SubContactExchange>(blocks_, comm_);
 }
 
 void RankShare::refresh(RigidSolver& solver)

@@ -624,6 +624,7 @@ void BlockMigration::migrate(RigidSolver& s, RankBlocks& blocks)
   // 7. The rest of the solver: ghosts, the cell space on the blocks held
   // now, eq. 1's flag for the blocks received, the block of the ratio.
   s.ghost_.assign(n_new, 0);
+  s.subcontacts_stale_ = true;
   for (unsigned int j = 0; j < n_new; ++j)
   {
     s.ghost_[j] = !next.owned[j];

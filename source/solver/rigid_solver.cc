@@ -5,6 +5,7 @@
 #include <talus/solver/damper.h>
 #include <talus/solver/deformable_solver.h>
 #include <talus/solver/rigid_solver.h>
+#include <talus/solver/subcontact_exchange.h>
 #include <talus/zone/zone_surface.h>
 
 #include <Eigen/Geometry>
@@ -348,6 +349,7 @@ void RigidSolver::remove_blocks(const std::vector<unsigned int>& blocks)
   }
   contacts_.remove_contacts_of(removed_);
   contacts_.update(m_, s_.contact, &path);
+  subcontacts_stale_ = true;
   if (zones_ != nullptr)
   {
     bool any = false;
@@ -715,12 +717,20 @@ void RigidSolver::contact_forces()
   du_n_.resize(n);
   du_s_.resize(3 * n);
   // Split among ranks: a contact's work is counted by the owner of its
-  // first block alone (every rank holding both blocks computes it).
+  // first block alone. With an exchange, that rank alone computes it and
+  // sends its sub-contacts' state on; without, every rank holding both
+  // blocks computes it.
   if (!ghost_.empty())
   {
     sc_counted_.resize(n);
     for (unsigned int i = 0; i < n; ++i)
       sc_counted_[i] = !ghost_[cs.block_a[cs.sc_contact[i]]];
+  }
+  const bool exchanged = subcontact_exchange_ != nullptr && !ghost_.empty();
+  if (exchanged && subcontacts_stale_)
+  {
+    subcontact_exchange_->match(cs);
+    subcontacts_stale_ = false;
   }
   const double beta = s_.stiffness_damping(); // Rayleigh, s
   if (beta > 0.0)
@@ -738,6 +748,8 @@ void RigidSolver::contact_forces()
   // Relative displacement increments (eqs. 15, 20-22).
   for (unsigned int i = 0; i < n; ++i)
   {
+    if (exchanged && !sc_counted_[i])
+      continue; // its state comes from its first block's owner
     const unsigned int c = cs.sc_contact[i];
     const unsigned int a = cs.block_a[c], b = cs.block_b[c];
     const int* node = gp_x_ != nullptr ? &cs.sc_node[6 * i] : nullptr;
@@ -815,7 +827,10 @@ void RigidSolver::contact_forces()
   batch.yield = cs.sc_yield.empty() ? nullptr : cs.sc_yield.data();
   batch.material = cs.sc_material.data();
   batch.counted = ghost_.empty() ? nullptr : sc_counted_.data();
+  batch.computed = exchanged ? sc_counted_.data() : nullptr;
   step_energy_[step_friction] += apply_joint_model(joints_, batch);
+  if (exchanged)
+    subcontact_exchange_->swap(cs, beta > 0.0 ? &sc_velocity_ : nullptr);
 
   // Force and moment sums (eqs. 28-32): A pushes B along +n.
   for (unsigned int i = 0; i < n; ++i)
@@ -1067,6 +1082,7 @@ void RigidSolver::split_among_ranks(std::vector<char> ghost, RankReductions redu
   ghost_ = std::move(ghost);
   ranks_ = std::move(reductions);
   contacts_.drop_contacts_among(ghost_);
+  subcontacts_stale_ = true;
   build_water_loads(); // on the blocks this rank owns
   set_masses_and_step();
   if (step_ == 0)
@@ -1167,6 +1183,7 @@ void RigidSolver::step()
     const unsigned int before = contacts_.n_contacts();
     detect_contacts(false);
     moved_beyond_tolerance_ = false;
+    subcontacts_stale_ = true; // on every rank: this branch is taken by all
     timing_.seconds_detection += seconds_since(t0);
     t0 = std::chrono::steady_clock::now();
     if (any(periodic || contacts_.n_contacts() > before))

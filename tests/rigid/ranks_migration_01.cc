@@ -39,6 +39,7 @@
 #include <talus/solver/block_migration.h>
 #include <talus/solver/ghost_exchange.h>
 #include <talus/solver/rigid_solver.h>
+#include <talus/solver/subcontact_exchange.h>
 
 #include <mpi.h>
 
@@ -135,14 +136,68 @@ void run_case(const BlockModel& model, unsigned int slider, const SolverSettings
     ghost[i] = !mine.owned[i];
   solver.split_among_ranks(ghost, reductions_over(comm));
   GhostExchange exchange(mine, comm);
+  SubContactExchange shared(mine, comm); // each contact across ranks computed once
+  solver.share_subcontacts(&shared);
   BlockMigration migration(solver, mine, partition, reach, 2, comm);
+
+  // Contacts: each of the serial run's held by the owner of its first
+  // block, with the same sub-contacts' forces (`taken` false); or those held
+  // where the second block is owned and the first is a ghost, which took
+  // their sub-contacts' state from the first one's owner (`taken` true):
+  // the whole of that state must be the serial run's too. Adds the
+  // contacts compared and those differing.
+  const auto subcontacts = [](const ContactSet& cs)
+  {
+    std::map<unsigned int, std::vector<unsigned int>> of;
+    for (unsigned int k = 0; k < cs.n_subcontacts(); ++k)
+      of[cs.sc_contact[k]].push_back(k);
+    return of;
+  };
+  const auto compare_contacts = [&](bool taken_ones, long& compared, long& differing)
+  {
+    const ContactSet &cw = serial.contacts(), &cl = solver.contacts();
+    auto sc_whole = subcontacts(cw), sc_local = subcontacts(cl);
+    std::map<std::pair<unsigned int, unsigned int>, unsigned int> serial_slot;
+    for (unsigned int c = 0; c < cw.n_slots(); ++c)
+      if (cw.alive[c])
+        serial_slot[{cw.block_a[c], cw.block_b[c]}] = c;
+    for (unsigned int c = 0; c < cl.n_slots(); ++c)
+    {
+      if (!cl.alive[c] || (taken_ones ? mine.owned[cl.block_a[c]] || !mine.owned[cl.block_b[c]]
+                                      : !mine.owned[cl.block_a[c]]))
+        continue;
+      ++compared;
+      const auto it = serial_slot.find({mine.local[cl.block_a[c]], mine.local[cl.block_b[c]]});
+      bool same = it != serial_slot.end() && sc_local[c].size() == sc_whole[it->second].size();
+      for (std::size_t k = 0; same && k < sc_local[c].size(); ++k)
+      {
+        const unsigned int i = sc_local[c][k], j = sc_whole[it->second][k];
+        same &= same_bits(cl.sc_fn[i], cw.sc_fn[j]);
+        for (int d = 0; d < 3; ++d)
+          same &= same_bits(cl.sc_fs[3 * i + d], cw.sc_fs[3 * j + d]);
+        if (!taken_ones)
+          continue;
+        same &= same_bits(cl.sc_un[i], cw.sc_un[j]) && cl.sc_state[i] == cw.sc_state[j];
+        for (int d = 0; d < 3; ++d)
+          same &= same_bits(cl.sc_us[3 * i + d], cw.sc_us[3 * j + d]) &&
+                  same_bits(cl.sc_position[i][d], cw.sc_position[j][d]);
+        if (!cl.sc_dilation.empty())
+          same &= same_bits(cl.sc_dilation[i], cw.sc_dilation[j]);
+      }
+      differing += !same;
+    }
+  };
 
   int owned_slider = 0; // whether this rank owned the slider at some step
   long across = 0;      // contacts of an owned block with another rank's, summed over steps
+  long taken = 0;       // sub-contacts whose state came from another rank, summed over steps
+  long taken_compared = 0, taken_differing = 0; // contacts so taken, summed over steps
   for (unsigned long s = 0; s < settings.steps; ++s)
   {
     serial.step();
     solver.step();
+    taken += static_cast<long>(shared.received());
+    compare_contacts(true, taken_compared, taken_differing);
     exchange.refresh(solver);
     migration.update(solver, mine);
     for (std::size_t i = 0; i < mine.local.size(); ++i)
@@ -153,11 +208,14 @@ void run_case(const BlockModel& model, unsigned int slider, const SolverSettings
   }
   int slider_owners = 0;
   MPI_Allreduce(&owned_slider, &slider_owners, 1, MPI_INT, MPI_SUM, comm);
-  long contact_steps_across = 0;
+  long contact_steps_across = 0, subcontact_steps_taken = 0;
   MPI_Allreduce(&across, &contact_steps_across, 1, MPI_LONG, MPI_SUM, comm);
+  MPI_Allreduce(&taken, &subcontact_steps_taken, 1, MPI_LONG, MPI_SUM, comm);
 
   // Blocks: owned once, bit for bit.
-  long counts[5] = {0, 0, 0, 0, 0}; // owned, differing, held, contacts differing, contacts
+  // owned, differing, held, contacts differing, contacts, contact-steps
+  // taken from the first block's owner, of those differing
+  long counts[7] = {0, 0, 0, 0, 0, taken_compared, taken_differing};
   for (std::size_t i = 0; i < mine.local.size(); ++i)
   {
     ++counts[2];
@@ -167,37 +225,7 @@ void run_case(const BlockModel& model, unsigned int slider, const SolverSettings
     ++counts[0];
     counts[1] += !talus_test::same_block(solver, local, i, serial, whole, g);
   }
-  // Contacts: each of the serial run's held by the owner of its first
-  // block, with the same sub-contacts' forces.
-  const auto subcontacts = [](const ContactSet& cs)
-  {
-    std::map<unsigned int, std::vector<unsigned int>> of;
-    for (unsigned int k = 0; k < cs.n_subcontacts(); ++k)
-      of[cs.sc_contact[k]].push_back(k);
-    return of;
-  };
-  const ContactSet &cw = serial.contacts(), &cl = solver.contacts();
-  auto sc_whole = subcontacts(cw), sc_local = subcontacts(cl);
-  std::map<std::pair<unsigned int, unsigned int>, unsigned int> serial_slot;
-  for (unsigned int c = 0; c < cw.n_slots(); ++c)
-    if (cw.alive[c])
-      serial_slot[{cw.block_a[c], cw.block_b[c]}] = c;
-  for (unsigned int c = 0; c < cl.n_slots(); ++c)
-  {
-    if (!cl.alive[c] || !mine.owned[cl.block_a[c]])
-      continue;
-    ++counts[4];
-    const auto it = serial_slot.find({mine.local[cl.block_a[c]], mine.local[cl.block_b[c]]});
-    bool same = it != serial_slot.end() && sc_local[c].size() == sc_whole[it->second].size();
-    for (std::size_t k = 0; same && k < sc_local[c].size(); ++k)
-    {
-      const unsigned int i = sc_local[c][k], j = sc_whole[it->second][k];
-      same &= same_bits(cl.sc_fn[i], cw.sc_fn[j]);
-      for (int d = 0; d < 3; ++d)
-        same &= same_bits(cl.sc_fs[3 * i + d], cw.sc_fs[3 * j + d]);
-    }
-    counts[3] += !same;
-  }
+  compare_contacts(false, counts[4], counts[3]);
   // One event more, forced: each rank chose its blocks and lists from the
   // boxes its neighbours sent; they must be those chosen from the whole
   // model (serial, whose blocks are where the split run's are).
@@ -208,8 +236,8 @@ void run_case(const BlockModel& model, unsigned int slider, const SolverSettings
                           from_whole.send == mine.send && from_whole.receive == mine.receive;
   int same_everywhere = 0;
   MPI_Allreduce(&same_choice, &same_everywhere, 1, MPI_INT, MPI_LAND, comm);
-  long total[5];
-  MPI_Allreduce(counts, total, 5, MPI_LONG, MPI_SUM, comm);
+  long total[7];
+  MPI_Allreduce(counts, total, 7, MPI_LONG, MPI_SUM, comm);
   std::fprintf(stderr, "rank %d: %ld owned, %ld held; received %lu, dropped %lu blocks\n", rank,
                counts[0], counts[2], migration.received(), migration.dropped());
   if (rank == 0)
@@ -232,13 +260,18 @@ void run_case(const BlockModel& model, unsigned int slider, const SolverSettings
         talus_test::verdict(total[1] == 0));
     std::printf("  every contact of the serial run held once, its sub-contacts' forces bit for "
                 "bit %s\n",
-                talus_test::verdict(total[3] == 0 && total[4] == cw.n_contacts()));
+                talus_test::verdict(total[3] == 0 && total[4] == serial.contacts().n_contacts()));
+    std::printf("  contacts across ranks computed by one rank; the other took their state, bit "
+                "for bit %s\n",
+                talus_test::verdict(subcontact_steps_taken > 0 && total[5] > 0 && total[6] == 0));
     std::fprintf(stderr,
                  "slider moved %.3f m, owned by %d ranks; %lu migration events, %lu owner "
                  "changes; %ld contact-steps across ranks; %ld blocks differ, %ld of %ld contacts "
-                 "held differ, serial has %u\n",
+                 "held differ, serial has %u; %ld sub-contact-steps taken, %ld of %ld "
+                 "contact-steps taken differ\n",
                  slid, slider_owners, migration.events(), migration.owner_changes(),
-                 contact_steps_across, total[1], total[3], total[4], cw.n_contacts());
+                 contact_steps_across, total[1], total[3], total[4], serial.contacts().n_contacts(),
+                 subcontact_steps_taken, total[6], total[5]);
   }
 }
 

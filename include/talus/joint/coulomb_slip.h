@@ -40,9 +40,14 @@ struct SubContactBatch
   /// the model); null: all take the first.
   const unsigned char* material = nullptr;
   /// Per sub-contact: whether its frictional work is this rank's to count
-  /// (a model split among ranks computes a contact on every rank that holds
-  /// both blocks; one of them counts it); null: all are.
+  /// (a model split among ranks without a SubContactExchange computes a
+  /// contact on every rank that holds both blocks; one of them counts it);
+  /// null: all are.
   const unsigned char* counted = nullptr;
+  /// Per sub-contact: whether this rank computes it; one with 0 is left as
+  /// it is (another rank computes it and sends its state:
+  /// SubContactExchange). Null: all are.
+  const unsigned char* computed = nullptr;
 };
 
 /// Coulomb slip with tension cut-off, cohesion, dilation and loss of

@@ -6,6 +6,7 @@
 #include <talus/scene/scene.h>
 #include <talus/solver/block_migration.h>
 #include <talus/solver/ghost_exchange.h>
+#include <talus/solver/subcontact_exchange.h>
 
 #include <mpi.h>
 
@@ -94,6 +95,9 @@ public:
   unsigned long event_steps() const { return event_steps_; }
   /// Doubles sent by this rank at the last refresh.
   std::size_t sent() const { return exchange_->sent(); }
+  /// The exchange of the contacts across this rank's boundary, each
+  /// computed by one rank (RigidSolver::share_subcontacts).
+  SubContactExchange* subcontacts() { return subcontacts_.get(); }
 
   /// Element-wise sums over the ranks of `values` (in place).
   void sum(std::vector<double>& values) const;
@@ -120,6 +124,7 @@ private:
   RankBlocks blocks_;
   BlockModel local_;
   std::unique_ptr<GhostExchange> exchange_;
+  std::unique_ptr<SubContactExchange> subcontacts_;
   std::unique_ptr<BlockMigration> migration_; ///< made at the first refresh
   unsigned long event_steps_ = 0;
   void make_migration(const RigidSolver& solver);

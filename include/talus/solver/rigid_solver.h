@@ -29,6 +29,7 @@ namespace talus
 class CheckpointReader;
 class CheckpointWriter;
 class DeformableSolver;
+class SubContactExchange;
 
 /// Loads on the blocks of one group: a force at each block's centroid that
 /// may grow at a constant rate, or a prescribed velocity.
@@ -251,6 +252,15 @@ public:
   /// comes through `reductions`. Masses and the time step are set again.
   void split_among_ranks(std::vector<char> ghost, RankReductions reductions);
   bool is_ghost(unsigned int b) const { return !ghost_.empty() && ghost_[b] != 0; }
+  /// Split among ranks: each contact computed by the owner of its first
+  /// block alone, which sends its sub-contacts' state to the rank that
+  /// holds that block as a ghost (`exchange`: kept by the caller; null:
+  /// every rank that holds both blocks computes their contact).
+  void share_subcontacts(SubContactExchange* exchange)
+  {
+    subcontact_exchange_ = exchange;
+    subcontacts_stale_ = true;
+  }
   /// On ranks: 'Boundary N' face loads as a table on the whole model
   /// (RigidFaceLoads::relative_to), kept to place them again on the blocks
   /// owned after a migration; `global_of_local`: the global numbers of the
@@ -400,6 +410,10 @@ private:
   std::vector<std::pair<unsigned int, unsigned int>> pairs_;
   std::vector<double> du_n_, du_s_;
   std::vector<unsigned char> sc_counted_; ///< split among ranks: see contact_forces
+  SubContactExchange* subcontact_exchange_ = nullptr;
+  /// The exchange's lists are made again at the next contact pass: set,
+  /// on every rank alike, wherever the contacts' layout may have changed.
+  bool subcontacts_stale_ = true;
   /// Dynamics with Rayleigh beta only: the relative velocity at each
   /// sub-contact (3 per sub-contact, m/s) of the step, and the damping
   /// force and moment of the sub-contacts on each rigid block (N, N m),

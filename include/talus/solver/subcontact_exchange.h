@@ -1,0 +1,63 @@
+#pragma once
+
+#include <talus/contact/block_decomposition.h>
+
+#include <mpi.h>
+
+#include <cstddef>
+#include <vector>
+
+namespace talus
+{
+
+class ContactSet;
+
+/// A model split among ranks computes each contact once (issue 24): the
+/// rank that owns the contact's first block runs its sub-contacts through
+/// the displacement increments and the joint model; a rank that holds that
+/// block as a ghost (and owns the second one) takes their new state from it
+/// instead, one message per neighbour rank each way. The sub-contacts' force
+/// sums then run on both ranks over the same numbers, in the same order as
+/// one rank would, so that the answer is still the serial one, bit for bit.
+///
+/// Both ranks hold such a contact with the same sub-contacts (they build it
+/// from the same blocks); match() checks that and throws when not.
+class SubContactExchange
+{
+public:
+  SubContactExchange(const RankBlocks& blocks, MPI_Comm comm) : blocks_(blocks), comm_(comm) {}
+
+  /// The lists of sub-contacts to send and to receive, made again from
+  /// `cs`; every rank calls it at the same step (after a contact search or
+  /// update, a migration, a stage's change, a restart). Sends each
+  /// neighbour the pairs (global numbers) and sub-contact counts it will
+  /// receive, and throws std::logic_error when they are not those it holds.
+  void match(const ContactSet& cs);
+
+  /// After this rank's sub-contacts went through the joint model: sends
+  /// the state of those the neighbours hold (position, normal displacement,
+  /// forces, shear displacement, state, and dilation, yield state and, with
+  /// `velocity` (3 per sub-contact), the relative velocity, when kept), and
+  /// writes what arrives into the others. Returns once every message
+  /// arrived.
+  void swap(ContactSet& cs, std::vector<double>* velocity);
+
+  /// Doubles sent by this rank in the last swap.
+  std::size_t sent() const { return sent_; }
+  /// Sub-contacts this rank takes from its neighbours (matched layout).
+  std::size_t received() const { return n_received_; }
+
+private:
+  struct Neighbour
+  {
+    unsigned int rank = 0;
+    std::vector<unsigned int> send, receive; ///< sub-contact indices, in pair order
+    std::vector<double> out, in;
+  };
+  const RankBlocks& blocks_;
+  MPI_Comm comm_;
+  std::vector<Neighbour> neighbours_;
+  std::size_t sent_ = 0, n_received_ = 0;
+};
+
+} // namespace talus

@@ -1,0 +1,204 @@
+#include <talus/contact/contact_set.h>
+#include <talus/joint/continuously_yielding.h>
+#include <talus/solver/subcontact_exchange.h>
+
+#include <algorithm>
+#include <array>
+#include <sstream>
+#include <stdexcept>
+#include <string>
+#include <tuple>
+
+namespace talus
+{
+
+namespace
+{
+constexpr int header_tag = 2402, state_tag = 2403;
+
+/// Doubles per sub-contact in a swap: position (3), normal displacement,
+/// normal force, shear force (3), shear displacement (3), state; then the
+/// dilation, the yield state and the relative velocity when kept.
+std::size_t record_width(const ContactSet& cs, bool velocity)
+{
+  return 12 + (cs.sc_dilation.empty() ? 0 : 1) + (cs.sc_yield.empty() ? 0 : yield_state_size) +
+         (velocity ? 3 : 0);
+}
+
+void wait_all(std::vector<MPI_Request>& requests)
+{
+  if (MPI_Waitall(static_cast<int>(requests.size()), requests.data(), MPI_STATUSES_IGNORE) !=
+      MPI_SUCCESS)
+    throw std::runtime_error("SubContactExchange: a message between ranks failed");
+}
+} // namespace
+
+void SubContactExchange::match(const ContactSet& cs)
+{
+  const std::size_t n_local = blocks_.local.size();
+  std::vector<unsigned int> owner(n_local, blocks_.rank);
+  for (const auto& [from, ghosts] : blocks_.receive)
+    for (unsigned int i : ghosts)
+      owner[i] = from;
+  const auto ghost = [&](unsigned int b) { return blocks_.owned[b] == 0; };
+
+  // Every rank that sends ghosts here or takes ghosts from here: the
+  // relation is symmetric, so both sides of each pair expect a message.
+  std::vector<unsigned int> ranks;
+  for (const auto& [to, mine] : blocks_.send)
+    ranks.push_back(to);
+  for (const auto& [from, theirs] : blocks_.receive)
+    ranks.push_back(from);
+  std::sort(ranks.begin(), ranks.end());
+  ranks.erase(std::unique(ranks.begin(), ranks.end()), ranks.end());
+  neighbours_.assign(ranks.size(), Neighbour{});
+  for (std::size_t k = 0; k < ranks.size(); ++k)
+    neighbours_[k].rank = ranks[k];
+  const auto neighbour = [&](unsigned int rank) -> Neighbour&
+  { return neighbours_[std::lower_bound(ranks.begin(), ranks.end(), rank) - ranks.begin()]; };
+
+  // Each contact's sub-contacts, contiguous.
+  std::vector<unsigned int> begin(cs.n_slots(), 0), end(cs.n_slots(), 0);
+  for (unsigned int k = 0; k < cs.n_subcontacts(); ++k)
+  {
+    const unsigned int c = cs.sc_contact[k];
+    if (end[c] == 0)
+      begin[c] = k;
+    end[c] = k + 1;
+  }
+  n_received_ = 0;
+  // The contacts across ranks in pair order (local order is global order).
+  std::vector<std::array<unsigned int, 3>> cut;
+  for (unsigned int c = 0; c < cs.n_slots(); ++c)
+    if (cs.alive[c] && ghost(cs.block_a[c]) != ghost(cs.block_b[c]))
+      cut.push_back({{cs.block_a[c], cs.block_b[c], c}});
+  std::sort(cut.begin(), cut.end());
+  std::vector<std::vector<unsigned long long>> expected(ranks.size());
+  std::vector<std::vector<unsigned long long>> told(ranks.size());
+  for (const auto& [a, b, c] : cut)
+  {
+    const bool sending = !ghost(a);
+    const unsigned int other = sending ? owner[b] : owner[a];
+    if (other == blocks_.rank)
+      throw std::logic_error("SubContactExchange: a ghost on rank " + std::to_string(other) +
+                             " that no other rank sends");
+    Neighbour& n = neighbour(other);
+    std::vector<unsigned int>& list = sending ? n.send : n.receive;
+    for (unsigned int k = begin[c]; k < end[c]; ++k)
+      list.push_back(k);
+    if (!sending)
+      n_received_ += end[c] - begin[c];
+    const std::size_t slot = &n - neighbours_.data();
+    std::vector<unsigned long long>& heads = sending ? told[slot] : expected[slot];
+    heads.insert(heads.end(), {blocks_.local[a], blocks_.local[b], end[c] - begin[c]});
+  }
+
+  // Each side tells the other what it will send; the receiver checks it.
+  std::vector<MPI_Request> requests(ranks.size());
+  for (std::size_t k = 0; k < ranks.size(); ++k)
+    MPI_Isend(told[k].data(), static_cast<int>(told[k].size()), MPI_UNSIGNED_LONG_LONG,
+              static_cast<int>(ranks[k]), header_tag, comm_, &requests[k]);
+  std::string disagreement;
+  for (std::size_t k = 0; k < ranks.size(); ++k)
+  {
+    MPI_Status status;
+    MPI_Probe(static_cast<int>(ranks[k]), header_tag, comm_, &status);
+    int count = 0;
+    MPI_Get_count(&status, MPI_UNSIGNED_LONG_LONG, &count);
+    std::vector<unsigned long long> heard(static_cast<std::size_t>(count));
+    MPI_Recv(heard.data(), count, MPI_UNSIGNED_LONG_LONG, static_cast<int>(ranks[k]), header_tag,
+             comm_, MPI_STATUS_IGNORE);
+    if (heard != expected[k] && disagreement.empty())
+    {
+      std::size_t i = 0;
+      while (i + 3 <= heard.size() && i + 3 <= expected[k].size() &&
+             std::equal(heard.begin() + long(i), heard.begin() + long(i + 3),
+                        expected[k].begin() + long(i)))
+        i += 3;
+      std::ostringstream text;
+      text << "ranks " << blocks_.rank << " and " << ranks[k]
+           << " hold different contacts across their boundary (" << expected[k].size() / 3
+           << " expected, " << heard.size() / 3 << " announced; first difference at contact "
+           << i / 3 << ")";
+      disagreement = text.str();
+    }
+  }
+  wait_all(requests);
+  if (!disagreement.empty())
+    throw std::logic_error("SubContactExchange: " + disagreement);
+}
+
+void SubContactExchange::swap(ContactSet& cs, std::vector<double>* velocity)
+{
+  const std::size_t w = record_width(cs, velocity != nullptr);
+  const bool dilation = !cs.sc_dilation.empty(), yielding = !cs.sc_yield.empty();
+  std::vector<MPI_Request> requests;
+  requests.reserve(2 * neighbours_.size());
+  for (Neighbour& n : neighbours_)
+  {
+    n.in.resize(w * n.receive.size());
+    requests.emplace_back();
+    MPI_Irecv(n.in.data(), static_cast<int>(n.in.size()), MPI_DOUBLE, static_cast<int>(n.rank),
+              state_tag, comm_, &requests.back());
+  }
+  sent_ = 0;
+  for (Neighbour& n : neighbours_)
+  {
+    n.out.resize(w * n.send.size());
+    double* at = n.out.data();
+    for (unsigned int k : n.send)
+    {
+      const Vec3& p = cs.sc_position[k];
+      *at++ = p[0];
+      *at++ = p[1];
+      *at++ = p[2];
+      *at++ = cs.sc_un[k];
+      *at++ = cs.sc_fn[k];
+      for (int d = 0; d < 3; ++d)
+        *at++ = cs.sc_fs[3 * k + d];
+      for (int d = 0; d < 3; ++d)
+        *at++ = cs.sc_us[3 * k + d];
+      *at++ = cs.sc_state[k];
+      if (dilation)
+        *at++ = cs.sc_dilation[k];
+      if (yielding)
+        for (unsigned int y = 0; y < yield_state_size; ++y)
+          *at++ = cs.sc_yield[yield_state_size * k + y];
+      if (velocity != nullptr)
+        for (int d = 0; d < 3; ++d)
+          *at++ = (*velocity)[3 * k + d];
+    }
+    sent_ += n.out.size();
+    requests.emplace_back();
+    MPI_Isend(n.out.data(), static_cast<int>(n.out.size()), MPI_DOUBLE, static_cast<int>(n.rank),
+              state_tag, comm_, &requests.back());
+  }
+  wait_all(requests);
+  for (Neighbour& n : neighbours_)
+  {
+    const double* at = n.in.data();
+    for (unsigned int k : n.receive)
+    {
+      cs.sc_position[k] = Vec3(at[0], at[1], at[2]);
+      at += 3;
+      cs.sc_un[k] = *at++;
+      cs.sc_fn[k] = *at++;
+      for (int d = 0; d < 3; ++d)
+        cs.sc_fs[3 * k + d] = *at++;
+      for (int d = 0; d < 3; ++d)
+        cs.sc_us[3 * k + d] = *at++;
+      cs.sc_state[k] = static_cast<unsigned char>(*at++);
+      cs.sc_fresh[k] = 0;
+      if (dilation)
+        cs.sc_dilation[k] = *at++;
+      if (yielding)
+        for (unsigned int y = 0; y < yield_state_size; ++y)
+          cs.sc_yield[yield_state_size * k + y] = *at++;
+      if (velocity != nullptr)
+        for (int d = 0; d < 3; ++d)
+          (*velocity)[3 * k + d] = *at++;
+    }
+  }
+}
+
+} // namespace talus
