@@ -142,9 +142,9 @@ int main(int argc, char** argv)
   MPI_Allreduce(MPI_IN_PLACE, &memory_per_block, 1, MPI_DOUBLE, MPI_MAX, comm);
 
   // 3. The same split with the contacts across ranks computed on both
-  // sides (no SubContactExchange): the time, and the same answer.
-  double both_sides_seconds = 0.0;
-  unsigned long both_differ = 0;
+  // sides (no SubContactExchange), then once more computed once, so that
+  // the order of the runs shows: the times, and the same answer.
+  const auto split_again = [&](bool once, double& seconds, unsigned long& differing)
   {
     RankBlocks mine_again =
         decompose_blocks(model, partition, static_cast<unsigned int>(rank), reach, layers);
@@ -152,6 +152,9 @@ int main(int argc, char** argv)
     RigidSolver again(local_again, 2650.0, s);
     again.split_among_ranks(ghost, reductions_over(comm));
     GhostExchange exchange_again(mine_again, comm);
+    SubContactExchange shared_again(mine_again, comm);
+    if (once)
+      again.share_subcontacts(&shared_again);
     BlockMigration migration_again(again, mine_again, partition, reach, layers, comm);
     MPI_Barrier(comm);
     const auto again_start = std::chrono::steady_clock::now();
@@ -162,16 +165,21 @@ int main(int argc, char** argv)
       migration_again.update(again, mine_again);
     }
     const double again_seconds = seconds_since(again_start);
-    MPI_Reduce(&again_seconds, &both_sides_seconds, 1, MPI_DOUBLE, MPI_MAX, 0, comm);
+    MPI_Reduce(&again_seconds, &seconds, 1, MPI_DOUBLE, MPI_MAX, 0, comm);
+    differing = 0;
     if (mine_again.local == mine.local)
       for (std::size_t i = 0; i < mine.local.size(); ++i)
-        both_differ += mine.owned[i] &&
-                       (local_again.centroid[i] != local.centroid[i] ||
-                        again.velocity[i] != solver.velocity[i] || again.spin[i] != solver.spin[i]);
+        differing += mine.owned[i] &&
+                     (local_again.centroid[i] != local.centroid[i] ||
+                      again.velocity[i] != solver.velocity[i] || again.spin[i] != solver.spin[i]);
     else
-      both_differ = mine.local.size();
-    MPI_Allreduce(MPI_IN_PLACE, &both_differ, 1, MPI_UNSIGNED_LONG, MPI_SUM, comm);
-  }
+      differing = mine.local.size();
+    MPI_Allreduce(MPI_IN_PLACE, &differing, 1, MPI_UNSIGNED_LONG, MPI_SUM, comm);
+  };
+  double both_sides_seconds = 0.0, once_again_seconds = 0.0;
+  unsigned long both_differ = 0, once_again_differ = 0;
+  split_again(false, both_sides_seconds, both_differ);
+  split_again(true, once_again_seconds, once_again_differ);
 
   // This machine's MPI between ranks 0 and 1, for the exchange model.
   const rank_figures::MpiFigures mpi_figures = rank_figures::measure_mpi(comm);
@@ -198,6 +206,8 @@ int main(int argc, char** argv)
   double sent = static_cast<double>(exchange.sent() + subcontacts_sent) * 8.0, sent_all = 0.0;
   double sent_subcontacts = static_cast<double>(subcontacts_sent) * 8.0, sent_subcontacts_all = 0.0;
   unsigned long taken = subcontacts_taken, taken_all = 0;
+  unsigned long held_subcontacts = solver.contacts().n_subcontacts(), held_subcontacts_all = 0;
+  MPI_Reduce(&held_subcontacts, &held_subcontacts_all, 1, MPI_UNSIGNED_LONG, MPI_SUM, 0, comm);
   MPI_Reduce(&held, &held_all, 1, MPI_LONG, MPI_SUM, 0, comm);
   MPI_Reduce(&sent, &sent_all, 1, MPI_DOUBLE, MPI_SUM, 0, comm);
   MPI_Reduce(&sent_subcontacts, &sent_subcontacts_all, 1, MPI_DOUBLE, MPI_SUM, 0, comm);
@@ -225,6 +235,19 @@ int main(int argc, char** argv)
                 both_sides_seconds, double(model.n_blocks()) * steps / both_sides_seconds,
                 serial_seconds / both_sides_seconds, both_sides_seconds / split_seconds,
                 both_differ);
+    std::printf("split a third time, computed once again: %.3f s, %.0f block-cycles/s; "
+                "speed-up %.2f; computed once against both sides %.3f; %lu blocks differ from "
+                "the first split run, bit for bit\n",
+                once_again_seconds, double(model.n_blocks()) * steps / once_again_seconds,
+                serial_seconds / once_again_seconds, both_sides_seconds / once_again_seconds,
+                once_again_differ);
+    std::printf("sub-contacts computed a step: %lu on all ranks (%lu held, %lu of them taken "
+                "from another rank), %u on one rank: %.4f times one rank's work (computed on "
+                "both sides: %.4f)\n",
+                held_subcontacts_all - taken_all, held_subcontacts_all, taken_all,
+                whole_solver->contacts().n_subcontacts(),
+                double(held_subcontacts_all - taken_all) / whole_solver->contacts().n_subcontacts(),
+                double(held_subcontacts_all) / whole_solver->contacts().n_subcontacts());
     std::printf("blocks held %.3f times the model (ghosts); exchange %.0f bytes per step in "
                 "all (%.0f of them sub-contacts' state, %lu sub-contacts taken), %.0f bytes "
                 "per block-step\n",

@@ -827,10 +827,19 @@ void RigidSolver::contact_forces()
   batch.yield = cs.sc_yield.empty() ? nullptr : cs.sc_yield.data();
   batch.material = cs.sc_material.data();
   batch.counted = ghost_.empty() ? nullptr : sc_counted_.data();
-  batch.computed = exchanged ? sc_counted_.data() : nullptr;
-  step_energy_[step_friction] += apply_joint_model(joints_, batch);
   if (exchanged)
-    subcontact_exchange_->swap(cs, beta > 0.0 ? &sc_velocity_ : nullptr);
+  {
+    // Those sent first, then the rest while the messages travel.
+    std::vector<double>* velocities = beta > 0.0 ? &sc_velocity_ : nullptr;
+    batch.computed = subcontact_exchange_->sent_first().data();
+    step_energy_[step_friction] += apply_joint_model(joints_, batch);
+    subcontact_exchange_->start(cs, velocities);
+    batch.computed = subcontact_exchange_->computed_after().data();
+    step_energy_[step_friction] += apply_joint_model(joints_, batch);
+    subcontact_exchange_->finish(cs, velocities);
+  }
+  else
+    step_energy_[step_friction] += apply_joint_model(joints_, batch);
 
   // Force and moment sums (eqs. 28-32): A pushes B along +n.
   for (unsigned int i = 0; i < n; ++i)

@@ -67,6 +67,14 @@ void SubContactExchange::match(const ContactSet& cs)
     end[c] = k + 1;
   }
   n_received_ = 0;
+  sent_first_.assign(cs.n_subcontacts(), 0);
+  computed_after_.assign(cs.n_subcontacts(), 0);
+  for (unsigned int k = 0; k < cs.n_subcontacts(); ++k)
+  {
+    const unsigned int c = cs.sc_contact[k];
+    computed_after_[k] = !ghost(cs.block_a[c]) && !ghost(cs.block_b[c]);
+    sent_first_[k] = !ghost(cs.block_a[c]) && ghost(cs.block_b[c]);
+  }
   // The contacts across ranks in pair order (local order is global order).
   std::vector<std::array<unsigned int, 3>> cut;
   for (unsigned int c = 0; c < cs.n_slots(); ++c)
@@ -128,11 +136,12 @@ void SubContactExchange::match(const ContactSet& cs)
     throw std::logic_error("SubContactExchange: " + disagreement);
 }
 
-void SubContactExchange::swap(ContactSet& cs, std::vector<double>* velocity)
+void SubContactExchange::start(const ContactSet& cs, const std::vector<double>* velocity)
 {
   const std::size_t w = record_width(cs, velocity != nullptr);
   const bool dilation = !cs.sc_dilation.empty(), yielding = !cs.sc_yield.empty();
-  std::vector<MPI_Request> requests;
+  std::vector<MPI_Request>& requests = requests_;
+  requests.clear();
   requests.reserve(2 * neighbours_.size());
   for (Neighbour& n : neighbours_)
   {
@@ -173,7 +182,12 @@ void SubContactExchange::swap(ContactSet& cs, std::vector<double>* velocity)
     MPI_Isend(n.out.data(), static_cast<int>(n.out.size()), MPI_DOUBLE, static_cast<int>(n.rank),
               state_tag, comm_, &requests.back());
   }
-  wait_all(requests);
+}
+
+void SubContactExchange::finish(ContactSet& cs, std::vector<double>* velocity)
+{
+  const bool dilation = !cs.sc_dilation.empty(), yielding = !cs.sc_yield.empty();
+  wait_all(requests_);
   for (Neighbour& n : neighbours_)
   {
     const double* at = n.in.data();

@@ -34,15 +34,24 @@ public:
   /// receive, and throws std::logic_error when they are not those it holds.
   void match(const ContactSet& cs);
 
-  /// After this rank's sub-contacts went through the joint model: sends
-  /// the state of those the neighbours hold (position, normal displacement,
-  /// forces, shear displacement, state, and dilation, yield state and, with
-  /// `velocity` (3 per sub-contact), the relative velocity, when kept), and
-  /// writes what arrives into the others. Returns once every message
-  /// arrived.
-  void swap(ContactSet& cs, std::vector<double>* velocity);
+  /// Per sub-contact of the matched layout: 1 for those this rank computes
+  /// and sends (its first block owned here, its second a ghost), which go
+  /// through the joint model first; and 1 for the others it computes
+  /// (both blocks owned), which go through it while the messages travel.
+  const std::vector<unsigned char>& sent_first() const { return sent_first_; }
+  const std::vector<unsigned char>& computed_after() const { return computed_after_; }
 
-  /// Doubles sent by this rank in the last swap.
+  /// Once the sub-contacts of sent_first() went through the joint model:
+  /// posts the receives and sends the state of those sub-contacts
+  /// (position, normal displacement, forces, shear displacement, state,
+  /// and dilation, yield state and, with `velocity` (3 per sub-contact),
+  /// the relative velocity, when kept).
+  void start(const ContactSet& cs, const std::vector<double>* velocity);
+  /// Waits for the messages start() posted and writes what arrived into
+  /// the sub-contacts this rank does not compute.
+  void finish(ContactSet& cs, std::vector<double>* velocity);
+
+  /// Doubles sent by this rank at the last start().
   std::size_t sent() const { return sent_; }
   /// Sub-contacts this rank takes from its neighbours (matched layout).
   std::size_t received() const { return n_received_; }
@@ -57,6 +66,8 @@ private:
   const RankBlocks& blocks_;
   MPI_Comm comm_;
   std::vector<Neighbour> neighbours_;
+  std::vector<unsigned char> sent_first_, computed_after_;
+  std::vector<MPI_Request> requests_;
   std::size_t sent_ = 0, n_received_ = 0;
 };
 
