@@ -226,21 +226,25 @@ int main(int argc, char** argv)
                 differ, compared, compared == model.n_blocks() ? "all" : "NOT ALL");
     std::printf("whole on one rank: %.3f s, %.0f block-cycles/s\n", serial_seconds,
                 double(model.n_blocks()) * steps / serial_seconds);
-    std::printf("split on %d ranks: %.3f s, %.0f block-cycles/s; speed-up %.2f\n", ranks,
-                split_seconds, double(model.n_blocks()) * steps / split_seconds,
-                serial_seconds / split_seconds);
-    std::printf("split again, contacts across ranks computed on both sides: %.3f s, %.0f "
-                "block-cycles/s; speed-up %.2f; computed once against both sides %.3f; %lu "
-                "blocks differ from the first split run, bit for bit\n",
-                both_sides_seconds, double(model.n_blocks()) * steps / both_sides_seconds,
-                serial_seconds / both_sides_seconds, both_sides_seconds / split_seconds,
-                both_differ);
-    std::printf("split a third time, computed once again: %.3f s, %.0f block-cycles/s; "
-                "speed-up %.2f; computed once against both sides %.3f; %lu blocks differ from "
-                "the first split run, bit for bit\n",
-                once_again_seconds, double(model.n_blocks()) * steps / once_again_seconds,
-                serial_seconds / once_again_seconds, both_sides_seconds / once_again_seconds,
-                once_again_differ);
+    // Each split run's time, rate and speed-up over the whole run; for one
+    // computed once, the ratio of the run computed on both sides to it.
+    const auto report_split = [&](const std::string& what, double seconds, bool once)
+    {
+      std::printf("%s: %.3f s, %.0f block-cycles/s; speed-up %.2f", what.c_str(), seconds,
+                  double(model.n_blocks()) * steps / seconds, serial_seconds / seconds);
+      if (once)
+        std::printf("; computed on both sides against this %.3f", both_sides_seconds / seconds);
+      std::printf("\n");
+    };
+    report_split("split on " + std::to_string(ranks) +
+                     " ranks, each contact across ranks computed once",
+                 split_seconds, true);
+    report_split("split again, contacts across ranks computed on both sides", both_sides_seconds,
+                 false);
+    report_split("split a third time, computed once again", once_again_seconds, true);
+    std::printf("the second and third split runs against the first: %lu and %lu blocks differ, "
+                "bit for bit\n",
+                both_differ, once_again_differ);
     std::printf("sub-contacts computed a step: %lu on all ranks (%lu held, %lu of them taken "
                 "from another rank), %u on one rank: %.4f times one rank's work (computed on "
                 "both sides: %.4f)\n",
