@@ -25,7 +25,8 @@
 // x 0.8 m block, a 0.8 m cube, a 1.5 m x 1 m x 0.5 m plate) slide 1 to 4
 // m, some across the boundaries. Run with Coulomb slip, then with
 // principal inertia and dilating joints (state that only such runs keep),
-// and on 2 ranks with continuously yielding joints (their yield state).
+// and on 2 ranks with continuously yielding joints and Rayleigh's beta
+// (the yield state, the sub-contacts' relative velocities).
 // Checked at the end: each block owned once, the slider owned by every
 // rank in turn, blocks of different ranks in contact during the run, a
 // last event (forced) choosing the blocks and lists that the whole model
@@ -293,8 +294,9 @@ int main(int argc, char** argv)
   settings.joint.dilation_angle = 5.0;
   settings.joint.dilation_limit = 0.02;
   run_case(model, slider, settings, "principal inertia and dilation", MPI_COMM_WORLD);
-  // Continuously yielding joints keep a yield state per sub-contact, which
-  // the rank computing a contact across ranks sends with the rest (2 ranks
+  // Continuously yielding joints keep a yield state per sub-contact, and
+  // Rayleigh's beta needs each sub-contact's relative velocity: the rank
+  // computing a contact across ranks sends both with the rest (2 ranks
   // only: the record is the same on 3, and 3 oversubscribed ranks are slow).
   int ranks = 1;
   MPI_Comm_size(MPI_COMM_WORLD, &ranks);
@@ -306,5 +308,6 @@ int main(int argc, char** argv)
   settings.joint.model = JointModel::continuously_yielding;
   settings.joint.initial_friction_angle = 33.0;
   settings.joint.roughness = 0.05;
-  run_case(model, slider, settings, "continuously yielding", MPI_COMM_WORLD);
+  settings.rayleigh_beta = 2e-4; // s: each sub-contact's relative velocity travels too
+  run_case(model, slider, settings, "continuously yielding, Rayleigh beta", MPI_COMM_WORLD);
 }
