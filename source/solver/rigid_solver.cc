@@ -14,6 +14,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <stdexcept>
 
 namespace talus
 {
@@ -732,6 +733,9 @@ void RigidSolver::contact_forces()
     subcontact_exchange_->match(cs);
     subcontacts_stale_ = false;
   }
+  if (exchanged && subcontact_exchange_->sent_first().size() != n)
+    throw std::logic_error("RigidSolver: the contacts changed without the sub-contact "
+                           "exchange's lists made again");
   const double beta = s_.stiffness_damping(); // Rayleigh, s
   if (beta > 0.0)
     sc_velocity_.resize(3 * n);
