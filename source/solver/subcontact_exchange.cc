@@ -2,6 +2,8 @@
 #include <talus/joint/continuously_yielding.h>
 #include <talus/solver/subcontact_exchange.h>
 
+#include "block_arrays.h"
+
 #include <algorithm>
 #include <array>
 #include <sstream>
@@ -56,15 +58,8 @@ void SubContactExchange::match(const ContactSet& cs)
   const auto neighbour = [&](unsigned int rank) -> Neighbour&
   { return neighbours_[std::lower_bound(ranks.begin(), ranks.end(), rank) - ranks.begin()]; };
 
-  // Each contact's sub-contacts, contiguous.
-  std::vector<unsigned int> begin(cs.n_slots(), 0), end(cs.n_slots(), 0);
-  for (unsigned int k = 0; k < cs.n_subcontacts(); ++k)
-  {
-    const unsigned int c = cs.sc_contact[k];
-    if (end[c] == 0)
-      begin[c] = k;
-    end[c] = k + 1;
-  }
+  std::vector<unsigned int> begin, end;
+  block_records::subcontact_ranges(cs, begin, end);
   n_received_ = 0;
   sent_first_.assign(cs.n_subcontacts(), 0);
   computed_after_.assign(cs.n_subcontacts(), 0);
