@@ -193,4 +193,49 @@ double CellPartition::imbalance() const
   return *std::max_element(rank_work_.begin(), rank_work_.end()) * n_ranks_ / total;
 }
 
+std::vector<double> CellPartition::numbers() const
+{
+  std::vector<double> out{origin_[0],    origin_[1],    origin_[2],       cell_size_[0],
+                          cell_size_[1], cell_size_[2], double(n_ranks_), double(cuts_.size())};
+  for (const Cut& c : cuts_)
+    out.insert(out.end(), {double(c.axis), c.position, double(c.first_rank), double(c.n_ranks),
+                           double(c.below), double(c.above)});
+  out.insert(out.end(), rank_work_.begin(), rank_work_.end());
+  return out;
+}
+
+CellPartition CellPartition::from_numbers(const std::vector<double>& numbers)
+{
+  const auto bad = []
+  { return std::invalid_argument("CellPartition: the saved partition is not whole"); };
+  if (numbers.size() < 8)
+    throw bad();
+  CellPartition p;
+  p.origin_ = Vec3(numbers[0], numbers[1], numbers[2]);
+  p.cell_size_ = Vec3(numbers[3], numbers[4], numbers[5]);
+  p.n_ranks_ = static_cast<unsigned int>(numbers[6]);
+  const std::size_t n_cuts = static_cast<std::size_t>(numbers[7]);
+  if (p.n_ranks_ == 0 || numbers.size() != 8 + 6 * n_cuts + p.n_ranks_)
+    throw bad();
+  for (std::size_t c = 0; c < n_cuts; ++c)
+  {
+    const double* x = numbers.data() + 8 + 6 * c;
+    Cut cut;
+    cut.axis = static_cast<int>(x[0]);
+    cut.position = x[1];
+    cut.first_rank = static_cast<unsigned int>(x[2]);
+    cut.n_ranks = static_cast<unsigned int>(x[3]);
+    cut.below = static_cast<int>(x[4]);
+    cut.above = static_cast<int>(x[5]);
+    // Children come after their cut (split() numbers them so): no cycles.
+    const int n = static_cast<int>(n_cuts), me = static_cast<int>(c);
+    if (cut.axis > 2 || cut.first_rank + cut.n_ranks > p.n_ranks_ ||
+        (cut.axis >= 0 && (cut.below <= me || cut.below >= n || cut.above <= me || cut.above >= n)))
+      throw bad();
+    p.cuts_.push_back(cut);
+  }
+  p.rank_work_.assign(numbers.end() - p.n_ranks_, numbers.end());
+  return p;
+}
+
 } // namespace talus

@@ -236,6 +236,10 @@ void RankShare::save_state(CheckpointWriter& out) const
   if (migration_)
     migration_->save_state(out);
   out.put(event_steps_);
+  // The regions a rebalance chose (the ones made at the start otherwise).
+  out.tag("regions");
+  out.put(partition_->numbers());
+  out.put(balance_->numbers());
 }
 
 void RankShare::load_state(CheckpointReader& in, const RigidSolver& solver)
@@ -253,6 +257,21 @@ void RankShare::load_state(CheckpointReader& in, const RigidSolver& solver)
     migration_->load_state(in);
   }
   in.get(event_steps_);
+  in.tag("regions");
+  std::vector<double> numbers;
+  in.get(numbers);
+  try
+  {
+    *partition_ = CellPartition::from_numbers(numbers); // in place: the migration refers to it
+    in.get(numbers);
+    balance_->set_numbers(numbers);
+  }
+  catch (const std::invalid_argument&)
+  {
+    in.mismatch("numbers of the ranks' regions", numbers.size(), numbers.size());
+  }
+  if (partition_->n_ranks() != static_cast<unsigned int>(ranks_))
+    in.mismatch("ranks of the regions", partition_->n_ranks(), ranks_);
 }
 
 } // namespace talus

@@ -614,11 +614,14 @@ void BlockCycle::begin_stage(const StageSpec& stage)
 std::pair<double, unsigned int> BlockCycle::largest_displacement() const
 {
   // The first block of the largest displacement, as a serial loop finds it.
+  // An excavated block is not in the model any more (and on ranks no rank
+  // holds it after the next migration).
   const RigidSolver& solver = *system_.solver;
-  double largest = -1.0;
+  double largest = 0.0;
   unsigned int at = 0;
   for (unsigned int b = 0; b < model_.n_blocks(); ++b)
-    if ((!share_ || share_->blocks().owned[b]) && solver.displacement[b].norm() > largest)
+    if ((!share_ || share_->blocks().owned[b]) && !solver.removed(b) &&
+        solver.displacement[b].norm() > largest)
     {
       largest = solver.displacement[b].norm();
       at = share_ ? share_->global_of(b) : b;
@@ -738,9 +741,12 @@ void BlockCycle::print_end()
   if (share_ && share_->rank() == 0)
     std::fprintf(stderr,
                  "talus: on %d ranks: %lu migration events (the sum of their steps %lu), %lu "
-                 "owner changes\n",
+                 "owner changes, %lu rebalances (the ranks' largest work over the mean: %.3f "
+                 "before the last rebalance, %.3f expected after it, %.3f at the last check)\n",
                  share_->ranks(), share_->migrations(), share_->event_steps(),
-                 share_->owner_changes());
+                 share_->owner_changes(), share_->balance().rebalances(),
+                 share_->balance().before(), share_->balance().expected(),
+                 share_->balance().measured());
 }
 
 std::string BlockCycle::unbalanced_where() const

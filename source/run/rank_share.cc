@@ -8,6 +8,9 @@
 #include <talus/solver/rigid_solver.h>
 
 #include <algorithm>
+#include <cmath>
+#include <cstdlib>
+#include <string>
 
 namespace talus
 {
@@ -78,6 +81,28 @@ void check_runs_on_ranks(const Scene& scene, int ranks)
   }
 }
 
+namespace
+{
+
+/// The imbalance above which the regions are cut again (RankBalance):
+/// 1.15, or the environment's TALUS_REBALANCE_THRESHOLD (a number above 1,
+/// or 0 for never: a benchmark compares the two).
+double rebalance_threshold()
+{
+  const char* text = std::getenv("TALUS_REBALANCE_THRESHOLD");
+  if (text == nullptr)
+    return 1.15;
+  char* end = nullptr;
+  const double value = std::strtod(text, &end);
+  if (end == text || *end != '\0' || !(value > 1.0 || value == 0.0) || !std::isfinite(value))
+    throw InputError(std::string("environment variable TALUS_REBALANCE_THRESHOLD: '") + text +
+                     "' is not allowed; allowed: a number above 1 (the ranks' largest work over "
+                     "the mean above which their regions are cut again), or 0 (never)");
+  return value;
+}
+
+} // namespace
+
 RankShare::RankShare(const BlockModel& model, double reach, MPI_Comm comm, const RankBlocks* saved,
                      const std::vector<double>* zones_of_block)
     : comm_(comm), reach_(reach)
@@ -103,6 +128,9 @@ RankShare::RankShare(const BlockModel& model, double reach, MPI_Comm comm, const
       work[b] += (*zones_of_block)[b];
   partition_ = std::make_unique<CellPartition>(domain, domain.lo, cells.cell_size(), model.centroid,
                                                work, static_cast<unsigned int>(ranks_));
+  balance_ = std::make_unique<RankBalance>(domain, cells.cell_size(), rebalance_threshold());
+  if (zones_of_block != nullptr)
+    zones_of_block_ = *zones_of_block;
   blocks_ = saved ? *saved
                   : decompose_blocks(model, *partition_, static_cast<unsigned int>(rank_), reach,
                                      ghost_layers);
@@ -116,6 +144,20 @@ void RankShare::refresh(RigidSolver& solver)
   exchange_->refresh(solver);
   if (!migration_)
     make_migration(solver);
+  std::unique_ptr<CellPartition> regions;
+  if (balance_->choose(solver, blocks_, local_, zones_of_block_, comm_, regions))
+  {
+    // In place: the migration holds the partition by reference.
+    CellPartition before = *partition_;
+    *partition_ = std::move(*regions);
+    if (migration_->migrate_to_new_regions(solver, blocks_))
+    {
+      event_steps_ += solver.steps_done();
+      return;
+    }
+    *partition_ = std::move(before); // a deformable block's surface is not held where needed
+    balance_->declined();
+  }
   if (migration_->update(solver, blocks_))
     event_steps_ += solver.steps_done();
 }

@@ -182,7 +182,15 @@ bool BlockMigration::update(RigidSolver& solver, RankBlocks& blocks)
   return true;
 }
 
-void BlockMigration::migrate(RigidSolver& s, RankBlocks& blocks)
+bool BlockMigration::migrate_to_new_regions(RigidSolver& solver, RankBlocks& blocks)
+{
+  if (!migrate(solver, blocks, true))
+    return false;
+  solver.localize_loads(blocks.local);
+  return true;
+}
+
+bool BlockMigration::migrate(RigidSolver& s, RankBlocks& blocks, bool may_refuse)
 {
   // Face loads move as a table of the whole model (set_face_load_table),
   // water with the flags that choose its blocks; update() places both again.
@@ -312,7 +320,6 @@ void BlockMigration::migrate(RigidSolver& s, RankBlocks& blocks)
                   known[k].old_owner != static_cast<unsigned int>(rank);
   }
   MPI_Allreduce(MPI_IN_PLACE, &taken_over, 1, MPI_LONG, MPI_SUM, comm_);
-  owner_changes_ += static_cast<unsigned long>(taken_over);
   // Chosen among the known blocks, then numbered globally again (the
   // lists hold positions in `local`, which stay).
   RankBlocks next = decompose_blocks(box, owner, static_cast<unsigned int>(rank), reach_, layers_);
@@ -341,6 +348,8 @@ void BlockMigration::migrate(RigidSolver& s, RankBlocks& blocks)
         first_new = next.local[j];
     long any = first_new;
     MPI_Allreduce(&first_new, &any, 1, MPI_LONG, MPI_MAX, comm_);
+    if (any >= 0 && may_refuse)
+      return false;
     if (any >= 0)
       throw InputError(
           "on " + std::to_string(n_ranks) + " MPI ranks: deformable block " + std::to_string(any) +
@@ -350,6 +359,8 @@ void BlockMigration::migrate(RigidSolver& s, RankBlocks& blocks)
           "own when the run begins, and no others yet. Allowed: run this scene without mpirun, "
           "or on fewer ranks");
   }
+
+  owner_changes_ += static_cast<unsigned long>(taken_over);
 
   // 2. Requests: the blocks this rank newly holds, to their old owners.
   std::vector<int> old_of(n_new); // per new local block: its old local index, or -1
@@ -648,6 +659,7 @@ void BlockMigration::migrate(RigidSolver& s, RankBlocks& blocks)
   blocks = std::move(next);
   path_at_choice_ = s.path;
   ++events_;
+  return true;
 }
 
 } // namespace talus

@@ -244,6 +244,9 @@ int main(int argc, char** argv)
   // "# parallel test: migrations": blocks must change rank in every split
   // run (its "migration events" line on standard error).
   bool migrations = false;
+  // "# parallel test: rebalance": the ranks' regions must be cut again for
+  // uneven work in every split run (RankBalance; the same line).
+  bool rebalance = false;
   double relative = 0.0; // "# parallel test: relative R"
   // "# parallel test: same files": every file the serial run writes (the
   // output's VTU, PVD and parameter files too) must be written by every
@@ -259,6 +262,8 @@ int main(int argc, char** argv)
   for (std::string line; std::getline(in, line);)
     if (line.rfind("# parallel test: migrations", 0) == 0)
       migrations = true;
+    else if (line.rfind("# parallel test: rebalance", 0) == 0)
+      rebalance = true;
     else if (line.rfind("# parallel test: relative", 0) == 0)
       relative = std::strtod(line.c_str() + 25, nullptr);
     else if (line.rfind("# parallel test: same files", 0) == 0)
@@ -365,20 +370,30 @@ int main(int argc, char** argv)
                   all_same ? "yes" : "NO");
       all &= all_same;
     }
-    if (migrations)
+    if (migrations || rebalance)
     {
-      // "talus: on N ranks: E migration events (the sum of their steps S), C owner changes"
+      // "talus: on N ranks: E migration events (the sum of their steps S), C
+      // owner changes, R rebalances (...)"
       std::ifstream err(folder + ".err");
-      unsigned long events = 0, steps = 0, changed = 0; // (the counts: in the .err file)
+      unsigned long events = 0, steps = 0, changed = 0, rebalances = 0; // (in the .err file)
       int on = 0;
       for (std::string line; std::getline(err, line);)
         if (line.find("migration events") != std::string::npos)
           std::sscanf(line.c_str(),
                       "talus: on %d ranks: %lu migration events (the sum of their steps %lu), "
-                      "%lu owner changes",
-                      &on, &events, &steps, &changed);
-      std::printf("%d ranks: blocks changed rank: %s\n", n, changed > 0 ? "yes" : "NO");
-      all &= changed > 0;
+                      "%lu owner changes, %lu rebalances",
+                      &on, &events, &steps, &changed, &rebalances);
+      if (migrations)
+      {
+        std::printf("%d ranks: blocks changed rank: %s\n", n, changed > 0 ? "yes" : "NO");
+        all &= changed > 0;
+      }
+      if (rebalance)
+      {
+        std::printf("%d ranks: regions cut again for uneven work: %s\n", n,
+                    rebalances > 0 ? "yes" : "NO");
+        all &= rebalances > 0;
+      }
     }
   }
   std::printf("%s\n", all ? "OK" : "FAILED");

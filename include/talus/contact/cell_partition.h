@@ -44,7 +44,13 @@ public:
   const std::vector<double>& rank_work() const { return rank_work_; }
   double imbalance() const;
 
+  /// The cuts, the grid and the ranks' work as numbers (a checkpoint keeps
+  /// the partition a rebalance chose), and the partition made from them.
+  std::vector<double> numbers() const;
+  static CellPartition from_numbers(const std::vector<double>& numbers);
+
 private:
+  CellPartition() = default;
   /// One cut of the bisection tree: ranks [first, first + n) split at
   /// `position` along `axis` into `below` (n_below ranks) and `above`.
   struct Cut

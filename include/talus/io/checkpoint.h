@@ -45,7 +45,7 @@ struct Scene;
 /// each rank's share (io/rank_checkpoint.h) after the step; 10: the
 /// blocks' last motion (a deformable block's is not its velocity times the
 /// step to the last bit).
-constexpr std::uint32_t checkpoint_format_version = 10;
+constexpr std::uint32_t checkpoint_format_version = 11;
 
 /// FNV-1a, 64 bits: a fingerprint, not a cryptographic hash.
 std::uint64_t fnv1a(const void* data, std::size_t size,

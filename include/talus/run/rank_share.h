@@ -3,6 +3,7 @@
 #include <talus/contact/block_decomposition.h>
 #include <talus/contact/cell_partition.h>
 #include <talus/model/block_model.h>
+#include <talus/run/rank_balance.h>
 #include <talus/scene/scene.h>
 #include <talus/solver/block_migration.h>
 #include <talus/solver/ghost_exchange.h>
@@ -84,9 +85,13 @@ public:
 
   /// After a step: the ghosts refreshed from their owners, then the blocks
   /// handed to other ranks when they have moved far enough
-  /// (BlockMigration; local numbers may change: local() changes in place
-  /// and blocks() gives the new map).
+  /// (BlockMigration), or when the regions were cut again because the
+  /// ranks' work became uneven (RankBalance; local numbers may change:
+  /// local() changes in place and blocks() gives the new map).
   void refresh(RigidSolver& solver);
+  /// The regions' rebalances so far and the imbalances (largest work over
+  /// the mean) of the last check and expected after the last rebalance.
+  const RankBalance& balance() const { return *balance_; }
   /// Migration events so far, and the blocks that changed owner in them.
   unsigned long migrations() const;
   unsigned long owner_changes() const;
@@ -126,6 +131,8 @@ private:
   std::unique_ptr<GhostExchange> exchange_;
   std::unique_ptr<SubContactExchange> subcontacts_;
   std::unique_ptr<BlockMigration> migration_; ///< made at the first refresh
+  std::unique_ptr<RankBalance> balance_;
+  std::vector<double> zones_of_block_; ///< per global block (empty: no zones)
   unsigned long event_steps_ = 0;
   void make_migration(const RigidSolver& solver);
 };

@@ -78,7 +78,14 @@ public:
   /// per step along an axis, eq. 1's measure).
   bool due(const RigidSolver& solver, const RankBlocks& blocks) const;
   /// Chooses owners and ghosts again now and moves the blocks (collective).
-  void migrate(RigidSolver& solver, RankBlocks& blocks);
+  /// With `may_refuse`, a choice that would need a deformable block's
+  /// surface on a rank that does not hold it changes nothing and returns
+  /// false (on every rank); without, it is an InputError.
+  bool migrate(RigidSolver& solver, RankBlocks& blocks, bool may_refuse = false);
+  /// After the partition this migration was made with changed (a
+  /// rebalance, RankBalance): migrate() now and place the loads as
+  /// update() does. False, and nothing changed, when migrate() refused.
+  bool migrate_to_new_regions(RigidSolver& solver, RankBlocks& blocks);
 
   /// The motion (m) a block may make between two choices of the ghosts:
   /// two blocks whose boxes were more than `reach` apart then come within

@@ -1,0 +1,87 @@
+#pragma once
+
+#include <talus/contact/block_decomposition.h>
+#include <talus/contact/cell_partition.h>
+#include <talus/model/block_model.h>
+
+#include <mpi.h>
+
+#include <memory>
+#include <vector>
+
+namespace talus
+{
+
+class RigidSolver;
+
+/// What a step costs, in microseconds on the machine the README's tables
+/// name (2-core AMD EPYC, benchmark_rigid_cycle at n = 30 and
+/// benchmark_zone_cycle, 2026-11-24): a block's motion (2 % of 3.41 us a
+/// block-step), a contact's common-plane update (64 % of it over 12.0
+/// contacts a block), a sub-contact's forces (34 % over 42.2 sub-contacts
+/// a block), a zone's update (between the elastic 0.038 and the
+/// Mohr-Coulomb 0.083 us). Only their ratios matter: they weigh the work
+/// the regions balance.
+struct StepCosts
+{
+  double block = 0.068, contact = 0.18, subcontact = 0.028, zone = 0.06;
+};
+
+/// Keeps the ranks' work even as a run changes it (issue 24: "a rebalance
+/// when the work becomes uneven"): blocks pile up in one region, a stage
+/// excavates another, contacts form where blocks settle. Every `interval`
+/// steps each rank weighs the work of its own blocks (StepCosts: each block,
+/// the contacts whose first block it is, with their sub-contacts, which its
+/// rank computes, and its zones); one MPI_Allreduce gives the largest over
+/// the mean. Above `threshold`, every rank receives every owned block's
+/// centroid and work (one MPI_Allgatherv, 40 bytes a block) and cuts the
+/// same cell space again by them (CellPartition, the cuts the same on every
+/// rank). A deformable block stays with its owner (BlockMigration), so its
+/// work stays there. The new regions are taken when they lower the largest
+/// work over the mean by a tenth; otherwise the ranks wait until the
+/// imbalance grows by another twentieth before they try again.
+class RankBalance
+{
+public:
+  /// `threshold` 0: never rebalance.
+  RankBalance(const Box& domain, const Vec3& cell_size, double threshold = 1.15,
+              unsigned long interval = 100);
+
+  /// Collective. On a step that is a multiple of the interval, when the
+  /// work is uneven: the new regions in `next` and true (the caller keeps
+  /// them, then migrates). `zones_of_block`: per global block, its zones
+  /// (may be empty: no deformable blocks).
+  bool choose(const RigidSolver& solver, const RankBlocks& blocks, const BlockModel& local,
+              const std::vector<double>& zones_of_block, MPI_Comm comm,
+              std::unique_ptr<CellPartition>& next);
+
+  /// The new regions could not be taken (BlockMigration refused them): not
+  /// counted, and the ranks wait as after regions that did not help.
+  void declined();
+
+  /// Rebalances made; the imbalance (largest work over the mean) measured
+  /// before the last rebalance and expected after it; the imbalance the
+  /// last check measured.
+  unsigned long rebalances() const { return rebalances_; }
+  double before() const { return before_; }
+  double expected() const { return expected_; }
+  double measured() const { return measured_; }
+
+  /// The counters and the hysteresis, in a checkpoint (rank_checkpoint.cc).
+  std::vector<double> numbers() const;
+  void set_numbers(const std::vector<double>& numbers);
+
+private:
+  Box domain_;
+  Vec3 cell_size_;
+  double threshold_;
+  unsigned long interval_;
+  StepCosts costs_;
+  unsigned long rebalances_ = 0;
+  double measured_ = 1.0, before_ = 1.0, expected_ = 1.0;
+  double waiting_above_ = 0.0; ///< no new try until the imbalance exceeds this
+  double last_try_ = 0.0;      ///< the imbalance when regions were last chosen
+  void wait() { waiting_above_ = 1.05 * last_try_; }
+};
+
+} // namespace talus

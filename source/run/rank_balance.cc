@@ -1,0 +1,129 @@
+#include <talus/run/rank_balance.h>
+#include <talus/solver/rigid_solver.h>
+
+#include <algorithm>
+#include <limits>
+#include <stdexcept>
+
+namespace talus
+{
+
+RankBalance::RankBalance(const Box& domain, const Vec3& cell_size, double threshold,
+                         unsigned long interval)
+    : domain_(domain), cell_size_(cell_size), threshold_(threshold), interval_(interval)
+{
+  if (!(threshold > 1.0 || threshold == 0.0) || interval == 0)
+    throw std::logic_error("RankBalance: the threshold must exceed 1 (or be 0: off), the "
+                           "interval 0");
+}
+
+bool RankBalance::choose(const RigidSolver& solver, const RankBlocks& blocks,
+                         const BlockModel& local, const std::vector<double>& zones_of_block,
+                         MPI_Comm comm, std::unique_ptr<CellPartition>& next)
+{
+  if (threshold_ == 0.0 || solver.steps_done() % interval_ != 0)
+    return false;
+  int rank = 0, ranks = 1;
+  MPI_Comm_rank(comm, &rank);
+  MPI_Comm_size(comm, &ranks);
+  // This rank's work a step, block by block (us, StepCosts).
+  const unsigned int n = static_cast<unsigned int>(blocks.local.size());
+  std::vector<double> work(n, 0.0);
+  for (unsigned int i = 0; i < n; ++i)
+    if (blocks.owned[i] && !solver.removed(i))
+      work[i] = costs_.block +
+                (zones_of_block.empty() ? 0.0 : costs_.zone * zones_of_block[blocks.local[i]]);
+  const ContactSet& cs = solver.contacts();
+  std::vector<unsigned int> subcontacts(cs.n_slots(), 0);
+  for (unsigned int c : cs.sc_contact)
+    ++subcontacts[c];
+  for (unsigned int c = 0; c < cs.n_slots(); ++c)
+    if (cs.alive[c] && blocks.owned[cs.block_a[c]]) // computed by the owner of its first block
+      work[cs.block_a[c]] += costs_.contact + costs_.subcontact * subcontacts[c];
+  double sums[2] = {0.0, 0.0}; // largest, total
+  for (unsigned int i = 0; i < n; ++i)
+    sums[1] += work[i];
+  sums[0] = sums[1];
+  MPI_Allreduce(MPI_IN_PLACE, &sums[0], 1, MPI_DOUBLE, MPI_MAX, comm);
+  MPI_Allreduce(MPI_IN_PLACE, &sums[1], 1, MPI_DOUBLE, MPI_SUM, comm);
+  measured_ = sums[1] > 0.0 ? sums[0] * ranks / sums[1] : 1.0;
+  if (measured_ <= threshold_ || measured_ <= waiting_above_)
+    return false;
+
+  // Every owned block's centroid, work and owner when it stays (a
+  // deformable block: -1 for the others), from every rank to every rank in
+  // rank order, so that every rank cuts the same regions.
+  std::vector<double> mine;
+  for (unsigned int i = 0; i < n; ++i)
+    if (blocks.owned[i] && !solver.removed(i))
+    {
+      const Vec3& c = local.centroid[i];
+      mine.insert(mine.end(),
+                  {c[0], c[1], c[2], work[i], solver.is_deformable(i) ? double(rank) : -1.0});
+    }
+  if (mine.size() > static_cast<std::size_t>(std::numeric_limits<int>::max() / ranks))
+    throw std::runtime_error("RankBalance: a rank's blocks are more than one MPI message allows");
+  const int size = static_cast<int>(mine.size());
+  std::vector<int> counts(ranks), starts(ranks, 0);
+  MPI_Allgather(&size, 1, MPI_INT, counts.data(), 1, MPI_INT, comm);
+  for (int r = 1; r < ranks; ++r)
+    starts[r] = starts[r - 1] + counts[r - 1];
+  std::vector<double> all(std::size_t(starts.back()) + counts.back());
+  MPI_Allgatherv(mine.data(), size, MPI_DOUBLE, all.data(), counts.data(), starts.data(),
+                 MPI_DOUBLE, comm);
+  std::vector<Vec3> point(all.size() / 5);
+  std::vector<double> block_work(point.size());
+  for (std::size_t k = 0; k < point.size(); ++k)
+  {
+    point[k] = Vec3(all[5 * k], all[5 * k + 1], all[5 * k + 2]);
+    block_work[k] = all[5 * k + 3];
+  }
+  auto regions = std::make_unique<CellPartition>(domain_, domain_.lo, cell_size_, point, block_work,
+                                                 static_cast<unsigned int>(ranks));
+  // The work each rank would have: a deformable block's stays with its owner.
+  std::vector<double> expected(std::size_t(ranks), 0.0);
+  for (std::size_t k = 0; k < point.size(); ++k)
+  {
+    const double stays = all[5 * k + 4];
+    expected[stays >= 0.0 ? std::size_t(stays) : regions->owner(point[k])] += block_work[k];
+  }
+  const double largest = *std::max_element(expected.begin(), expected.end());
+  const double after = sums[1] > 0.0 ? largest * ranks / sums[1] : 1.0;
+  last_try_ = measured_;
+  if (!(after < 0.9 * measured_))
+  {
+    wait();
+    return false;
+  }
+  before_ = measured_;
+  expected_ = after;
+  waiting_above_ = 0.0; // new regions: any later imbalance is new too
+  next = std::move(regions);
+  ++rebalances_;
+  return true;
+}
+
+void RankBalance::declined()
+{
+  --rebalances_;
+  wait();
+}
+
+std::vector<double> RankBalance::numbers() const
+{
+  return {double(rebalances_), measured_, before_, expected_, waiting_above_, last_try_};
+}
+
+void RankBalance::set_numbers(const std::vector<double>& numbers)
+{
+  if (numbers.size() != 6)
+    throw std::invalid_argument("RankBalance: the saved state is not whole");
+  rebalances_ = static_cast<unsigned long>(numbers[0]);
+  measured_ = numbers[1];
+  before_ = numbers[2];
+  expected_ = numbers[3];
+  waiting_above_ = numbers[4];
+  last_try_ = numbers[5];
+}
+
+} // namespace talus
