@@ -11,6 +11,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
+#include <cstring>
 #include <limits>
 #include <optional>
 
@@ -739,14 +740,26 @@ void BlockCycle::print_end()
               prefix_.c_str());
   // On standard error: the summary is the serial run's, line for line.
   if (share_ && share_->rank() == 0)
+  {
+    const RankBalance& b = share_->balance();
+    char rebalances[200];
+    if (b.off())
+      std::snprintf(rebalances, sizeof rebalances, "rebalance off");
+    else
+      std::snprintf(rebalances, sizeof rebalances,
+                    "%lu rebalances (the ranks' largest work over the mean: %.3f before the last "
+                    "rebalance, %.3f expected after it, %.3f at the last check)",
+                    b.rebalances(), b.before(), b.expected(), b.measured());
+    if (b.refused() > 0) // regions that needed a deformable block's surface where it is not held
+      std::snprintf(rebalances + std::strlen(rebalances),
+                    sizeof rebalances - std::strlen(rebalances), ", %lu new regions refused",
+                    b.refused());
     std::fprintf(stderr,
                  "talus: on %d ranks: %lu migration events (the sum of their steps %lu), %lu "
-                 "owner changes, %lu rebalances (the ranks' largest work over the mean: %.3f "
-                 "before the last rebalance, %.3f expected after it, %.3f at the last check)\n",
+                 "owner changes, %s\n",
                  share_->ranks(), share_->migrations(), share_->event_steps(),
-                 share_->owner_changes(), share_->balance().rebalances(),
-                 share_->balance().before(), share_->balance().expected(),
-                 share_->balance().measured());
+                 share_->owner_changes(), rebalances);
+  }
 }
 
 std::string BlockCycle::unbalanced_where() const

@@ -47,8 +47,18 @@ bool RankBalance::choose(const RigidSolver& solver, const RankBlocks& blocks,
   MPI_Allreduce(MPI_IN_PLACE, &sums[0], 1, MPI_DOUBLE, MPI_MAX, comm);
   MPI_Allreduce(MPI_IN_PLACE, &sums[1], 1, MPI_DOUBLE, MPI_SUM, comm);
   measured_ = sums[1] > 0.0 ? sums[0] * ranks / sums[1] : 1.0;
+  const bool after_rebalance = just_rebalanced_;
+  just_rebalanced_ = false;
   if (measured_ <= threshold_ || measured_ <= waiting_above_)
     return false;
+  if (after_rebalance)
+  {
+    // The last regions did not hold (the work moves faster than the checks
+    // come, as blocks tumble): try again only once it has grown.
+    last_try_ = measured_;
+    wait();
+    return false;
+  }
 
   // Every owned block's centroid, work and owner when it stays (a
   // deformable block: -1 for the others), from every rank to every rank in
@@ -95,28 +105,35 @@ bool RankBalance::choose(const RigidSolver& solver, const RankBlocks& blocks,
     wait();
     return false;
   }
-  before_ = measured_;
-  expected_ = after;
-  waiting_above_ = 0.0; // new regions: any later imbalance is new too
+  pending_expected_ = after;
   next = std::move(regions);
-  ++rebalances_;
   return true;
+}
+
+void RankBalance::taken()
+{
+  ++rebalances_;
+  before_ = last_try_;
+  expected_ = pending_expected_;
+  waiting_above_ = 0.0; // new regions: any later imbalance is new too
+  just_rebalanced_ = true;
 }
 
 void RankBalance::declined()
 {
-  --rebalances_;
+  ++refused_;
   wait();
 }
 
 std::vector<double> RankBalance::numbers() const
 {
-  return {double(rebalances_), measured_, before_, expected_, waiting_above_, last_try_};
+  return {double(rebalances_),      measured_,       before_, expected_, waiting_above_, last_try_,
+          double(just_rebalanced_), double(refused_)};
 }
 
 void RankBalance::set_numbers(const std::vector<double>& numbers)
 {
-  if (numbers.size() != 6)
+  if (numbers.size() != 8)
     throw std::invalid_argument("RankBalance: the saved state is not whole");
   rebalances_ = static_cast<unsigned long>(numbers[0]);
   measured_ = numbers[1];
@@ -124,6 +141,8 @@ void RankBalance::set_numbers(const std::vector<double>& numbers)
   expected_ = numbers[3];
   waiting_above_ = numbers[4];
   last_try_ = numbers[5];
+  just_rebalanced_ = numbers[6] != 0.0;
+  refused_ = static_cast<unsigned long>(numbers[7]);
 }
 
 } // namespace talus

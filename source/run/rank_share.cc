@@ -152,6 +152,7 @@ void RankShare::refresh(RigidSolver& solver)
     *partition_ = std::move(*regions);
     if (migration_->migrate_to_new_regions(solver, blocks_))
     {
+      balance_->taken();
       event_steps_ += solver.steps_done();
       return;
     }

@@ -38,7 +38,8 @@ struct StepCosts
 /// same cell space again by them (CellPartition, the cuts the same on every
 /// rank). A deformable block stays with its owner (BlockMigration), so its
 /// work stays there. The new regions are taken when they lower the largest
-/// work over the mean by a tenth; otherwise the ranks wait until the
+/// work over the mean by a tenth; otherwise, and when the first check
+/// after new regions finds the work uneven again, the ranks wait until the
 /// imbalance grows by another twentieth before they try again.
 class RankBalance
 {
@@ -49,20 +50,27 @@ public:
 
   /// Collective. On a step that is a multiple of the interval, when the
   /// work is uneven: the new regions in `next` and true (the caller keeps
-  /// them, then migrates). `zones_of_block`: per global block, its zones
-  /// (may be empty: no deformable blocks).
+  /// them, migrates, then calls taken() or declined()). `zones_of_block`: per global block, its
+  /// zones (may be empty: no deformable blocks).
   bool choose(const RigidSolver& solver, const RankBlocks& blocks, const BlockModel& local,
               const std::vector<double>& zones_of_block, MPI_Comm comm,
               std::unique_ptr<CellPartition>& next);
 
-  /// The new regions could not be taken (BlockMigration refused them): not
-  /// counted, and the ranks wait as after regions that did not help.
+  /// The blocks moved to the new regions: counted, and the next check
+  /// looks at whether they held.
+  void taken();
+  /// The new regions could not be taken (BlockMigration refused them): the
+  /// ranks wait as after regions that would not have helped.
   void declined();
 
   /// Rebalances made; the imbalance (largest work over the mean) measured
   /// before the last rebalance and expected after it; the imbalance the
   /// last check measured.
   unsigned long rebalances() const { return rebalances_; }
+  /// Never rebalances (threshold 0).
+  bool off() const { return threshold_ == 0.0; }
+  /// New regions that BlockMigration refused (declined()).
+  unsigned long refused() const { return refused_; }
   double before() const { return before_; }
   double expected() const { return expected_; }
   double measured() const { return measured_; }
@@ -77,10 +85,11 @@ private:
   double threshold_;
   unsigned long interval_;
   StepCosts costs_;
-  unsigned long rebalances_ = 0;
-  double measured_ = 1.0, before_ = 1.0, expected_ = 1.0;
-  double waiting_above_ = 0.0; ///< no new try until the imbalance exceeds this
-  double last_try_ = 0.0;      ///< the imbalance when regions were last chosen
+  unsigned long rebalances_ = 0, refused_ = 0;
+  double measured_ = 1.0, before_ = 1.0, expected_ = 1.0, pending_expected_ = 1.0;
+  double waiting_above_ = 0.0;   ///< no new try until the imbalance exceeds this
+  double last_try_ = 0.0;        ///< the imbalance when regions were last chosen
+  bool just_rebalanced_ = false; ///< the next check is the first after new regions
   void wait() { waiting_above_ = 1.05 * last_try_; }
 };
 
