@@ -6,6 +6,7 @@
 //   # expect exit code: N    another exit code that the run must end with
 //   # arguments: A B         arguments put before FILE (e.g. --check)
 //   # show new files         list what the run created in the working folder
+//   # environment: NAME=VALUE   run talus with that environment variable set
 //   # address space limit: N MB   run talus under that limit (ulimit -v)
 //   # mask after: PHRASE     the word after each PHRASE shows as <masked> (a
 //                            figure of the machine, such as its free memory)
@@ -46,6 +47,14 @@ int main(int argc, char** argv)
         masked_phrases.push_back(line.substr(14));
       else if (line.rfind("# show new files", 0) == 0)
         show_new_files = true;
+      else if (line.rfind("# environment: ", 0) == 0)
+      {
+        const std::string setting = line.substr(15);
+        const std::size_t eq = setting.find('=');
+        if (eq == std::string::npos)
+          return 2;
+        setenv(setting.substr(0, eq).c_str(), setting.substr(eq + 1).c_str(), 1);
+      }
       else if (line.rfind(args, 0) == 0)
       {
         std::istringstream words(line.substr(args.size()));
