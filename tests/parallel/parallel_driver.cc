@@ -247,6 +247,9 @@ int main(int argc, char** argv)
   // "# parallel test: rebalance": the ranks' regions must be cut again for
   // uneven work in every split run (RankBalance; the same line).
   bool rebalance = false;
+  // "# parallel test: rebalance refused": besides, new regions must have been
+  // refused (a deformable block's surface not held where they need it).
+  bool refused = false;
   double relative = 0.0; // "# parallel test: relative R"
   // "# parallel test: same files": every file the serial run writes (the
   // output's VTU, PVD and parameter files too) must be written by every
@@ -262,6 +265,8 @@ int main(int argc, char** argv)
   for (std::string line; std::getline(in, line);)
     if (line.rfind("# parallel test: migrations", 0) == 0)
       migrations = true;
+    else if (line.rfind("# parallel test: rebalance refused", 0) == 0)
+      refused = true;
     else if (line.rfind("# parallel test: rebalance", 0) == 0)
       rebalance = true;
     else if (line.rfind("# parallel test: relative", 0) == 0)
@@ -370,19 +375,24 @@ int main(int argc, char** argv)
                   all_same ? "yes" : "NO");
       all &= all_same;
     }
-    if (migrations || rebalance)
+    if (migrations || rebalance || refused)
     {
       // "talus: on N ranks: E migration events (the sum of their steps S), C
       // owner changes, R rebalances (...)"
       std::ifstream err(folder + ".err");
-      unsigned long events = 0, steps = 0, changed = 0, rebalances = 0; // (in the .err file)
+      unsigned long events = 0, steps = 0, changed = 0, rebalances = 0, refusals = 0;
       int on = 0;
       for (std::string line; std::getline(err, line);)
         if (line.find("migration events") != std::string::npos)
+        {
           std::sscanf(line.c_str(),
                       "talus: on %d ranks: %lu migration events (the sum of their steps %lu), "
                       "%lu owner changes, %lu rebalances",
                       &on, &events, &steps, &changed, &rebalances);
+          const std::size_t at = line.find(" new regions refused");
+          if (at != std::string::npos)
+            refusals = std::strtoul(line.c_str() + line.rfind(", ", at) + 2, nullptr, 10);
+        }
       if (migrations)
       {
         std::printf("%d ranks: blocks changed rank: %s\n", n, changed > 0 ? "yes" : "NO");
@@ -393,6 +403,12 @@ int main(int argc, char** argv)
         std::printf("%d ranks: regions cut again for uneven work: %s\n", n,
                     rebalances > 0 ? "yes" : "NO");
         all &= rebalances > 0;
+      }
+      if (refused)
+      {
+        std::printf("%d ranks: new regions refused beside a deformable block: %s\n", n,
+                    refusals > 0 ? "yes" : "NO");
+        all &= refusals > 0;
       }
     }
   }
