@@ -40,13 +40,18 @@ bool RankBalance::choose(const RigidSolver& solver, const RankBlocks& blocks,
   for (unsigned int c = 0; c < cs.n_slots(); ++c)
     if (cs.alive[c] && blocks.owned[cs.block_a[c]]) // computed by the owner of its first block
       work[cs.block_a[c]] += costs_.contact + costs_.subcontact * subcontacts[c];
-  double sums[2] = {0.0, 0.0}; // largest, total
+  double mine = 0.0;
   for (unsigned int i = 0; i < n; ++i)
-    sums[1] += work[i];
-  sums[0] = sums[1];
-  MPI_Allreduce(MPI_IN_PLACE, &sums[0], 1, MPI_DOUBLE, MPI_MAX, comm);
-  MPI_Allreduce(MPI_IN_PLACE, &sums[1], 1, MPI_DOUBLE, MPI_SUM, comm);
-  measured_ = sums[1] > 0.0 ? sums[0] * ranks / sums[1] : 1.0;
+    mine += work[i];
+  // Every rank's work, added in rank order on every rank: the decisions
+  // below are collective, so every rank must reach them from the same bits.
+  std::vector<double> per_rank(std::size_t(ranks), 0.0);
+  MPI_Allgather(&mine, 1, MPI_DOUBLE, per_rank.data(), 1, MPI_DOUBLE, comm);
+  double total = 0.0;
+  for (double w : per_rank)
+    total += w;
+  const double largest_now = *std::max_element(per_rank.begin(), per_rank.end());
+  measured_ = total > 0.0 ? largest_now * ranks / total : 1.0;
   const bool after_rebalance = just_rebalanced_;
   just_rebalanced_ = false;
   if (measured_ <= threshold_ || measured_ <= waiting_above_)
@@ -63,23 +68,23 @@ bool RankBalance::choose(const RigidSolver& solver, const RankBlocks& blocks,
   // Every owned block's centroid, work and owner when it stays (a
   // deformable block: -1 for the others), from every rank to every rank in
   // rank order, so that every rank cuts the same regions.
-  std::vector<double> mine;
+  std::vector<double> blocks_here;
   for (unsigned int i = 0; i < n; ++i)
     if (blocks.owned[i] && !solver.removed(i))
     {
       const Vec3& c = local.centroid[i];
-      mine.insert(mine.end(),
-                  {c[0], c[1], c[2], work[i], solver.is_deformable(i) ? double(rank) : -1.0});
+      blocks_here.insert(blocks_here.end(), {c[0], c[1], c[2], work[i],
+                                             solver.is_deformable(i) ? double(rank) : -1.0});
     }
-  if (mine.size() > static_cast<std::size_t>(std::numeric_limits<int>::max() / ranks))
+  if (blocks_here.size() > static_cast<std::size_t>(std::numeric_limits<int>::max() / ranks))
     throw std::runtime_error("RankBalance: a rank's blocks are more than one MPI message allows");
-  const int size = static_cast<int>(mine.size());
+  const int size = static_cast<int>(blocks_here.size());
   std::vector<int> counts(ranks), starts(ranks, 0);
   MPI_Allgather(&size, 1, MPI_INT, counts.data(), 1, MPI_INT, comm);
   for (int r = 1; r < ranks; ++r)
     starts[r] = starts[r - 1] + counts[r - 1];
   std::vector<double> all(std::size_t(starts.back()) + counts.back());
-  MPI_Allgatherv(mine.data(), size, MPI_DOUBLE, all.data(), counts.data(), starts.data(),
+  MPI_Allgatherv(blocks_here.data(), size, MPI_DOUBLE, all.data(), counts.data(), starts.data(),
                  MPI_DOUBLE, comm);
   std::vector<Vec3> point(all.size() / 5);
   std::vector<double> block_work(point.size());
@@ -98,7 +103,7 @@ bool RankBalance::choose(const RigidSolver& solver, const RankBlocks& blocks,
     expected[stays >= 0.0 ? std::size_t(stays) : regions->owner(point[k])] += block_work[k];
   }
   const double largest = *std::max_element(expected.begin(), expected.end());
-  const double after = sums[1] > 0.0 ? largest * ranks / sums[1] : 1.0;
+  const double after = total > 0.0 ? largest * ranks / total : 1.0;
   last_try_ = measured_;
   if (!(after < 0.9 * measured_))
   {

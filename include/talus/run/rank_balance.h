@@ -30,12 +30,14 @@ struct StepCosts
 /// Keeps the ranks' work even as a run changes it (issue 24: "a rebalance
 /// when the work becomes uneven"): blocks pile up in one region, a stage
 /// excavates another, contacts form where blocks settle. Every `interval`
-/// steps each rank weighs the work of its own blocks (StepCosts: each block,
-/// the contacts whose first block it is, with their sub-contacts, which its
-/// rank computes, and its zones); one MPI_Allreduce gives the largest over
-/// the mean. Above `threshold`, every rank receives every owned block's
+/// steps each rank weighs the work of its own blocks (StepCosts: each
+/// block, the contacts whose first block it is, with their sub-contacts,
+/// which its rank computes, and its zones). One MPI_Allgather brings every
+/// rank's total to every rank, added there in rank order, so that all
+/// ranks decide from the same bits; the largest over the mean is the
+/// imbalance. Above `threshold`, every rank receives every owned block's
 /// centroid and work (one MPI_Allgatherv, 40 bytes a block) and cuts the
-/// same cell space again by them (CellPartition, the cuts the same on every
+/// same cell space again by them (CellPartition: the same cuts on every
 /// rank). A deformable block stays with its owner (BlockMigration), so its
 /// work stays there. The new regions are taken when they lower the largest
 /// work over the mean by a tenth; otherwise, and when the first check
