@@ -77,6 +77,7 @@ MeshShare share_mesh(const TetMesh& whole, const std::vector<unsigned int>& owne
     for (unsigned int g = 0; g < ng; ++g)
       held_gridpoint[g] |= (*also_ghosts)[g];
   MeshShare s;
+  s.mesh.ten_node = quadratic; // also with no zone of this rank's
   s.share.comm = comm;
   std::vector<std::pair<unsigned int, unsigned int>> ghosts; // number, gridpoint
   for (unsigned int g = 0; g < ng; ++g)

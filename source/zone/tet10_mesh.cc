@@ -28,6 +28,7 @@ void make_quadratic(TetMesh& mesh)
     }
     return it->second;
   };
+  mesh.ten_node = true;
   mesh.zone_edge_gridpoint.resize(mesh.n_zones());
   for (unsigned int z = 0; z < mesh.n_zones(); ++z)
     for (int e = 0; e < 6; ++e)

@@ -28,6 +28,10 @@ struct TetMesh
   /// 0-3, 1-3, 2-3), so that zone_gridpoint then zone_edge_gridpoint are
   /// the nodes of FE_SimplexP<3>(2). Set by make_quadratic (tet10_mesh.h).
   std::vector<std::array<unsigned int, 6>> zone_edge_gridpoint;
+  /// Set with the above by make_quadratic and kept by a rank's share of the
+  /// mesh (mesh_share.h), so that a rank that holds no zone of a 10-node
+  /// model still has a 10-node mesh, as its materials say.
+  bool ten_node = false;
 
   /// Hexahedral zones of mixed discretization (eqs. 60-67; empty for a mesh
   /// of plain tetrahedra). Hexahedron h is the ten consecutive zones
@@ -46,7 +50,7 @@ struct TetMesh
 
   unsigned int n_gridpoints() const { return static_cast<unsigned int>(position.size() / 3); }
   unsigned int n_zones() const { return static_cast<unsigned int>(zone_gridpoint.size()); }
-  bool quadratic() const { return !zone_edge_gridpoint.empty(); }
+  bool quadratic() const { return ten_node || !zone_edge_gridpoint.empty(); }
   unsigned int n_faces() const { return static_cast<unsigned int>(face_gridpoint.size()); }
   unsigned int n_hexes() const { return static_cast<unsigned int>(hex_gridpoint.size()); }
   static constexpr unsigned int tets_per_hex = 10;
