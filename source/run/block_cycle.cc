@@ -100,7 +100,9 @@ BlockCycle::BlockCycle(Scene& scene, BlockModel& model, const std::string& prefi
       zone_series_(prefix + "_zones.pvd"),
       built_centroid_(model.centroid) // the whole model's, by global number
 {
-  const double meshing_seconds = now() - meshing_start_;
+  // (on ranks the meshing came first, before the model was split)
+  const double meshing_seconds =
+      now() - meshing_start_ + (whole_zones_ ? whole_zones_->meshing_seconds : 0.0);
   // On ranks, on the whole model: every rank finds what one rank would.
   check_boundary_selections(scene, share_ ? model : model_,
                             whole_zones_ ? whole_zones_->mesh : system_.mesh);

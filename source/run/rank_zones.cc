@@ -7,6 +7,7 @@
 #include <talus/zone/zone_surface.h>
 
 #include <algorithm>
+#include <chrono>
 #include <limits>
 #include <stdexcept>
 #include <unordered_map>
@@ -27,13 +28,16 @@ std::unique_ptr<WholeZones> mesh_zones_on_ranks(const Scene& scene, BlockModel& 
     return nullptr;
   print_zone_estimate(scene, whole);
   auto zones = std::make_unique<WholeZones>();
-  zones->mesh = mesh_deformable_blocks(scene, whole, deformable, zones->report);
+  const auto start = std::chrono::steady_clock::now();
+  zones->mesh = mesh_deformable_blocks(scene, whole, deformable, zones->report, MPI_COMM_WORLD);
   if (has_joint_pressures(scene)) // on the blocks' own faces, as one run finds them
     zones->face_origins = zone_face_origins(whole, zones->mesh);
   zones->vertex_gridpoint = use_zone_surfaces(whole, zones->mesh);
   zones->zones_of_block.assign(whole.n_blocks(), 0.0);
   for (unsigned int b : zones->mesh.zone_block)
     zones->zones_of_block[b] += 1.0;
+  zones->meshing_seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return zones;
 }
 

@@ -63,7 +63,8 @@ ZoneMaterials zone_materials(const Scene& scene, const BlockModel& model, const 
 }
 
 TetMesh mesh_deformable_blocks(const Scene& scene, const BlockModel& model,
-                               const std::vector<unsigned int>& which, MeshReport& report)
+                               const std::vector<unsigned int>& which, MeshReport& report,
+                               MPI_Comm comm)
 {
   try
   {
@@ -71,7 +72,7 @@ TetMesh mesh_deformable_blocks(const Scene& scene, const BlockModel& model,
     // 10-node zones are made from the 4-node mesh (tet10_mesh.h).
     TetMesh mesh = mesh_blocks(model, which, scene.deformable.edge_length, report,
                                element == ZoneElement::tet10 ? ZoneElement::tet4 : element,
-                               deformable_zone_order(scene, model), scene.deformable.mesher);
+                               deformable_zone_order(scene, model), scene.deformable.mesher, comm);
     if (element == ZoneElement::tet10)
     {
       make_quadratic(mesh);

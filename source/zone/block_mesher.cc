@@ -386,7 +386,7 @@ namespace
 /// mesh_blocks).
 TetMesh mesh_in_generator_order(const BlockModel& m, const std::vector<unsigned int>& which,
                                 const EdgeLengthField& field, ZoneElement element,
-                                ConvexMesher mesher)
+                                ConvexMesher mesher, MPI_Comm comm)
 {
   if (!(field.smallest() > 0.0))
     throw InputError("zone edge length must be positive");
@@ -412,8 +412,20 @@ TetMesh mesh_in_generator_order(const BlockModel& m, const std::vector<unsigned 
       general.push_back(b);
     }
   }
-  std::vector<BlockTetrahedra> meshed = mesh_convex_blocks_with(
-      m, general, [&field](const Vec3& x) { return field.at(x); }, mesher);
+  const EdgeLengthAt size = [&field](const Vec3& x) { return field.at(x); };
+  int ranks = 1;
+  if (comm != MPI_COMM_SELF)
+    MPI_Comm_size(comm, &ranks);
+  std::vector<BlockTetrahedra> meshed;
+  if (ranks > 1)
+  {
+    std::vector<double> expected;
+    for (unsigned int b : general)
+      expected.push_back(count_zones(m, {b}, field));
+    meshed = mesh_convex_blocks_on_ranks(m, general, size, mesher, expected, comm);
+  }
+  else
+    meshed = mesh_convex_blocks_with(m, general, size, mesher);
   TetMesh mesh;
   for (unsigned int b : which)
   {
@@ -444,9 +456,9 @@ TetMesh mesh_in_generator_order(const BlockModel& m, const std::vector<unsigned 
 template <typename Order>
 TetMesh mesh_and_order(const BlockModel& m, const std::vector<unsigned int>& which,
                        const EdgeLengthField& field, MeshReport& report, ZoneElement element,
-                       const Order& order, ConvexMesher mesher)
+                       const Order& order, ConvexMesher mesher, MPI_Comm comm)
 {
-  TetMesh mesh = mesh_in_generator_order(m, which, field, element, mesher);
+  TetMesh mesh = mesh_in_generator_order(m, which, field, element, mesher, comm);
   order_for_locality(mesh, order);
   report = measure_mesh(mesh);
   return mesh;
@@ -455,16 +467,16 @@ TetMesh mesh_and_order(const BlockModel& m, const std::vector<unsigned int>& whi
 
 TetMesh mesh_blocks(const BlockModel& m, const std::vector<unsigned int>& which,
                     const EdgeLengthField& field, MeshReport& report, ZoneElement element,
-                    MeshOrder order, ConvexMesher mesher)
+                    MeshOrder order, ConvexMesher mesher, MPI_Comm comm)
 {
-  return mesh_and_order(m, which, field, report, element, order, mesher);
+  return mesh_and_order(m, which, field, report, element, order, mesher, comm);
 }
 
 TetMesh mesh_blocks(const BlockModel& m, const std::vector<unsigned int>& which,
                     const EdgeLengthField& field, MeshReport& report, ZoneElement element,
-                    const BlockMeshOrder& order, ConvexMesher mesher)
+                    const BlockMeshOrder& order, ConvexMesher mesher, MPI_Comm comm)
 {
-  return mesh_and_order(m, which, field, report, element, order, mesher);
+  return mesh_and_order(m, which, field, report, element, order, mesher, comm);
 }
 
 double count_zones(const BlockModel& m, const std::vector<unsigned int>& which,

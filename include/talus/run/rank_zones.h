@@ -37,6 +37,9 @@ struct WholeZones
   /// The blocks as built, before the surfaces replaced the deformable
   /// blocks' faces, when a stage needs them (else empty).
   BlockModel as_built;
+  /// Wall time of the meshing and of giving the blocks their surfaces (s),
+  /// for the summary's set-up time.
+  double meshing_seconds = 0.0;
 };
 
 /// On several MPI ranks, for a scene whose deformable blocks lie among

@@ -50,9 +50,11 @@ ZoneMaterials zone_materials(const Scene& scene, const BlockModel& model, const 
 
 /// Meshes blocks `which` of `model` with the scene's zone edge length and
 /// element (entry 'Element'), in deformable_zone_order; an InputError of
-/// the mesher is given the parameter file's name.
+/// the mesher is given the parameter file's name. With a `comm` of several
+/// ranks, they share the meshing (mesh_blocks) and each gets the whole mesh.
 TetMesh mesh_deformable_blocks(const Scene& scene, const BlockModel& model,
-                               const std::vector<unsigned int>& which, MeshReport& report);
+                               const std::vector<unsigned int>& which, MeshReport& report,
+                               MPI_Comm comm = MPI_COMM_SELF);
 
 /// Meshes the blocks of the scene's deformable groups, gives them their zone
 /// surfaces as shapes in `model` (which it changes) and builds the solvers.

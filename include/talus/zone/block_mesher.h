@@ -5,6 +5,7 @@
 #include <talus/zone/edge_length_field.h>
 #include <talus/zone/lattice_block_mesher.h>
 #include <talus/zone/mesh_order.h>
+#include <talus/zone/meshing_on_ranks.h>
 #include <talus/zone/tet_mesh.h>
 #include <talus/zone/zone_material.h>
 
@@ -75,15 +76,21 @@ MeshReport measure_mesh(const TetMesh& mesh);
 ///
 /// Last, zones and gridpoints are put in `order` (by default slabs,
 /// renumbered block by block for memory locality, mesh_order.h).
+///
+/// With a `comm` of several ranks, every rank of it must call this with the
+/// same arguments: the blocks that are not bricks are meshed by one rank
+/// each and exchanged (meshing_on_ranks.h), and every rank gets the mesh
+/// one rank would make.
 TetMesh mesh_blocks(const BlockModel& blocks, const std::vector<unsigned int>& which,
                     const EdgeLengthField& edge_length, MeshReport& report,
                     ZoneElement element = ZoneElement::tet4, MeshOrder order = MeshOrder::slabs,
-                    ConvexMesher mesher = ConvexMesher::automatic);
+                    ConvexMesher mesher = ConvexMesher::automatic, MPI_Comm comm = MPI_COMM_SELF);
 
 /// The same with an order for each block.
 TetMesh mesh_blocks(const BlockModel& blocks, const std::vector<unsigned int>& which,
                     const EdgeLengthField& edge_length, MeshReport& report, ZoneElement element,
-                    const BlockMeshOrder& order, ConvexMesher mesher = ConvexMesher::automatic);
+                    const BlockMeshOrder& order, ConvexMesher mesher = ConvexMesher::automatic,
+                    MPI_Comm comm = MPI_COMM_SELF);
 
 /// The number of zones mesh_blocks would make, found without meshing (as a
 /// double: a bad edge length can ask for more than any integer holds), so
