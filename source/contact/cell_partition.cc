@@ -24,46 +24,93 @@ double slab(double x, double origin, double size)
 
 CellPartition::CellPartition(const Box& domain, const Vec3& origin, const Vec3& cell_size,
                              const std::vector<Vec3>& point, const std::vector<double>& work,
-                             unsigned int n_ranks)
+                             unsigned int n_ranks, const SumOverProcesses& sum_over_processes)
     : origin_(origin), cell_size_(cell_size), n_ranks_(n_ranks), rank_work_(n_ranks, 0.0)
 {
   if (n_ranks == 0 || point.size() != work.size() || !(cell_size.array() > 0.0).all())
     throw std::logic_error("CellPartition: no ranks, unequal point and work counts, or a cell "
                            "size that is not positive");
-  std::vector<unsigned int> items(point.size());
-  std::iota(items.begin(), items.end(), 0u);
   cuts_.reserve(2 * n_ranks);
-  split(domain, 0, n_ranks, items, point, work);
+  cuts_.emplace_back();
+  cuts_[0].first_rank = 0;
+  cuts_[0].n_ranks = n_ranks;
+  // Level by level (each region's cut comes from its own points only, so
+  // the order of the levels does not change the cuts): the numbers of every
+  // open region of a level together, so that processes holding parts of
+  // the work add them once per level.
+  std::vector<Open> open(1);
+  open[0].cut = 0;
+  open[0].region = domain;
+  open[0].items.resize(point.size());
+  std::iota(open[0].items.begin(), open[0].items.end(), 0u);
+  while (!open.empty())
+  {
+    std::vector<double> numbers;
+    for (const Open& o : open)
+      add_slab_work(o, point, work, numbers);
+    if (sum_over_processes)
+      sum_over_processes(numbers);
+    std::vector<Open> next;
+    std::size_t at = 0;
+    for (Open& o : open)
+      cut(o, point, numbers, at, next);
+    open = std::move(next);
+  }
 }
 
-int CellPartition::split(const Box& region, unsigned int first_rank, unsigned int n,
-                         std::vector<unsigned int>& items, const std::vector<Vec3>& point,
-                         const std::vector<double>& work)
+void CellPartition::slabs_of(const Box& region, double first_slab[3], double n_slabs[3]) const
 {
-  const int me = static_cast<int>(cuts_.size());
-  cuts_.emplace_back();
-  cuts_[me].first_rank = first_rank;
-  cuts_[me].n_ranks = n;
-  if (n == 1)
-  {
-    for (unsigned int i : items)
-      rank_work_[first_rank] += work[i];
-    return me;
-  }
-  // The slabs of whole cells inside the region along each axis.
-  double first_slab[3], n_slabs[3];
   for (int a = 0; a < 3; ++a)
   {
     first_slab[a] = slab(region.lo[a], origin_[a], cell_size_[a]);
     n_slabs[a] = slab(region.hi[a], origin_[a], cell_size_[a]) - first_slab[a] + 1.0;
   }
+}
+
+void CellPartition::add_slab_work(const Open& o, const std::vector<Vec3>& point,
+                                  const std::vector<double>& work,
+                                  std::vector<double>& numbers) const
+{
+  double total = 0.0;
+  for (unsigned int i : o.items)
+    total += work[i];
+  numbers.push_back(total);
+  if (cuts_[o.cut].n_ranks == 1)
+    return;
+  // Along each axis, the work per slab of whole cells in the region; points
+  // beyond it (outside the model's box) count in its end slabs.
+  double first_slab[3], n_slabs[3];
+  slabs_of(o.region, first_slab, n_slabs);
+  for (int a = 0; a < 3; ++a)
+  {
+    if (n_slabs[a] < 2.0)
+      continue;
+    const std::size_t first = numbers.size();
+    numbers.resize(first + static_cast<std::size_t>(n_slabs[a]), 0.0);
+    for (unsigned int i : o.items)
+    {
+      const double k = slab(point[i][a], origin_[a], cell_size_[a]) - first_slab[a];
+      numbers[first + static_cast<std::size_t>(std::clamp(k, 0.0, n_slabs[a] - 1.0))] += work[i];
+    }
+  }
+}
+
+void CellPartition::cut(Open& o, const std::vector<Vec3>& point, const std::vector<double>& numbers,
+                        std::size_t& at, std::vector<Open>& next)
+{
+  const int me = o.cut;
+  const unsigned int first_rank = cuts_[me].first_rank, n = cuts_[me].n_ranks;
+  const double total = numbers[at++];
+  if (n == 1)
+  {
+    rank_work_[first_rank] += total;
+    return;
+  }
   // Along each axis, every boundary between slabs and every count of ranks
   // below it: the best makes the larger work per rank on either side the
-  // least. Items beyond the region (outside the model's box) count in its
-  // end slabs.
-  double total = 0.0;
-  for (unsigned int i : items)
-    total += work[i];
+  // least.
+  double first_slab[3], n_slabs[3];
+  slabs_of(o.region, first_slab, n_slabs);
   double load[3], cut_at[3];
   unsigned int ranks_below[3];
   for (int a = 0; a < 3; ++a)
@@ -73,14 +120,11 @@ int CellPartition::split(const Box& region, unsigned int first_rank, unsigned in
     ranks_below[a] = n / 2;
     if (n_slabs[a] < 2.0)
       continue;
-    std::vector<double> per_slab(static_cast<std::size_t>(n_slabs[a]), 0.0);
-    for (unsigned int i : items)
-    {
-      const double k = slab(point[i][a], origin_[a], cell_size_[a]) - first_slab[a];
-      per_slab[static_cast<std::size_t>(std::clamp(k, 0.0, n_slabs[a] - 1.0))] += work[i];
-    }
+    const double* per_slab = numbers.data() + at;
+    const std::size_t count = static_cast<std::size_t>(n_slabs[a]);
+    at += count;
     double below = 0.0;
-    for (std::size_t k = 0; k + 1 < per_slab.size(); ++k)
+    for (std::size_t k = 0; k + 1 < count; ++k)
     {
       below += per_slab[k];
       // Ranks below in proportion to the work below, and its neighbours.
@@ -107,23 +151,29 @@ int CellPartition::split(const Box& region, unsigned int first_rank, unsigned in
       axis = a;
   if (axis < 0) // no side can be cut: every axis one cell thick
     axis = 0;
-  const double cut = cut_at[axis];
+  const double position = cut_at[axis];
   const unsigned int n_below = ranks_below[axis];
+  Open lower{static_cast<int>(cuts_.size()), o.region, {}};
+  Open upper{static_cast<int>(cuts_.size()) + 1, o.region, {}};
+  for (unsigned int i : o.items)
+    (slab(point[i][axis], origin_[axis], cell_size_[axis]) < position ? lower : upper)
+        .items.push_back(i);
+  o.items.clear();
+  o.items.shrink_to_fit();
+  lower.region.hi[axis] = origin_[axis] + (position - 0.5) * cell_size_[axis];
+  upper.region.lo[axis] = origin_[axis] + (position + 0.5) * cell_size_[axis];
+  cuts_.emplace_back();
+  cuts_.emplace_back();
   cuts_[me].axis = axis;
-  cuts_[me].position = cut; // in slabs from the origin
-  std::vector<unsigned int> lower, upper;
-  for (unsigned int i : items)
-    (slab(point[i][axis], origin_[axis], cell_size_[axis]) < cut ? lower : upper).push_back(i);
-  items.clear();
-  items.shrink_to_fit();
-  Box region_below = region, region_above = region;
-  region_below.hi[axis] = origin_[axis] + (cut - 0.5) * cell_size_[axis];
-  region_above.lo[axis] = origin_[axis] + (cut + 0.5) * cell_size_[axis];
-  const int b = split(region_below, first_rank, n_below, lower, point, work);
-  const int u = split(region_above, first_rank + n_below, n - n_below, upper, point, work);
-  cuts_[me].below = b;
-  cuts_[me].above = u;
-  return me;
+  cuts_[me].position = position; // in slabs from the origin
+  cuts_[me].below = lower.cut;
+  cuts_[me].above = upper.cut;
+  cuts_[lower.cut].first_rank = first_rank;
+  cuts_[lower.cut].n_ranks = n_below;
+  cuts_[upper.cut].first_rank = first_rank + n_below;
+  cuts_[upper.cut].n_ranks = n - n_below;
+  next.push_back(std::move(lower));
+  next.push_back(std::move(upper));
 }
 
 unsigned int CellPartition::owner(const Vec3& x) const
@@ -227,7 +277,7 @@ CellPartition CellPartition::from_numbers(const std::vector<double>& numbers)
     cut.n_ranks = static_cast<unsigned int>(x[3]);
     cut.below = static_cast<int>(x[4]);
     cut.above = static_cast<int>(x[5]);
-    // Children come after their cut (split() numbers them so): no cycles.
+    // Children come after their cut (cut() numbers them so): no cycles.
     const int n = static_cast<int>(n_cuts), me = static_cast<int>(c);
     if (cut.axis > 2 || cut.first_rank + cut.n_ranks > p.n_ranks_ ||
         (cut.axis >= 0 && (cut.below <= me || cut.below >= n || cut.above <= me || cut.above >= n)))

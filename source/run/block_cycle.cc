@@ -747,6 +747,11 @@ void BlockCycle::print_end()
     char rebalances[200];
     if (b.off())
       std::snprintf(rebalances, sizeof rebalances, "rebalance off");
+    else if (b.rebalances() == 0) // no before and after to give
+      std::snprintf(rebalances, sizeof rebalances,
+                    "0 rebalances (the ranks' largest work over the mean at the last check: "
+                    "%.3f)",
+                    b.measured());
     else
       std::snprintf(rebalances, sizeof rebalances,
                     "%lu rebalances (the ranks' largest work over the mean: %.3f before the last "

@@ -2,11 +2,36 @@
 #include <talus/solver/rigid_solver.h>
 
 #include <algorithm>
+#include <cmath>
 #include <limits>
 #include <stdexcept>
 
 namespace talus
 {
+
+void sum_exactly_over_ranks(std::vector<double>& numbers, MPI_Comm comm)
+{
+  // In units of 2^-24 (6e-8 us a step: far below any cost), as integers:
+  // their sum does not depend on the order the ranks are added in.
+  constexpr double unit = 16777216.0; // 2^24
+  int ranks = 1;
+  MPI_Comm_size(comm, &ranks);
+  const double largest = 9.2e18 / ranks; // the ranks' sum fits in 64 bits
+  std::vector<long long> units(numbers.size());
+  for (std::size_t i = 0; i < numbers.size(); ++i)
+  {
+    const double u = numbers[i] * unit;
+    if (!(std::abs(u) < largest))
+      throw std::runtime_error("RankBalance: a work to add over the ranks is not finite or too "
+                               "large");
+    units[i] = std::llround(u);
+  }
+  if (!units.empty())
+    MPI_Allreduce(MPI_IN_PLACE, units.data(), static_cast<int>(units.size()), MPI_LONG_LONG,
+                  MPI_SUM, comm);
+  for (std::size_t i = 0; i < numbers.size(); ++i)
+    numbers[i] = static_cast<double>(units[i]) / unit;
+}
 
 RankBalance::RankBalance(const Box& domain, const Vec3& cell_size, double threshold,
                          unsigned long interval)
@@ -65,43 +90,31 @@ bool RankBalance::choose(const RigidSolver& solver, const RankBlocks& blocks,
     return false;
   }
 
-  // Every owned block's centroid, work and owner when it stays (a
-  // deformable block: -1 for the others), from every rank to every rank in
-  // rank order, so that every rank cuts the same regions.
-  std::vector<double> blocks_here;
+  // The same cell space cut again by the owned blocks' centroids and work,
+  // each rank passing only its own: the ranks add their cell slabs' work
+  // level by level (CellPartition's sum_over_processes), so that no rank
+  // gathers the model's blocks.
+  std::vector<Vec3> point;
+  std::vector<double> block_work;
+  std::vector<int> stays; // a deformable block's rank, -1 for the others
   for (unsigned int i = 0; i < n; ++i)
     if (blocks.owned[i] && !solver.removed(i))
     {
-      const Vec3& c = local.centroid[i];
-      blocks_here.insert(blocks_here.end(), {c[0], c[1], c[2], work[i],
-                                             solver.is_deformable(i) ? double(rank) : -1.0});
+      point.push_back(local.centroid[i]);
+      block_work.push_back(work[i]);
+      stays.push_back(solver.is_deformable(i) ? rank : -1);
     }
-  if (blocks_here.size() > static_cast<std::size_t>(std::numeric_limits<int>::max() / ranks))
-    throw std::runtime_error("RankBalance: a rank's blocks are more than one MPI message allows");
-  const int size = static_cast<int>(blocks_here.size());
-  std::vector<int> counts(ranks), starts(ranks, 0);
-  MPI_Allgather(&size, 1, MPI_INT, counts.data(), 1, MPI_INT, comm);
-  for (int r = 1; r < ranks; ++r)
-    starts[r] = starts[r - 1] + counts[r - 1];
-  std::vector<double> all(std::size_t(starts.back()) + counts.back());
-  MPI_Allgatherv(blocks_here.data(), size, MPI_DOUBLE, all.data(), counts.data(), starts.data(),
-                 MPI_DOUBLE, comm);
-  std::vector<Vec3> point(all.size() / 5);
-  std::vector<double> block_work(point.size());
-  for (std::size_t k = 0; k < point.size(); ++k)
-  {
-    point[k] = Vec3(all[5 * k], all[5 * k + 1], all[5 * k + 2]);
-    block_work[k] = all[5 * k + 3];
-  }
-  auto regions = std::make_unique<CellPartition>(domain_, domain_.lo, cell_size_, point, block_work,
-                                                 static_cast<unsigned int>(ranks));
+  auto regions = std::make_unique<CellPartition>(
+      domain_, domain_.lo, cell_size_, point, block_work, static_cast<unsigned int>(ranks),
+      [comm](std::vector<double>& numbers) { sum_exactly_over_ranks(numbers, comm); });
   // The work each rank would have: a deformable block's stays with its owner.
   std::vector<double> expected(std::size_t(ranks), 0.0);
   for (std::size_t k = 0; k < point.size(); ++k)
-  {
-    const double stays = all[5 * k + 4];
-    expected[stays >= 0.0 ? std::size_t(stays) : regions->owner(point[k])] += block_work[k];
-  }
+    expected[stays[k] >= 0 ? std::size_t(stays[k]) : regions->owner(point[k])] += block_work[k];
+  sum_exactly_over_ranks(expected, comm);
+  total = 0.0;
+  for (double w : expected)
+    total += w;
   const double largest = *std::max_element(expected.begin(), expected.end());
   const double after = total > 0.0 ? largest * ranks / total : 1.0;
   last_try_ = measured_;

@@ -35,14 +35,23 @@ struct StepCosts
 /// which its rank computes, and its zones). One MPI_Allgather brings every
 /// rank's total to every rank, added there in rank order, so that all
 /// ranks decide from the same bits; the largest over the mean is the
-/// imbalance. Above `threshold`, every rank receives every owned block's
-/// centroid and work (one MPI_Allgatherv, 40 bytes a block) and cuts the
-/// same cell space again by them (CellPartition: the same cuts on every
-/// rank). A deformable block stays with its owner (BlockMigration), so its
+/// imbalance. Above `threshold`, the ranks cut the same cell space again
+/// by the owned blocks' centroids and work (CellPartition), each rank
+/// passing only its own blocks: the work of each region's cell slabs is
+/// added over the ranks level by level of the bisection (one
+/// MPI_Allreduce of integers per level, a few hundred numbers per region:
+/// sum_exactly_over_ranks), so every rank makes the same cuts and none
+/// gathers the model's blocks. A deformable block stays with its owner (BlockMigration), so its
 /// work stays there. The new regions are taken when they lower the largest
 /// work over the mean by a tenth; otherwise, and when the first check
 /// after new regions finds the work uneven again, the ranks wait until the
 /// imbalance grows by another twentieth before they try again.
+/// Adds `numbers` element by element over the ranks of `comm`, giving
+/// every rank the same sums, bit for bit: each number is rounded to a
+/// multiple of 2^-24 (in the work's unit, us a step) and the integers are
+/// added (MPI_Allreduce), which no order of the ranks can change. Collective.
+void sum_exactly_over_ranks(std::vector<double>& numbers, MPI_Comm comm);
+
 class RankBalance
 {
 public:
