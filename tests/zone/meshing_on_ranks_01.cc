@@ -12,6 +12,7 @@
 #include <talus/base/exceptions.h>
 #include <talus/base/parallel_environment.h>
 #include <talus/geometry/block_generator.h>
+#include <talus/run/rank_share.h>
 #include <talus/zone/block_mesher.h>
 #include <talus/zone/meshing_on_ranks.h>
 
@@ -45,9 +46,7 @@ bool same(const BlockTetrahedra& a, const BlockTetrahedra& b)
 int main(int argc, char** argv)
 {
   ParallelEnvironment env(argc, argv);
-  int rank = 0, ranks = 1;
-  MPI_Comm_rank(MPI_COMM_WORLD, &rank);
-  MPI_Comm_size(MPI_COMM_WORLD, &ranks);
+  const int rank = world_rank(), ranks = world_ranks();
 
   BlockGenerator generator(ConvexPolyhedron::box(Vec3::Zero(), Vec3(6.0, 4.0, 4.0)), {});
   JointSetSpec first, second;
