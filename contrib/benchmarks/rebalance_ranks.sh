@@ -7,8 +7,8 @@
 # default) and without (TALUS_REBALANCE_THRESHOLD=0), each with its last
 # stage's steps (the scene's one line 'set Steps = 1500') set to A and to B;
 # the difference of the two "Time =" totals is the cost of B - A steps of
-# that stage, the rebalance and its migration among them (its first check
-# after the excavation comes at step 400). Every split run's history must
+# that stage (the rebalance and its migration come at the stage's first
+# step, in both runs, so their cost cancels). Every split run's history must
 # be the serial run's byte for byte (checked here). Prints the times, the
 # speed-ups and the ranks' line on their work.
 #

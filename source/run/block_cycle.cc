@@ -547,6 +547,8 @@ void BlockCycle::begin_stage(const StageSpec& stage)
   {
     solver.remove_blocks(gone); // on ranks, on every rank (masses and the step are reduced)
     std::printf("  Excavated:  %lu blocks, %.9g m^3\n", n_gone, volume);
+    if (share_) // the work left is checked at once, not at the next hundredth step
+      share_->check_balance_soon();
   }
   unsigned long fixed = 0, freed = 0;
   for (unsigned int b = 0; b < model_.n_blocks(); ++b)

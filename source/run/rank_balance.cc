@@ -46,8 +46,9 @@ bool RankBalance::choose(const RigidSolver& solver, const RankBlocks& blocks,
                          const BlockModel& local, const std::vector<double>& zones_of_block,
                          MPI_Comm comm, std::unique_ptr<CellPartition>& next)
 {
-  if (threshold_ == 0.0 || solver.steps_done() % interval_ != 0)
+  if (threshold_ == 0.0 || (!check_soon_ && solver.steps_done() % interval_ != 0))
     return false;
+  check_soon_ = false;
   int rank = 0, ranks = 1;
   MPI_Comm_rank(comm, &rank);
   MPI_Comm_size(comm, &ranks);
@@ -145,13 +146,20 @@ void RankBalance::declined()
 
 std::vector<double> RankBalance::numbers() const
 {
-  return {double(rebalances_),      measured_,       before_, expected_, waiting_above_, last_try_,
-          double(just_rebalanced_), double(refused_)};
+  return {double(rebalances_),
+          measured_,
+          before_,
+          expected_,
+          waiting_above_,
+          last_try_,
+          double(just_rebalanced_),
+          double(refused_),
+          double(check_soon_)};
 }
 
 void RankBalance::set_numbers(const std::vector<double>& numbers)
 {
-  if (numbers.size() != 8)
+  if (numbers.size() != 9)
     throw std::invalid_argument("RankBalance: the saved state is not whole");
   rebalances_ = static_cast<unsigned long>(numbers[0]);
   measured_ = numbers[1];
@@ -161,6 +169,7 @@ void RankBalance::set_numbers(const std::vector<double>& numbers)
   last_try_ = numbers[5];
   just_rebalanced_ = numbers[6] != 0.0;
   refused_ = static_cast<unsigned long>(numbers[7]);
+  check_soon_ = numbers[8] != 0.0;
 }
 
 } // namespace talus

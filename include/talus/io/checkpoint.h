@@ -44,8 +44,10 @@ struct Scene;
 /// rank and the number of ranks after the first tag, and on several ranks
 /// each rank's share (io/rank_checkpoint.h) after the step; 10: the
 /// blocks' last motion (a deformable block's is not its velocity times the
-/// step to the last bit).
-constexpr std::uint32_t checkpoint_format_version = 11;
+/// step to the last bit); 11: on ranks, the regions as a rebalance last
+/// cut them and the rebalance's counters; 12: whether the rebalance checks
+/// at the next step (after a stage's excavation).
+constexpr std::uint32_t checkpoint_format_version = 12;
 
 /// FNV-1a, 64 bits: a fingerprint, not a cryptographic hash.
 std::uint64_t fnv1a(const void* data, std::size_t size,

@@ -29,8 +29,9 @@ struct StepCosts
 
 /// Keeps the ranks' work even as a run changes it (issue 24: "a rebalance
 /// when the work becomes uneven"): blocks pile up in one region, a stage
-/// excavates another, contacts form where blocks settle. Every `interval`
-/// steps each rank weighs the work of its own blocks (StepCosts: each
+/// excavates another, contacts form where blocks settle. After the run's
+/// first step, after a stage's excavation and then every `interval` steps
+/// each rank weighs the work of its own blocks (StepCosts: each
 /// block, the contacts whose first block it is, with their sub-contacts,
 /// which its rank computes, and its zones). One MPI_Allgather brings every
 /// rank's total to every rank, added there in rank order, so that all
@@ -59,14 +60,25 @@ public:
   RankBalance(const Box& domain, const Vec3& cell_size, double threshold = 1.15,
               unsigned long interval = 100);
 
-  /// Collective. On a step that is a multiple of the interval, when the
-  /// work is uneven: the new regions in `next` and true (the caller keeps
-  /// them, migrates, then calls taken() or declined()). `zones_of_block`: per global block, its
-  /// zones (may be empty: no deformable blocks).
+  /// Collective. On a step that is a multiple of the interval, or the
+  /// first after check_soon(), when the work is uneven: the new regions in `next` and true (the
+  /// caller keeps them, migrates, then calls taken() or declined()). `zones_of_block`: per global
+  /// block, its zones (may be empty: no deformable blocks).
   bool choose(const RigidSolver& solver, const RankBlocks& blocks, const BlockModel& local,
               const std::vector<double>& zones_of_block, MPI_Comm comm,
               std::unique_ptr<CellPartition>& next);
 
+  /// The next choose() checks whatever its step: the run's first step
+  /// (the start's regions count blocks and zones, not these costs, and no
+  /// contact is known before it) and the first after a stage excavated
+  /// blocks, whose new imbalance is then not taken for regions that did
+  /// not hold, nor kept waiting. Every rank must call it at the same point.
+  void check_soon()
+  {
+    check_soon_ = true;
+    just_rebalanced_ = false;
+    waiting_above_ = 0.0;
+  }
   /// The blocks moved to the new regions: counted, and the next check
   /// looks at whether they held.
   void taken();
@@ -101,6 +113,7 @@ private:
   double waiting_above_ = 0.0;   ///< no new try until the imbalance exceeds this
   double last_try_ = 0.0;        ///< the imbalance when regions were last chosen
   bool just_rebalanced_ = false; ///< the next check is the first after new regions
+  bool check_soon_ = true;       ///< the next choose() checks, whatever its step
   void wait() { waiting_above_ = 1.05 * last_try_; }
 };
 

@@ -92,6 +92,9 @@ public:
   /// The regions' rebalances so far and the imbalances (largest work over
   /// the mean) of the last check and expected after the last rebalance.
   const RankBalance& balance() const { return *balance_; }
+  /// The work is checked at the next refresh, whatever its step (a stage
+  /// excavated blocks). Every rank calls it at the same point.
+  void check_balance_soon() { balance_->check_soon(); }
   /// Migration events so far, and the blocks that changed owner in them.
   unsigned long migrations() const;
   unsigned long owner_changes() const;
