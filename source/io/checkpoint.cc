@@ -280,11 +280,14 @@ void compare_fingerprints(const std::string& checkpoint, const Scene& scene,
 }
 } // namespace
 
-RankBlocks read_rank_blocks(const std::string& file)
+RankBlocks read_rank_blocks(const std::string& file, std::vector<unsigned int>* zone_surfaces)
 {
   CheckpointReader in = read_checkpoint(file);
   read_fingerprints(in);
-  return get_rank_blocks(in);
+  RankBlocks blocks = get_rank_blocks(in);
+  if (zone_surfaces)
+    in.get(*zone_surfaces);
+  return blocks;
 }
 
 void check_checkpoint_scene(const std::string& checkpoint, const Scene& scene)
@@ -413,9 +416,11 @@ void Checkpoint::write(unsigned long step) const
   out.put(static_cast<unsigned char>(rigid_ != nullptr));
   if (rigid_ != nullptr)
     rigid_->save_state(out);
-  out.put(static_cast<unsigned char>(zones_ != nullptr));
-  if (zones_ != nullptr)
-    zones_->save_state(out);
+  // (The rigid solver's: on ranks its zones change with their blocks' ranks.)
+  DeformableSolver* zones = rigid_ && rigid_->zone_solver() ? rigid_->zone_solver() : zones_;
+  out.put(static_cast<unsigned char>(zones != nullptr));
+  if (zones != nullptr)
+    zones->save_state(out);
   out.tag("output");
   out.put(static_cast<std::uint64_t>(histories_.size()));
   for (HistoryFile* h : histories_)
@@ -482,10 +487,11 @@ unsigned long Checkpoint::restore(const std::string& file)
   if (rigid_ != nullptr)
     rigid_->load_state(in);
   in.get(present);
-  if (present != (zones_ != nullptr))
-    in.mismatch("zone solvers", present, zones_ != nullptr);
-  if (zones_ != nullptr)
-    zones_->load_state(in);
+  DeformableSolver* zones = rigid_ && rigid_->zone_solver() ? rigid_->zone_solver() : zones_;
+  if (present != (zones != nullptr))
+    in.mismatch("zone solvers", present, zones != nullptr);
+  if (zones != nullptr)
+    zones->load_state(in);
   in.tag("output");
   in.get(n);
   if (n != histories_.size())

@@ -217,6 +217,7 @@ void BlockMigration::save_state(CheckpointWriter& out) const
   out.put(owner_changes_);
   out.put(received_);
   out.put(dropped_);
+  out.put(zone_moves_);
 }
 
 void BlockMigration::load_state(CheckpointReader& in)
@@ -227,11 +228,13 @@ void BlockMigration::load_state(CheckpointReader& in)
   in.get(owner_changes_);
   in.get(received_);
   in.get(dropped_);
+  in.get(zone_moves_);
 }
 
 void RankShare::save_state(CheckpointWriter& out) const
 {
   put_rank_blocks(out, blocks_);
+  out.put(zone_surfaces_);
   out.put(static_cast<unsigned char>(migration_ != nullptr));
   if (migration_)
     migration_->save_state(out);
@@ -248,6 +251,11 @@ void RankShare::load_state(CheckpointReader& in, const RigidSolver& solver)
   // The share was made with the blocks of this file (read_rank_blocks).
   if (saved.rank != blocks_.rank || saved.local != blocks_.local || saved.owned != blocks_.owned)
     in.mismatch("blocks this rank holds", saved.local.size(), blocks_.local.size());
+  std::vector<unsigned int> surfaces;
+  in.get(surfaces);
+  if (surfaces != zone_surfaces_)
+    in.mismatch("deformable blocks whose surfaces this rank holds", surfaces.size(),
+                zone_surfaces_.size());
   unsigned char migrating = 0;
   in.get(migrating);
   migration_.reset();

@@ -42,7 +42,8 @@ std::unique_ptr<ParallelEnvironment> prepare(Scene& scene, BlockModel& model, bo
 /// (null on one): ghosts within the contact tolerance plus three more of
 /// motion; on a restart, the blocks the rank held at its checkpoint.
 std::unique_ptr<RankShare> share_of(const Scene& scene, const BlockModel& model,
-                                    const std::string& restart_from, const WholeZones* zones)
+                                    const std::string& restart_from, const WholeZones* zones,
+                                    std::vector<unsigned int>& surfaces)
 {
   if (world_ranks() < 2)
     return nullptr;
@@ -50,7 +51,7 @@ std::unique_ptr<RankShare> share_of(const Scene& scene, const BlockModel& model,
   const std::vector<double>* work = zones ? &zones->zones_of_block : nullptr;
   if (!restart_from.empty())
   {
-    const RankBlocks saved = read_rank_blocks(restart_from);
+    const RankBlocks saved = read_rank_blocks(restart_from, &surfaces);
     return std::make_unique<RankShare>(model, reach, MPI_COMM_WORLD, &saved, work);
   }
   return std::make_unique<RankShare>(model, reach, MPI_COMM_WORLD, nullptr, work);
@@ -83,7 +84,8 @@ std::unique_ptr<WholeZones> zones_before_split(Scene& scene, BlockModel& model)
 BlockCycle::BlockCycle(Scene& scene, BlockModel& model, const std::string& prefix,
                        const std::string& restart_from)
     : whole_zones_(zones_before_split(scene, model)),
-      share_(share_of(scene, model, restart_from, whole_zones_.get())), scene_(scene),
+      share_(share_of(scene, model, restart_from, whole_zones_.get(), saved_surfaces_)),
+      scene_(scene),
       model_(share_ ? share_->local() : model), prefix_(prefix),
       parallel_(prepare(scene, model, whole_zones_ != nullptr)),
       // (model: the whole model, on ranks too)
@@ -93,8 +95,9 @@ BlockCycle::BlockCycle(Scene& scene, BlockModel& model, const std::string& prefi
       meshing_start_(now()),
       // Deformable blocks among rigid ones: their zones, and their surfaces
       // as their shapes for the contacts.
-      system_(whole_zones_ ? build_block_system_on_ranks(scene, model, model_, *whole_zones_,
-                                                         *share_, rank_zones_)
+      system_(whole_zones_ ? build_block_system_on_ranks(
+                                 scene, model, model_, *whole_zones_, *share_, rank_zones_,
+                                 restart_from.empty() ? nullptr : &saved_surfaces_)
                            : build_block_system(scene, model_)),
       block_series_(prefix + "_blocks.pvd"), contact_series_(prefix + "_contacts.pvd"),
       zone_series_(prefix + "_zones.pvd"),
@@ -155,11 +158,7 @@ BlockCycle::BlockCycle(Scene& scene, BlockModel& model, const std::string& prefi
   print_dynamic_damping(scene.solver, solver.dt(), solver.time_step_without_stiffness_damping());
   print_added_mass(scene.solver, solver.added_mass());
   if (zones && share_)
-  {
-    zone_piece_ = system_.mesh;
-    zone_piece_.zone_block = rank_zones_.zone_global_block;
-    zone_writer_ = std::make_unique<ZoneWriter>(zone_piece_, scene.output.vtu_encoding);
-  }
+    make_zone_piece();
   else if (zones)
     zone_writer_ = std::make_unique<ZoneWriter>(system_.mesh, scene.output.vtu_encoding);
   // (On ranks, with zones: the points as the whole mesh has them, reported
@@ -167,7 +166,31 @@ BlockCycle::BlockCycle(Scene& scene, BlockModel& model, const std::string& prefi
   points_ =
       std::make_unique<PointHistory>(whole_zones_ ? whole_zones_->mesh : system_.mesh,
                                      zones ? scene.solver.history_points : std::vector<Vec3>{});
-  whole_zones_.reset();
+  if (whole_zones_ && zones)
+  {
+    // Kept to split the zones again when deformable blocks change rank.
+    whole_zones_->as_built = BlockModel();
+    share_->set_zone_surfaces(rank_zones_.surfaces);
+    share_->let_zones_follow(
+        [this](const RankBlocks& before, const RankBlocks& next, const BlockModel& next_model)
+        {
+          MovedZones moved =
+              move_zones_on_ranks(scene_, *whole_zones_, *system_.zones, rank_zones_, before,
+                                  next, next_model, share_->reach(), share_->comm());
+          // The old solver lives until the migration has ended (it sends
+          // the contacts' gridpoints by their old numbers).
+          retired_zones_ = std::move(system_.zones);
+          retired_mesh_ = std::move(zone_mesh_);
+          system_.zones = std::move(moved.solver);
+          zone_mesh_ = std::move(moved.mesh);
+          zones_moved_ = true;
+          return BlockMigration::ZonesMoved{system_.zones.get(),
+                                            std::move(moved.vertex_gridpoint),
+                                            std::move(moved.held_surfaces)};
+        });
+  }
+  else
+    whole_zones_.reset();
   points_->water = has_water(scene);
   points_->gravity = scene.solver.gravity.norm();
   if (!zones && !scene.solver.history_points.empty())
@@ -206,6 +229,21 @@ void apply_boundaries(BlockSystem& system, const BlockModel& built, const Bounda
     system.zones->set_boundaries(set.gridpoint_conditions, set.face_pressures);
 }
 
+} // namespace
+
+ZoneMaterial stage_zone_material(const Scene& scene, const RockMaterialChange& c)
+{
+  const RockMaterialSpec* rock =
+      c.material < 0 ? nullptr : &scene.rock_materials[std::size_t(c.material)];
+  ZoneMaterial zone = rock ? rock->zone : scene.deformable.material;
+  zone.element = scene.deformable.material.element;
+  zone.nodal_mixed = scene.deformable.nodal_mixed(c.group);
+  zone.density = rock ? rock->density : scene.density;
+  return zone;
+}
+
+namespace
+{
 /// A stage's 'Rock materials' (of `scene`) into `system`; prints what
 /// changed when `account` (a stage's start, not a restart). On ranks
 /// (`share`), every rank changes its blocks, ghosts too, and the count is
@@ -228,10 +266,7 @@ void change_rock_materials(const Scene& scene, const BlockModel& model, BlockSys
       }
     if (share)
       count = static_cast<unsigned int>(share->sum(static_cast<unsigned long>(count)));
-    ZoneMaterial zone = rock ? rock->zone : scene.deformable.material;
-    zone.element = scene.deformable.material.element;
-    zone.nodal_mixed = scene.deformable.nodal_mixed(c.group);
-    zone.density = rock ? rock->density : scene.density;
+    const ZoneMaterial zone = stage_zone_material(scene, c);
     solver.change_rock(blocks, zone.density, zone, account);
     if (account)
       std::printf("  Rock:       %u blocks of group %s take %s\n", count, c.group.c_str(),
@@ -256,6 +291,7 @@ void restore_changes(const Scene& scene, const BlockModel& model, const BlockMod
 
 void BlockCycle::restore_stage(const StageSpec& stage)
 {
+  stages_begun_.push_back(stage);
   // The loads' state (forces, held velocities) is in the checkpoint; what
   // the materials are is not. The dampers' running state and the time
   // step are the checkpoint's: a rock change makes them anew.
@@ -276,6 +312,53 @@ void BlockCycle::restore_stage(const StageSpec& stage)
     system_.zones->set_damping_state(std::move(*zones));
     system_.zones->set_step_state(*zone_steps);
   }
+}
+
+void BlockCycle::make_zone_piece()
+{
+  zone_piece_ = zone_mesh();
+  zone_piece_.zone_block = rank_zones_.zone_global_block;
+  zone_writer_ = std::make_unique<ZoneWriter>(zone_piece_, scene_.output.vtu_encoding);
+}
+
+void BlockCycle::finish_zone_move()
+{
+  zones_moved_ = false;
+  retired_zones_.reset();
+  retired_mesh_.reset();
+  system_.mesh = TetMesh(); // the first split's, when it was the one left
+  // What the stages changed of the zones (their materials, boundaries and
+  // water), set again on the new split as a restart sets it; the damping's
+  // running state and the time step with its masses are the run's.
+  DeformableSolver& zones = *system_.zones;
+  const DeformableSolver::DampingState damping = zones.damping_state();
+  const DeformableSolver::StepState steps = zones.step_state();
+  const RigidSolver& solver = *system_.solver;
+  const TetMesh& mesh = zone_mesh();
+  bool water = has_water(scene_);
+  for (const StageSpec& stage : stages_begun_)
+  {
+    for (const RockMaterialChange& c : stage.rock_materials)
+    {
+      std::vector<char> chosen(mesh.n_zones(), 0);
+      for (unsigned int z = 0; z < mesh.n_zones(); ++z)
+      {
+        const unsigned int b = mesh.zone_block[z];
+        chosen[z] = model_.group_names[model_.group[b]] == c.group && !solver.removed(b);
+      }
+      zones.change_material(chosen, stage_zone_material(scene_, c), false);
+    }
+    if (stage.changes_boundaries)
+      zones.set_boundaries(stage.boundaries.gridpoint_conditions,
+                           stage.boundaries.face_pressures);
+    water |= stage.changes_water;
+  }
+  if (water)
+    zones.set_water(solver.water());
+  zones.set_damping_state(damping);
+  zones.set_step_state(steps);
+  share_->set_zone_surfaces(rank_zones_.surfaces);
+  make_zone_piece();
 }
 
 BlockCycle::~BlockCycle() = default;
@@ -306,8 +389,10 @@ void BlockCycle::step()
     {
       // The zones' blocks by their new local numbers.
       migrations_seen_ = share_->migrations();
-      rank_zones_.renumber(system_.mesh, *share_);
+      rank_zones_.renumber(zone_mesh(), *share_);
     }
+    if (zones_moved_)
+      finish_zone_move();
   }
 }
 unsigned long BlockCycle::steps_done() const
@@ -503,6 +588,7 @@ void BlockCycle::register_checkpoint(Checkpoint& checkpoint)
 
 void BlockCycle::begin_stage(const StageSpec& stage)
 {
+  stages_begun_.push_back(stage);
   RigidSolver& solver = *system_.solver;
   // Excavations: the blocks of the groups named, and those whose centroid
   // (as built) lies in a region, which the model was cut along. On ranks
@@ -763,11 +849,15 @@ void BlockCycle::print_end()
       std::snprintf(rebalances + std::strlen(rebalances),
                     sizeof rebalances - std::strlen(rebalances), ", %lu new regions refused",
                     b.refused());
+    char zones[80] = "";
+    if (system_.zones) // deformable blocks that changed rank
+      std::snprintf(zones, sizeof zones, "; the zones split again at %lu of the events",
+                    share_->zone_moves());
     std::fprintf(stderr,
                  "talus: on %d ranks: %lu migration events (the sum of their steps %lu), %lu "
-                 "owner changes, %s\n",
+                 "owner changes, %s%s\n",
                  share_->ranks(), share_->migrations(), share_->event_steps(),
-                 share_->owner_changes(), rebalances);
+                 share_->owner_changes(), rebalances, zones);
   }
 }
 

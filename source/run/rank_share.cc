@@ -168,6 +168,20 @@ void RankShare::make_migration(const RigidSolver& solver)
 {
   migration_ =
       std::make_unique<BlockMigration>(solver, blocks_, *partition_, reach_, ghost_layers, comm_);
+  if (zone_rebuild_)
+    migration_->let_zones_follow(zone_rebuild_);
+}
+
+void RankShare::let_zones_follow(BlockMigration::ZoneRebuild rebuild)
+{
+  zone_rebuild_ = std::move(rebuild);
+  if (migration_)
+    migration_->let_zones_follow(zone_rebuild_);
+}
+
+unsigned long RankShare::zone_moves() const
+{
+  return migration_ ? migration_->zone_moves() : 0;
 }
 
 unsigned long RankShare::migrations() const

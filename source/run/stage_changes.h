@@ -18,4 +18,7 @@ namespace talus
 void restore_changes(const Scene& scene, const BlockModel& model, const BlockModel* built,
                      BlockSystem& system, const StageSpec& stage);
 
+/// The zones' material a stage's change of rock `c` gives a group.
+ZoneMaterial stage_zone_material(const Scene& scene, const RockMaterialChange& c);
+
 } // namespace talus

@@ -56,6 +56,12 @@ struct Reader
   }
 };
 
+/// One int per rank each way (MPI_Alltoall), then the messages whose
+/// lengths they give, point to point between the ranks with something to
+/// trade (defined in block_migration.cc).
+std::vector<std::vector<char>> trade(const std::vector<std::vector<char>>& out, MPI_Comm comm,
+                                     int tag);
+
 /// The bytes of a contact's record before its sub-contacts, after its two
 /// block numbers (put_contact).
 constexpr std::size_t contact_head_size = sizeof(CommonPlane) + sizeof(double) +

@@ -111,10 +111,10 @@ void get_geometry(Reader& in, BlockModel& m)
   m.group.push_back(in.get<unsigned int>());
 }
 
-/// One int per rank each way (MPI_Alltoall), then the messages whose
-/// lengths they give, point to point between the ranks with something to
-/// trade.
-std::vector<std::vector<char>> trade(const std::vector<std::vector<char>>& out, MPI_Comm comm,
+
+} // namespace
+
+std::vector<std::vector<char>> block_records::trade(const std::vector<std::vector<char>>& out, MPI_Comm comm,
                                      int tag)
 {
   const int ranks = static_cast<int>(out.size());
@@ -143,8 +143,6 @@ std::vector<std::vector<char>> trade(const std::vector<std::vector<char>>& out, 
   return in;
 }
 
-} // namespace
-
 BlockMigration::BlockMigration(const RigidSolver& solver, const RankBlocks& blocks,
                                const CellPartition& partition, double reach, unsigned int layers,
                                MPI_Comm comm)
@@ -164,8 +162,9 @@ bool BlockMigration::due(const RigidSolver& solver, const RankBlocks& blocks) co
   for (std::size_t i = 0; i < blocks.local.size() && !mine; ++i)
     if (blocks.owned[i] && !solver.removed_[i])
       mine = solver.path[i] - path_at_choice_[i] > allowance_ ||
-             // (a deformable block stays with its first owner: migrate)
-             (!solver.is_deformable_[i] && partition_.owner(solver.m_.centroid[i]) != blocks.rank);
+             // (without rebuild_ a deformable block stays with its first owner)
+             ((!solver.is_deformable_[i] || rebuild_) &&
+              partition_.owner(solver.m_.centroid[i]) != blocks.rank);
   if (solver.ranks_.any)
     return solver.ranks_.any(mine);
   int in = mine, out = 0; // a solver not split_among_ranks: decided here all the same
@@ -236,7 +235,7 @@ bool BlockMigration::migrate(RigidSolver& s, RankBlocks& blocks, bool may_refuse
   // (few: most deformable blocks barely move).
   std::vector<double> strays; // owner, lo, hi
   for (unsigned int i = 0; i < n_old; ++i)
-    if (blocks.owned[i] && !s.removed_[i] && s.is_deformable_[i] &&
+    if (blocks.owned[i] && !s.removed_[i] && s.is_deformable_[i] && !rebuild_ &&
         partition_.owner(m.centroid[i]) != blocks.rank)
     {
       strays.push_back(rank);
@@ -279,7 +278,7 @@ bool BlockMigration::migrate(RigidSolver& s, RankBlocks& blocks, bool may_refuse
       for (unsigned int q : near)
         boxes_out[q].insert(boxes_out[q].end(), record.data.begin(), record.data.end());
     }
-  const std::vector<std::vector<char>> boxes_in = trade(boxes_out, comm_, 2411);
+  const std::vector<std::vector<char>> boxes_in = block_records::trade(boxes_out, comm_, 2411);
   // The blocks this rank knows of, by global number: box, old and new owner.
   struct Known
   {
@@ -299,10 +298,10 @@ bool BlockMigration::migrate(RigidSolver& s, RankBlocks& blocks, bool may_refuse
       k.box.lo = in.get<Vec3>();
       k.box.hi = in.get<Vec3>();
       k.owner = partition_.owner(in.get<Vec3>());
-      // A deformable block stays with its first owner, which holds its
-      // zones (their state does not move between ranks).
+      // Without rebuild_ a deformable block stays with its first owner,
+      // which holds its zones.
       k.deformable = in.get<char>();
-      if (k.deformable)
+      if (k.deformable && !rebuild_)
         k.owner = k.old_owner;
       known.push_back(k);
     }
@@ -336,11 +335,13 @@ bool BlockMigration::migrate(RigidSolver& s, RankBlocks& blocks, bool may_refuse
                                      [](const Known& k, unsigned int b) { return k.block < b; });
     return it != known.end() && it->block == block && it->deformable;
   };
+  bool zones_move = false; // the zones split again (rebuild_)
   {
     // A rank holds the surface gridpoints of the deformable blocks near
-    // its own when the zones were built (build_block_system_on_ranks): any
-    // of those can become a ghost here, others cannot yet (decided alike
-    // on every rank, so that all stop together).
+    // its own when the zones were last split (build_block_system_on_ranks,
+    // rebuild_): any of those can become a ghost here, others cannot
+    // without a new split (decided alike on every rank, so that all stop
+    // or split together).
     long first_new = -1;
     for (unsigned int j = 0; j < n_new && first_new < 0; ++j)
       if (is_deformable_known(next.local[j]) && local_of(old_local, next.local[j]) < 0 &&
@@ -348,6 +349,15 @@ bool BlockMigration::migrate(RigidSolver& s, RankBlocks& blocks, bool may_refuse
         first_new = next.local[j];
     long any = first_new;
     MPI_Allreduce(&first_new, &any, 1, MPI_LONG, MPI_MAX, comm_);
+    if (rebuild_)
+    {
+      int moved = any >= 0;
+      for (const Known& k : known)
+        moved |= k.deformable && k.owner != k.old_owner;
+      MPI_Allreduce(MPI_IN_PLACE, &moved, 1, MPI_INT, MPI_LOR, comm_);
+      zones_move = moved != 0;
+      any = -1;
+    }
     if (any >= 0 && may_refuse)
       return false;
     if (any >= 0)
@@ -388,7 +398,7 @@ bool BlockMigration::migrate(RigidSolver& s, RankBlocks& blocks, bool may_refuse
       new_of[old_of[j]] = static_cast<int>(j);
   for (unsigned int i = 0; i < n_old; ++i)
     dropped_ += new_of[i] < 0;
-  const std::vector<std::vector<char>> asked = trade(request, comm_, 2412);
+  const std::vector<std::vector<char>> asked = block_records::trade(request, comm_, 2412);
 
   // 3. Replies: each block asked for with its geometry, its state in the
   // solver and every contact it has (an owned block has all of its own).
@@ -452,7 +462,7 @@ bool BlockMigration::migrate(RigidSolver& s, RankBlocks& blocks, bool may_refuse
     }
     reply[r] = std::move(out.data);
   }
-  const std::vector<std::vector<char>> got = trade(reply, comm_, 2413);
+  const std::vector<std::vector<char>> got = block_records::trade(reply, comm_, 2413);
 
   // 4. The blocks received: geometry as one-block models, where their
   // solver state starts, and their contacts (records of put_contact) with
@@ -504,7 +514,7 @@ bool BlockMigration::migrate(RigidSolver& s, RankBlocks& blocks, bool may_refuse
       append_block(model, m, static_cast<unsigned int>(old_of[j]));
     else
       append_block(model, arrived[j], 0);
-    if (s.zones_ == nullptr)
+    if (s.zones_ == nullptr || zones_move)
       continue;
     if (old_of[j] >= 0)
       vertex_gridpoint.insert(vertex_gridpoint.end(),
@@ -536,6 +546,29 @@ bool BlockMigration::migrate(RigidSolver& s, RankBlocks& blocks, bool may_refuse
                        array.swap(next_array);
                      });
   m = std::move(model);
+  // With the zones split again: each sub-contact's gridpoints from their
+  // numbers in the whole mesh to the new split's local numbers.
+  std::unordered_map<unsigned int, int> next_gridpoint;
+  if (zones_move)
+  {
+    ZonesMoved moved = rebuild_(blocks, next, m);
+    s.zones_ = moved.zones;
+    vertex_gridpoint = std::move(moved.vertex_gridpoint);
+    s.held_surfaces_ = std::move(moved.held_surfaces);
+    const std::vector<unsigned int>& whole = s.zones_->share()->whole_gridpoint;
+    for (std::size_t i = 0; i < whole.size(); ++i)
+      next_gridpoint[whole[i]] = static_cast<int>(i);
+    ++zone_moves_;
+  }
+  const auto node_now = [&](int node)
+  {
+    if (node < 0 || !zones_move)
+      return node;
+    const auto it = next_gridpoint.find(gridpoints->whole_gridpoint[std::size_t(node)]);
+    if (it == next_gridpoint.end())
+      throw std::logic_error("BlockMigration: a contact's gridpoint is not held in the new split");
+    return it->second;
+  };
   if (s.zones_ != nullptr)
   {
     // In place: the contacts point at these.
@@ -585,7 +618,8 @@ bool BlockMigration::migrate(RigidSolver& s, RankBlocks& blocks, bool may_refuse
                              &cs.sc_yield[yield_state_size * k] + yield_state_size);
       if (nodes)
       {
-        laid.sc_node.insert(laid.sc_node.end(), &cs.sc_node[6 * k], &cs.sc_node[6 * k] + 6);
+        for (unsigned int n = 6 * k; n < 6 * k + 6; ++n)
+          laid.sc_node.push_back(node_now(cs.sc_node[n]));
         laid.sc_weight.insert(laid.sc_weight.end(), &cs.sc_weight[6 * k], &cs.sc_weight[6 * k] + 6);
       }
     }
@@ -606,8 +640,9 @@ bool BlockMigration::migrate(RigidSolver& s, RankBlocks& blocks, bool may_refuse
             int node = -1;
             if (whole >= 0)
             {
-              const auto it = local_gridpoint.find(static_cast<unsigned int>(whole));
-              if (it == local_gridpoint.end())
+              const auto& held = zones_move ? next_gridpoint : local_gridpoint;
+              const auto it = held.find(static_cast<unsigned int>(whole));
+              if (it == held.end())
                 throw std::logic_error("BlockMigration: a contact's gridpoint is not held here");
               node = it->second;
             }

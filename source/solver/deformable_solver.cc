@@ -2162,6 +2162,30 @@ std::vector<double> DeformableSolver::positions() const
   return std::vector<double>(x.data(), x.data() + 3 * mesh_.n_gridpoints());
 }
 
+std::array<std::vector<double>, 4> DeformableSolver::local_vectors() const
+{
+  std::array<std::vector<double>, 4> values;
+  const std::array<const dealii::PETScWrappers::MPI::Vector*, 4> vec{
+      &petsc_->position, &petsc_->velocity, &petsc_->force, &petsc_->inertial_mass};
+  for (int k = 0; k < 4; ++k)
+  {
+    LocalArray a(*vec[k]);
+    values[k].assign(a.data(), a.data() + 3 * std::size_t(mesh_.n_gridpoints()));
+  }
+  return values;
+}
+
+void DeformableSolver::set_local_vectors(const std::array<std::vector<double>, 4>& values)
+{
+  const std::array<const dealii::PETScWrappers::MPI::Vector*, 4> vec{
+      &petsc_->position, &petsc_->velocity, &petsc_->force, &petsc_->inertial_mass};
+  for (int k = 0; k < 4; ++k)
+  {
+    LocalArray a(*vec[k]);
+    std::copy(values[k].begin(), values[k].end(), a.data());
+  }
+}
+
 std::vector<double> DeformableSolver::displacements() const
 {
   std::vector<double> u = positions();

@@ -46,8 +46,10 @@ struct Scene;
 /// blocks' last motion (a deformable block's is not its velocity times the
 /// step to the last bit); 11: on ranks, the regions as a rebalance last
 /// cut them and the rebalance's counters; 12: whether the rebalance checks
-/// at the next step (after a stage's excavation).
-constexpr std::uint32_t checkpoint_format_version = 12;
+/// at the next step (after a stage's excavation); 13: the deformable blocks
+/// whose surfaces a rank holds, and the migration's count of the zones'
+/// new splits (deformable blocks change rank).
+constexpr std::uint32_t checkpoint_format_version = 13;
 
 /// FNV-1a, 64 bits: a fingerprint, not a cryptographic hash.
 std::uint64_t fnv1a(const void* data, std::size_t size,

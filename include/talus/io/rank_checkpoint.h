@@ -39,8 +39,10 @@ std::string checkpoint_of_this_rank(const std::string& given);
 
 /// The blocks a rank held at the checkpoint `file` (its share, read before
 /// the solver is built on them). Defined in checkpoint.cc, which knows the
-/// header before it.
-RankBlocks read_rank_blocks(const std::string& file);
+/// header before it. `zone_surfaces`: also the deformable blocks of other
+/// ranks whose surfaces it held (RankZones::surfaces).
+RankBlocks read_rank_blocks(const std::string& file,
+                            std::vector<unsigned int>* zone_surfaces = nullptr);
 
 /// RankBlocks in a checkpoint's section "ranks" (RankShare::save_state).
 void put_rank_blocks(CheckpointWriter& out, const RankBlocks& blocks);

@@ -55,8 +55,11 @@ public:
 
 private:
   /// On ranks, with deformable blocks among others: every deformable block
-  /// meshed, before the model is split (freed once the solvers are built).
+  /// meshed, before the model is split; kept to split it again when
+  /// deformable blocks change rank.
   std::unique_ptr<WholeZones> whole_zones_;
+  /// On a restart on ranks: the surfaces the rank held (RankZones::surfaces).
+  std::vector<unsigned int> saved_surfaces_;
   /// The rank's share of the model (null on one rank); declared before
   /// model_, which is its model.
   std::unique_ptr<RankShare> share_;
@@ -67,6 +70,15 @@ private:
   /// On ranks, with zones: this rank's zones as its output piece shows
   /// them (blocks by their global numbers).
   TetMesh zone_piece_;
+  /// On ranks, once deformable blocks changed rank: the mesh of the zones'
+  /// split now (system_.mesh before), and the solver and mesh they left,
+  /// kept until the migration that moved them has ended.
+  std::unique_ptr<TetMesh> zone_mesh_, retired_mesh_;
+  std::unique_ptr<DeformableSolver> retired_zones_;
+  bool zones_moved_ = false;
+  /// The stages begun, in order: their changes of the zones are set again
+  /// on a new split.
+  std::vector<StageSpec> stages_begun_;
   Scene& scene_;
   BlockModel& model_;
   std::string prefix_;
@@ -99,6 +111,13 @@ private:
                            const std::function<void(const std::string&)>& write_piece) const;
   /// Writes the zones' frame (on ranks a piece per rank).
   void write_zones(bool with_stress);
+  /// The zones' mesh now (on ranks it changes with deformable blocks' ranks).
+  TetMesh& zone_mesh() { return zone_mesh_ ? *zone_mesh_ : system_.mesh; }
+  /// On ranks, with zones: the writer of this rank's piece, for its zones now.
+  void make_zone_piece();
+  /// After a migration split the zones again: the stages' changes of the
+  /// zones set again, the old solver freed, the output piece made anew.
+  void finish_zone_move();
 };
 
 } // namespace talus

@@ -101,6 +101,13 @@ public:
   /// The sum of the steps of the migration events: when they happened, in
   /// one number (a restart that lost the migration's state moves them).
   unsigned long event_steps() const { return event_steps_; }
+  /// Deformable blocks follow their regions (BlockMigration::let_zones_follow).
+  void let_zones_follow(BlockMigration::ZoneRebuild rebuild);
+  /// Migration events that split the zones again.
+  unsigned long zone_moves() const;
+  /// The deformable blocks of other ranks whose surfaces this rank holds
+  /// (RankZones::surfaces), which its checkpoint keeps (read_rank_blocks).
+  void set_zone_surfaces(std::vector<unsigned int> surfaces) { zone_surfaces_ = std::move(surfaces); }
   /// Doubles sent by this rank at the last refresh.
   std::size_t sent() const { return exchange_->sent(); }
   /// The exchange of the contacts across this rank's boundary, each
@@ -137,6 +144,8 @@ private:
   std::unique_ptr<RankBalance> balance_;
   std::vector<double> zones_of_block_; ///< per global block (empty: no zones)
   unsigned long event_steps_ = 0;
+  BlockMigration::ZoneRebuild zone_rebuild_;
+  std::vector<unsigned int> zone_surfaces_;
   void make_migration(const RigidSolver& solver);
 };
 

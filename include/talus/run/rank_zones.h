@@ -1,5 +1,6 @@
 #pragma once
 
+#include <talus/contact/block_decomposition.h>
 #include <talus/model/block_model.h>
 #include <talus/scene/block_system.h>
 #include <talus/scene/scene.h>
@@ -9,6 +10,7 @@
 #include <mpi.h>
 
 #include <memory>
+#include <unordered_map>
 #include <vector>
 
 namespace talus
@@ -19,7 +21,8 @@ struct PointHistory;
 
 /// The deformable blocks of a whole model with other blocks, meshed alike
 /// on every MPI rank (as one run meshes them) before the model is split
-/// among the ranks (issue 24). Kept only while the solvers are built.
+/// among the ranks (issue 24). Kept through the run: deformable blocks that
+/// change rank split it again (move_zones_on_ranks).
 struct WholeZones
 {
   TetMesh mesh; ///< gridpoint_block, zone_block: blocks of the whole model
@@ -27,6 +30,9 @@ struct WholeZones
   /// Per vertex of the whole model (its deformable blocks' faces being
   /// their zones' surfaces): the gridpoint of `mesh` there, -1 on rigid blocks.
   std::vector<int> vertex_gridpoint;
+  /// The whole model's vertex_start: block b's vertices are
+  /// [vertex_start[b], vertex_start[b + 1]).
+  std::vector<unsigned int> vertex_start;
   /// What made each boundary face of `mesh`, then each second-overlay face
   /// (zone_face_origins, on the blocks as built), when a joint has a water
   /// pressure of its own; else empty.
@@ -62,6 +68,12 @@ struct RankZones
   /// Per history point: the local gridpoint (owned) and zone this rank
   /// reports, -1 where another rank does.
   std::vector<int> point_gridpoint, point_zone;
+  /// Per local zone: its number in the whole mesh (ascending).
+  std::vector<unsigned int> zone;
+  /// The deformable blocks of other ranks whose surfaces this rank holds
+  /// as ghost gridpoints (global numbers, ascending): a checkpoint keeps
+  /// them, so that a restart splits the zones as the run had them.
+  std::vector<unsigned int> surfaces;
 
   /// The global block of gridpoint `g` of the whole mesh.
   unsigned int block_of_whole_gridpoint(unsigned int g) const;
@@ -77,11 +89,36 @@ struct RankZones
 /// gridpoints, then as ghost entries the surface gridpoints of the
 /// deformable ghosts, refreshed from their owners after each motion, on
 /// which the contacts act (GridpointShare). `history_points`: the scene's,
-/// whose reporting ranks `kept` receives with the rest.
-/// Collective on the share's ranks.
+/// whose reporting ranks `kept` receives with the rest. `saved_surfaces`:
+/// on a restart, the surfaces the rank held at its checkpoint (else those
+/// near its blocks as built). Collective on the share's ranks.
 BlockSystem build_block_system_on_ranks(const Scene& scene, const BlockModel& whole,
                                         BlockModel& local, const WholeZones& zones,
-                                        const RankShare& share, RankZones& kept);
+                                        const RankShare& share, RankZones& kept,
+                                        const std::vector<unsigned int>* saved_surfaces = nullptr);
+
+/// A rank's zones split again (move_zones_on_ranks): the new mesh, its
+/// solver, and the surfaces on its gridpoints (BlockMigration::ZonesMoved).
+struct MovedZones
+{
+  std::unique_ptr<TetMesh> mesh; ///< blocks by local numbers of the new share
+  std::unique_ptr<DeformableSolver> solver;
+  std::vector<int> vertex_gridpoint;
+  std::unordered_map<unsigned int, std::vector<int>> held_surfaces;
+};
+
+/// When deformable blocks change rank (BlockMigration::ZoneRebuild): the
+/// zones of `zones` split again for the blocks `next` holds (its model
+/// `next_model`, as the blocks are now), `held_before` being the blocks
+/// held until now and `before` this rank's solver until now. The surfaces
+/// held are chosen as at the start, from the boxes as they are now (those
+/// of the deformable blocks are sent to every rank). The new solver takes
+/// the state (move_zone_state); `kept` is updated. Then the stages'
+/// changes of the zones must be set again (BlockCycle). Collective.
+MovedZones move_zones_on_ranks(const Scene& scene, const WholeZones& zones,
+                               const DeformableSolver& before, RankZones& kept,
+                               const RankBlocks& held_before, const RankBlocks& next,
+                               const BlockModel& next_model, double reach, MPI_Comm comm);
 
 /// Appends to `row` the history points' values (the columns of `points`)
 /// of zones split among the ranks of `comm`: point k's displacement,

@@ -6,7 +6,8 @@
 #include <mpi.h>
 
 #include <cstdint>
-
+#include <functional>
+#include <unordered_map>
 #include <vector>
 
 namespace talus
@@ -15,6 +16,7 @@ namespace talus
 class CheckpointReader;
 class ContactSet;
 class CheckpointWriter;
+class DeformableSolver;
 class RigidSolver;
 
 /// Ownership that follows the blocks of a rigid model split among ranks
@@ -87,6 +89,32 @@ public:
   /// update() does. False, and nothing changed, when migrate() refused.
   bool migrate_to_new_regions(RigidSolver& solver, RankBlocks& blocks);
 
+  /// What a rank holds of the zones once deformable blocks have changed
+  /// owner: the solver of the new split, the local gridpoint of each vertex
+  /// of the rank's new local model (-1 on rigid blocks), and the surfaces
+  /// of the deformable blocks it holds (owned ones and others near), each
+  /// with its vertices' local gridpoints.
+  struct ZonesMoved
+  {
+    DeformableSolver* zones = nullptr;
+    std::vector<int> vertex_gridpoint;
+    std::unordered_map<unsigned int, std::vector<int>> held_surfaces;
+  };
+  /// Splits the zones again for the blocks as `next` holds them (the
+  /// model's blocks `next_model`, their solver arrays laid out already),
+  /// `before` being the blocks held until now, and moves the zones' state
+  /// (move_zone_state). The solver it returns replaces the one the rigid
+  /// solver had, which must live until migrate() returns. Collective.
+  using ZoneRebuild = std::function<ZonesMoved(const RankBlocks& before, const RankBlocks& next,
+                                               const BlockModel& next_model)>;
+  /// From now on deformable blocks follow their regions as rigid ones do:
+  /// at an event where one changes owner, or where a rank needs the
+  /// surface of one it does not hold, `rebuild` splits the zones again.
+  /// Without it, a deformable block keeps its first owner.
+  void let_zones_follow(ZoneRebuild rebuild) { rebuild_ = std::move(rebuild); }
+  /// Events at which the zones were split again.
+  unsigned long zone_moves() const { return zone_moves_; }
+
   /// The motion (m) a block may make between two choices of the ghosts:
   /// two blocks whose boxes were more than `reach` apart then come within
   /// two contact tolerances (the envelopes' overlap that makes a candidate
@@ -136,6 +164,8 @@ private:
   double allowance_;
   std::vector<double> path_at_choice_; ///< per local block: its path when the ghosts were chosen
   unsigned long events_ = 0, owner_changes_ = 0, received_ = 0, dropped_ = 0;
+  ZoneRebuild rebuild_;
+  unsigned long zone_moves_ = 0;
 };
 
 } // namespace talus

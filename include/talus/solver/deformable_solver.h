@@ -281,6 +281,28 @@ public:
   /// time and step.
   void save_state(CheckpointWriter& out) const;
   void load_state(CheckpointReader& in);
+
+  /// Deformable blocks that change rank (issue 24; solver/zone_migration.h,
+  /// defined in source/solver/zone_state_move.cc). What one gridpoint
+  /// carries (the checkpoint's values: position, velocity, force, inertial
+  /// mass, reference position, held components and velocities, the last
+  /// step's force, the joints' stiffness behind the time step) and what one
+  /// zone carries (stresses, plastic state, removed), as records of a fixed
+  /// size, appended to `out` for the local gridpoints or zones `which`.
+  static std::size_t gridpoint_record_size();
+  std::size_t zone_record_size() const;
+  void put_gridpoint_records(const std::vector<unsigned int>& which, std::vector<char>& out) const;
+  void put_zone_records(const std::vector<unsigned int>& which, std::vector<char>& out) const;
+  /// A solver just built on a new split of the same whole mesh takes the
+  /// state: every local gridpoint's and zone's record (owned and ghost
+  /// gridpoints alike, from their old owners), and what this rank's solver
+  /// `before` kept of the run (time, step, time step, mode, damping, its
+  /// share of the energy account), as load_state does; the stages' changes
+  /// of materials and boundaries are then set again, as after a restart.
+  void take_moved_state(const DeformableSolver& before,
+                        const std::vector<const char*>& gridpoint_record,
+                        const std::vector<const char*>& zone_record);
+
   /// The damping's running state: the servo of global adaptive damping
   /// (eq. 77) and combined damping's forces of the last step. A checkpoint
   /// holds it; a restart keeps it across the stage changes it sets again
@@ -367,6 +389,10 @@ private:
   std::unique_ptr<GridpointShare> share_;
   unsigned int n_moved_ = 0;
   void refresh_ghosts();
+  /// The gridpoint vectors' local arrays (owned, then ghosts): position,
+  /// velocity, force, inertial mass, 3 values a gridpoint each.
+  std::array<std::vector<double>, 4> local_vectors() const;
+  void set_local_vectors(const std::array<std::vector<double>, 4>& values);
   /// The least of `value` over the ranks (itself in one run).
   double least_over_ranks(double value) const;
   /// Adds `mine` summed over the ranks (split among ranks) to `e`.

@@ -289,6 +289,9 @@ public:
   {
     held_surfaces_ = std::move(surfaces);
   }
+  /// The zone solver of the deformable blocks (null without): on ranks it
+  /// changes when deformable blocks change rank (BlockMigration).
+  DeformableSolver* zone_solver() const { return zones_; }
 
   /// Largest unbalanced force over the mean gravity force of free blocks.
   /// (with deformable blocks, the larger of that and the gridpoints' ratio).
