@@ -14,6 +14,8 @@
 #include <talus/solver/deformable_solver.h>
 #include <talus/solver/rigid_solver.h>
 
+#include <mpi.h>
+
 #include <algorithm>
 #include <csignal>
 #include <cstdlib>
@@ -113,7 +115,22 @@ std::uint64_t geometry_fingerprint(const BlockModel& model, const DeformableSolv
 {
   std::uint64_t h = fnv1a(model.vertex.data(), model.vertex.size() * sizeof(Vec3));
   h = fnv1a(model.face_vertex.data(), model.face_vertex.size() * sizeof(unsigned int), h);
-  if (zones != nullptr)
+  if (zones != nullptr && zones->share() != nullptr)
+  {
+    // Split among ranks: each gridpoint's number in the whole mesh and its
+    // position as built, added over the ranks that own them, so that the
+    // fingerprint does not depend on how the zones are split (deformable
+    // blocks change rank). Collective.
+    const GridpointShare& share = *zones->share();
+    const std::vector<double>& x = zones->mesh().position;
+    std::uint64_t sum = 0;
+    for (unsigned int g = 0; g < share.n_owned; ++g)
+      sum += fnv1a(&x[3 * std::size_t(g)], 3 * sizeof(double),
+                   fnv1a(&share.whole_gridpoint[g], sizeof(unsigned int)));
+    MPI_Allreduce(MPI_IN_PLACE, &sum, 1, MPI_UINT64_T, MPI_SUM, share.comm);
+    h = fnv1a(&sum, sizeof sum, h);
+  }
+  else if (zones != nullptr)
   {
     const std::vector<double>& x = zones->mesh().position;
     h = fnv1a(x.data(), x.size() * sizeof(double), h);
