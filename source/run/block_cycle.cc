@@ -330,7 +330,7 @@ void BlockCycle::finish_zone_move()
   // What the stages changed of the zones (their materials, boundaries and
   // water), set again on the new split as a restart sets it; the damping's
   // running state and the time step with its masses are the run's.
-  DeformableSolver& zones = *system_.zones;
+    DeformableSolver& zones = *system_.zones;
   const DeformableSolver::DampingState damping = zones.damping_state();
   const DeformableSolver::StepState steps = zones.step_state();
   const RigidSolver& solver = *system_.solver;
@@ -340,7 +340,7 @@ void BlockCycle::finish_zone_move()
   {
     for (const RockMaterialChange& c : stage.rock_materials)
     {
-      std::vector<char> chosen(mesh.n_zones(), 0);
+          std::vector<char> chosen(mesh.n_zones(), 0);
       for (unsigned int z = 0; z < mesh.n_zones(); ++z)
       {
         const unsigned int b = mesh.zone_block[z];

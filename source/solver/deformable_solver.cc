@@ -1915,6 +1915,7 @@ void DeformableSolver::use_time_step(double dt, const std::vector<double>& joint
                      "); allowed: a smaller 'Time step', or 'Partial density scaling = true'");
   dt_ = dt;
   joint_stiffness_ = joint_stiffness;
+  step_from_blocks_ = true;
   set_inertial_masses();
 }
 
@@ -2005,7 +2006,7 @@ void DeformableSolver::set_dynamic(bool dynamic)
     rest_at_next_motion_ = true;
   }
   s_.dynamic = dynamic;
-  if (joint_stiffness_.empty() && s_.time_step <= 0.0)
+  if (!step_from_blocks_ && s_.time_step <= 0.0)
   {
     // Alone (no block solver sets the step): eq. 84, or the unit step of
     // density scaling.
@@ -2130,7 +2131,7 @@ void DeformableSolver::change_material(const std::vector<char>& zones, const Zon
       material_of_zone_[z] = index;
   share_nodal_mixed(); // on ranks, a collective call (as this one is)
   materials_changed();
-  if (joint_stiffness_.empty() && s_.time_step <= 0.0)
+  if (!step_from_blocks_ && s_.time_step <= 0.0)
   {
     // Alone (no block solver sets the step): eq. 84, or the unit step of
     // density scaling.

@@ -79,6 +79,7 @@ void DeformableSolver::take_moved_state(const DeformableSolver& before,
   // removed, then the values.
   s_ = before.s_;
   dt_ = before.dt_;
+  step_from_blocks_ = before.step_from_blocks_;
   std::vector<char> removed(nz, 0);
   bool any_removed = false;
   for (std::size_t z = 0; z < nz; ++z)

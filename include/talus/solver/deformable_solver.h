@@ -431,6 +431,10 @@ private:
   /// gravity), also made again when a checkpoint is loaded.
   void null_zones(const std::vector<char>& gone);
   std::vector<double> joint_stiffness_; ///< N/m per gridpoint, of use_time_step
+  /// Whether a block solver sets the time step (use_time_step); else the
+  /// zones set their own. Alike on every rank (a rank without gridpoints
+  /// has no joint stiffness), since setting it is collective.
+  bool step_from_blocks_ = false;
   std::vector<double> reference_;       ///< m, 3 per gridpoint: where displacements count from
   std::vector<char> removed_zone_;      ///< per zone (empty: none removed)
   std::vector<double> nodal_stiffness_; ///< N/m, per gridpoint (eqs. 85-86)
