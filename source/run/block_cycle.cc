@@ -174,9 +174,11 @@ BlockCycle::BlockCycle(Scene& scene, BlockModel& model, const std::string& prefi
     share_->let_zones_follow(
         [this](const RankBlocks& before, const RankBlocks& next, const BlockModel& next_model)
         {
+          const double start = now();
           MovedZones moved =
               move_zones_on_ranks(scene_, *whole_zones_, *system_.zones, rank_zones_, before,
                                   next, next_model, share_->reach(), share_->comm());
+          zone_move_seconds_ += now() - start;
           // The old solver lives until the migration has ended (it sends
           // the contacts' gridpoints by their old numbers).
           retired_zones_ = std::move(system_.zones);
@@ -822,6 +824,9 @@ void BlockCycle::print_end()
       "motion %.0f %%\n",
       total, 100 * r.seconds_detection / total, 100 * r.seconds_planes / total,
       100 * r.seconds_forces / total, 100 * r.seconds_motion / total);
+  if (share_ && system_.zones && share_->zone_moves() > 0) // (rank 0's wall time)
+    std::printf("   Time = %.3f s to split the zones again (deformable blocks changed rank)\n",
+                zone_move_seconds_);
   if (system_.zones)
     std::printf("Largest gridpoint displacement: %.6g m\n",
                 largest_gridpoint_displacement(*system_.zones));
@@ -849,7 +854,7 @@ void BlockCycle::print_end()
       std::snprintf(rebalances + std::strlen(rebalances),
                     sizeof rebalances - std::strlen(rebalances), ", %lu new regions refused",
                     b.refused());
-    char zones[80] = "";
+    char zones[120] = "";
     if (system_.zones) // deformable blocks that changed rank
       std::snprintf(zones, sizeof zones, "; the zones split again at %lu of the events",
                     share_->zone_moves());

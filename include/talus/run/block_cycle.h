@@ -76,6 +76,7 @@ private:
   std::unique_ptr<TetMesh> zone_mesh_, retired_mesh_;
   std::unique_ptr<DeformableSolver> retired_zones_;
   bool zones_moved_ = false;
+  double zone_move_seconds_ = 0.0; ///< wall time of the new splits, rank 0's
   /// The stages begun, in order: their changes of the zones are set again
   /// on a new split.
   std::vector<StageSpec> stages_begun_;

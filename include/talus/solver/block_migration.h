@@ -51,9 +51,16 @@ class RigidSolver;
 ///
 /// After an event, update() places the face loads (from the solver's table
 /// of the whole model, RigidSolver::set_face_load_table) and the water on
-/// the blocks each rank owns now (RigidSolver::localize_loads). Rigid
-/// blocks only: a solver with zones, or with face loads but no table, is
-/// refused (std::logic_error) at the first event.
+/// the blocks each rank owns now (RigidSolver::localize_loads). A solver
+/// with face loads but no table is refused (std::logic_error) at the first
+/// event.
+///
+/// With zones split among the ranks, a deformable block keeps its first
+/// owner unless let_zones_follow() was given a rebuild: then it follows its
+/// region as a rigid block does, and at an event where one changes owner,
+/// or where a rank needs the surface of one it does not hold, the rebuild
+/// splits the zones again (one MPI_Allreduce decides it). Sub-contacts'
+/// gridpoints travel, and are kept, by their numbers in the whole mesh.
 class BlockMigration
 {
 public:
