@@ -85,8 +85,7 @@ BlockCycle::BlockCycle(Scene& scene, BlockModel& model, const std::string& prefi
                        const std::string& restart_from)
     : whole_zones_(zones_before_split(scene, model)),
       share_(share_of(scene, model, restart_from, whole_zones_.get(), saved_surfaces_)),
-      scene_(scene),
-      model_(share_ ? share_->local() : model), prefix_(prefix),
+      scene_(scene), model_(share_ ? share_->local() : model), prefix_(prefix),
       parallel_(prepare(scene, model, whole_zones_ != nullptr)),
       // (model: the whole model, on ranks too)
       built_model_(needs_built_model(scene)
@@ -176,8 +175,8 @@ BlockCycle::BlockCycle(Scene& scene, BlockModel& model, const std::string& prefi
         {
           const double start = now();
           MovedZones moved =
-              move_zones_on_ranks(scene_, *whole_zones_, *system_.zones, rank_zones_, before,
-                                  next, next_model, share_->reach(), share_->comm());
+              move_zones_on_ranks(scene_, *whole_zones_, *system_.zones, rank_zones_, before, next,
+                                  next_model, share_->reach(), share_->comm());
           zone_move_seconds_ += now() - start;
           // The old solver lives until the migration has ended (it sends
           // the contacts' gridpoints by their old numbers).
@@ -186,8 +185,7 @@ BlockCycle::BlockCycle(Scene& scene, BlockModel& model, const std::string& prefi
           system_.zones = std::move(moved.solver);
           zone_mesh_ = std::move(moved.mesh);
           zones_moved_ = true;
-          return BlockMigration::ZonesMoved{system_.zones.get(),
-                                            std::move(moved.vertex_gridpoint),
+          return BlockMigration::ZonesMoved{system_.zones.get(), std::move(moved.vertex_gridpoint),
                                             std::move(moved.held_surfaces)};
         });
   }
@@ -329,10 +327,10 @@ void BlockCycle::finish_zone_move()
   retired_zones_.reset();
   retired_mesh_.reset();
   system_.mesh = TetMesh(); // the first split's, when it was the one left
-  // What the stages changed of the zones (their materials, boundaries and
+                            // What the stages changed of the zones (their materials, boundaries and
   // water), set again on the new split as a restart sets it; the damping's
   // running state and the time step with its masses are the run's.
-    DeformableSolver& zones = *system_.zones;
+  DeformableSolver& zones = *system_.zones;
   const DeformableSolver::DampingState damping = zones.damping_state();
   const DeformableSolver::StepState steps = zones.step_state();
   const RigidSolver& solver = *system_.solver;
@@ -342,7 +340,7 @@ void BlockCycle::finish_zone_move()
   {
     for (const RockMaterialChange& c : stage.rock_materials)
     {
-          std::vector<char> chosen(mesh.n_zones(), 0);
+      std::vector<char> chosen(mesh.n_zones(), 0);
       for (unsigned int z = 0; z < mesh.n_zones(); ++z)
       {
         const unsigned int b = mesh.zone_block[z];
@@ -351,8 +349,7 @@ void BlockCycle::finish_zone_move()
       zones.change_material(chosen, stage_zone_material(scene_, c), false);
     }
     if (stage.changes_boundaries)
-      zones.set_boundaries(stage.boundaries.gridpoint_conditions,
-                           stage.boundaries.face_pressures);
+      zones.set_boundaries(stage.boundaries.gridpoint_conditions, stage.boundaries.face_pressures);
     water |= stage.changes_water;
   }
   if (water)

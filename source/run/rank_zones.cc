@@ -80,8 +80,7 @@ std::vector<int> owners_of_blocks(std::size_t n_blocks, const std::vector<unsign
   for (std::size_t l = 0; l < local.size(); ++l)
     if (owned[l])
       owner[local[l]] = rank;
-  MPI_Allreduce(MPI_IN_PLACE, owner.data(), static_cast<int>(owner.size()), MPI_INT, MPI_MAX,
-                comm);
+  MPI_Allreduce(MPI_IN_PLACE, owner.data(), static_cast<int>(owner.size()), MPI_INT, MPI_MAX, comm);
   return owner;
 }
 
@@ -90,12 +89,10 @@ std::vector<int> owners_of_blocks(std::size_t n_blocks, const std::vector<unsign
 /// `span` of a box of the rank's own blocks (`own`), and its deformable
 /// ghosts (`ghosts`, global numbers). `box`: per global block, read for the
 /// deformable ones. Ascending.
-std::vector<unsigned int> surfaces_near(const std::vector<Box>& box,
-                                        const std::vector<char>& deformable,
-                                        const std::vector<int>& block_owner,
-                                        const std::vector<Box>& own,
-                                        const std::vector<unsigned int>& ghosts, double span,
-                                        int rank)
+std::vector<unsigned int>
+surfaces_near(const std::vector<Box>& box, const std::vector<char>& deformable,
+              const std::vector<int>& block_owner, const std::vector<Box>& own,
+              const std::vector<unsigned int>& ghosts, double span, int rank)
 {
   const auto near = [&](const Box& a, const Box& b)
   {
@@ -332,7 +329,8 @@ MovedZones move_zones_on_ranks(const Scene& scene, const WholeZones& zones,
   const std::size_t n_blocks = zones.vertex_start.size() - 1;
   const std::vector<int> old_owner =
       owners_of_blocks(n_blocks, held_before.local, held_before.owned, rank, comm);
-  const std::vector<int> block_owner = owners_of_blocks(n_blocks, next.local, next.owned, rank, comm);
+  const std::vector<int> block_owner =
+      owners_of_blocks(n_blocks, next.local, next.owned, rank, comm);
   // The boxes as the blocks are now: this rank's own, and every deformable
   // block's from its new owner (6 numbers a deformable block, to every rank).
   std::vector<Box> own, box(n_blocks);

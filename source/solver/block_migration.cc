@@ -111,11 +111,10 @@ void get_geometry(Reader& in, BlockModel& m)
   m.group.push_back(in.get<unsigned int>());
 }
 
-
 } // namespace
 
-std::vector<std::vector<char>> block_records::trade(const std::vector<std::vector<char>>& out, MPI_Comm comm,
-                                     int tag)
+std::vector<std::vector<char>> block_records::trade(const std::vector<std::vector<char>>& out,
+                                                    MPI_Comm comm, int tag)
 {
   const int ranks = static_cast<int>(out.size());
   std::vector<int> send_count(ranks), receive_count(ranks);

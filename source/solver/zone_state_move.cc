@@ -99,8 +99,8 @@ void DeformableSolver::take_moved_state(const DeformableSolver& before,
   for (std::size_t g = 0; g < ng; ++g)
   {
     Reader in{gridpoint_record[g]};
-    for (std::vector<double>* v : {&vectors[0], &vectors[1], &vectors[2], &vectors[3], &reference_,
-                                   &held_velocity_})
+    for (std::vector<double>* v :
+         {&vectors[0], &vectors[1], &vectors[2], &vectors[3], &reference_, &held_velocity_})
       for (int d = 0; d < 3; ++d)
         (*v)[3 * g + d] = in.get<double>();
     for (int d = 0; d < 3; ++d)
@@ -228,13 +228,16 @@ void move_zone_state(const DeformableSolver& from, const std::vector<unsigned in
   // 3. Each local gridpoint and zone with its record.
   const std::size_t gsize = DeformableSolver::gridpoint_record_size(),
                     zsize = to.zone_record_size();
-  std::vector<const char*> gridpoint_record(gridpoint_source.size()), zone_record(zone_source.size());
+  std::vector<const char*> gridpoint_record(gridpoint_source.size()),
+      zone_record(zone_source.size());
   for (std::size_t g = 0; g < gridpoint_source.size(); ++g)
-    gridpoint_record[g] = got[gridpoint_source[g].first].data() + gridpoint_source[g].second * gsize;
+    gridpoint_record[g] =
+        got[gridpoint_source[g].first].data() + gridpoint_source[g].second * gsize;
   for (std::size_t z = 0; z < zone_source.size(); ++z)
   {
     const int r = zone_source[z].first;
-    zone_record[z] = got[r].data() + want_gridpoints[r].size() * gsize + zone_source[z].second * zsize;
+    zone_record[z] =
+        got[r].data() + want_gridpoints[r].size() * gsize + zone_source[z].second * zsize;
   }
   to.take_moved_state(from, gridpoint_record, zone_record);
 }

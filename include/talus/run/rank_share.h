@@ -107,7 +107,10 @@ public:
   unsigned long zone_moves() const;
   /// The deformable blocks of other ranks whose surfaces this rank holds
   /// (RankZones::surfaces), which its checkpoint keeps (read_rank_blocks).
-  void set_zone_surfaces(std::vector<unsigned int> surfaces) { zone_surfaces_ = std::move(surfaces); }
+  void set_zone_surfaces(std::vector<unsigned int> surfaces)
+  {
+    zone_surfaces_ = std::move(surfaces);
+  }
   /// Doubles sent by this rank at the last refresh.
   std::size_t sent() const { return exchange_->sent(); }
   /// The exchange of the contacts across this rank's boundary, each
