@@ -1,3 +1,4 @@
+#include "stage_changes.h"
 #include <talus/io/checkpoint.h>
 #include <talus/io/scene_checks.h>
 #include <talus/run/body_cycle.h>
@@ -413,10 +414,7 @@ void BodyCycle::change_rock_materials(const StageSpec& stage, bool account)
       continue;
     const RockMaterialSpec* rock =
         c.material < 0 ? nullptr : &scene_.rock_materials[std::size_t(c.material)];
-    ZoneMaterial zone = rock ? rock->zone : scene_.deformable.material;
-    zone.element = scene_.deformable.material.element;
-    zone.nodal_mixed = scene_.deformable.nodal_mixed(c.group);
-    zone.density = rock ? rock->density : scene_.density;
+    const ZoneMaterial zone = stage_zone_material(scene_, c);
     solver_->change_material(std::vector<char>(mesh_.n_zones(), 1), zone, account);
     if (account)
       std::printf("  Rock:       the body takes %s\n",

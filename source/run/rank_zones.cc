@@ -1,4 +1,5 @@
 #include <talus/base/exceptions.h>
+#include <talus/base/gather.h>
 #include <talus/io/scene_checks.h>
 #include <talus/run/rank_share.h>
 #include <talus/run/rank_zones.h>
@@ -362,14 +363,7 @@ MovedZones move_zones_on_ranks(const Scene& scene, const WholeZones& zones,
   }
   MPI_Allreduce(MPI_IN_PLACE, &longest, 1, MPI_DOUBLE, MPI_MAX, comm);
   {
-    int count = static_cast<int>(mine.size());
-    std::vector<int> counts(ranks), starts(ranks, 0);
-    MPI_Allgather(&count, 1, MPI_INT, counts.data(), 1, MPI_INT, comm);
-    for (int r = 1; r < ranks; ++r)
-      starts[r] = starts[r - 1] + counts[r - 1];
-    std::vector<double> all(std::size_t(starts.back() + counts.back()));
-    MPI_Allgatherv(mine.data(), count, MPI_DOUBLE, all.data(), counts.data(), starts.data(),
-                   MPI_DOUBLE, comm);
+    const std::vector<double> all = gathered_on_every_rank(mine, comm);
     for (std::size_t k = 0; k < all.size(); k += 7)
       box[std::size_t(all[k])] =
           Box{Vec3(all[k + 1], all[k + 2], all[k + 3]), Vec3(all[k + 4], all[k + 5], all[k + 6])};

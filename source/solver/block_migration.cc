@@ -1,6 +1,7 @@
 #include "block_arrays.h"
 
 #include <talus/base/exceptions.h>
+#include <talus/base/gather.h>
 #include <talus/joint/continuously_yielding.h>
 #include <talus/solver/block_migration.h>
 #include <talus/solver/deformable_solver.h>
@@ -241,17 +242,7 @@ bool BlockMigration::migrate(RigidSolver& s, RankBlocks& blocks, bool may_refuse
       strays.insert(strays.end(), own_box[i].lo.data(), own_box[i].lo.data() + 3);
       strays.insert(strays.end(), own_box[i].hi.data(), own_box[i].hi.data() + 3);
     }
-  {
-    int mine = static_cast<int>(strays.size());
-    std::vector<int> counts(n_ranks), starts(n_ranks, 0);
-    MPI_Allgather(&mine, 1, MPI_INT, counts.data(), 1, MPI_INT, comm_);
-    for (int r = 1; r < n_ranks; ++r)
-      starts[r] = starts[r - 1] + counts[r - 1];
-    std::vector<double> all(std::size_t(starts.back() + counts.back()));
-    MPI_Allgatherv(strays.data(), mine, MPI_DOUBLE, all.data(), counts.data(), starts.data(),
-                   MPI_DOUBLE, comm_);
-    strays.swap(all);
-  }
+  strays = gathered_on_every_rank(strays, comm_);
   std::vector<std::vector<char>> boxes_out(n_ranks);
   std::vector<unsigned int> near;
   for (unsigned int i = 0; i < n_old; ++i)

@@ -1,0 +1,26 @@
+#include <talus/base/gather.h>
+
+#include <limits>
+#include <stdexcept>
+
+namespace talus
+{
+
+std::vector<double> gathered_on_every_rank(const std::vector<double>& mine, MPI_Comm comm)
+{
+  int ranks = 1;
+  MPI_Comm_size(comm, &ranks);
+  if (mine.size() > static_cast<std::size_t>(std::numeric_limits<int>::max()))
+    throw std::runtime_error("gathered_on_every_rank: a rank's share exceeds one MPI message");
+  const int count = static_cast<int>(mine.size());
+  std::vector<int> counts(ranks), starts(ranks, 0);
+  MPI_Allgather(&count, 1, MPI_INT, counts.data(), 1, MPI_INT, comm);
+  for (int r = 1; r < ranks; ++r)
+    starts[r] = starts[r - 1] + counts[r - 1];
+  std::vector<double> all(std::size_t(starts.back()) + std::size_t(counts.back()));
+  MPI_Allgatherv(mine.data(), count, MPI_DOUBLE, all.data(), counts.data(), starts.data(),
+                 MPI_DOUBLE, comm);
+  return all;
+}
+
+} // namespace talus
