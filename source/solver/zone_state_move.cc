@@ -94,7 +94,11 @@ void DeformableSolver::take_moved_state(const DeformableSolver& before,
   for (auto& v : vectors)
     v.resize(3 * ng);
   joint_stiffness_.assign(ng, 0.0);
-  if (last_force_.size() != 3 * ng)
+  // Combined damping's last forces, where the mode the stages left uses
+  // them (as set_inertial_masses sizes them).
+  if (!s_.dynamic && s_.damping == Damping::combined)
+    last_force_.assign(3 * ng, 0.0);
+  else
     last_force_.clear();
   for (std::size_t g = 0; g < ng; ++g)
   {
