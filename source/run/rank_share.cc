@@ -87,21 +87,9 @@ double rebalance_threshold()
 
 void check_runs_on_ranks(const Scene& scene, int ranks)
 {
+  (void)scene;
   (void)ranks;
   rebalance_threshold(); // refused before any output is written
-  const std::string allowed = "run it without mpirun (one rank), or leave this out";
-  // A stage's factor of safety runs its trials on ranks from the state
-  // gathered in one run's layout (BlockMigration::gather_whole), which has
-  // no zones yet.
-  for (const StageSpec& stage : scene.stages)
-  {
-    if (stage.factor_of_safety && !scene.deformable.groups.empty())
-      throw scene_error(scene, stage.section, "Mode",
-                        "a stage's factor of safety with deformable blocks: on MPI ranks talus "
-                        "runs it for rigid blocks only so far ('Solver / Mode = factor of "
-                        "safety' runs on ranks with deformable blocks too)",
-                        allowed);
-  }
 }
 
 RankShare::RankShare(const BlockModel& model, double reach, MPI_Comm comm, const RankBlocks* saved,

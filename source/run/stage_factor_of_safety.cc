@@ -9,6 +9,7 @@
 #include <talus/scene/factor_of_safety.h>
 #include <talus/solver/block_migration.h>
 #include <talus/solver/strength_reduction.h>
+#include <talus/solver/zone_migration.h>
 
 #include "stage_changes.h"
 
@@ -30,13 +31,22 @@ int BlockCycle::factor_of_safety(const std::vector<StageSpec>& stages, unsigned 
   // every rank, into a solver of the whole model.
   std::string state;
   std::vector<Vec3> start_displacement;
+  std::vector<double> start_zone_displacement;
   if (share_)
   {
+    // (With zones, the whole model's are meshed again here, as one run
+    // meshes them: their gridpoints are numbered as the whole mesh's.)
     BlockModel whole_model = *built_model_;
     BlockSystem whole = build_block_system(scene_, whole_model);
     BlockMigration::gather_whole(solver, share_->blocks(), *whole.solver, share_->comm());
     CheckpointWriter out;
     whole.solver->save_state(out);
+    if (system_.zones)
+    {
+      gather_whole_zones(*system_.zones, rank_zones_.zone, *whole.zones, share_->comm());
+      whole.zones->save_state(out);
+      start_zone_displacement = whole.zones->displacements();
+    }
     state = out.bytes();
     start_displacement = whole.solver->displacement;
   }
@@ -48,6 +58,8 @@ int BlockCycle::factor_of_safety(const std::vector<StageSpec>& stages, unsigned 
       system_.zones->save_state(out);
     state = out.bytes();
     start_displacement = solver.displacement;
+    if (system_.zones)
+      start_zone_displacement = system_.zones->displacements();
   }
   Scene scene = scene_;
   scene.solver.steps = stage.steps;
@@ -63,7 +75,7 @@ int BlockCycle::factor_of_safety(const std::vector<StageSpec>& stages, unsigned 
           restore_changes(reduced, built, &built, system, s);
       },
       solver.steps_done(), solver.time(), std::move(start_displacement),
-      system_.zones ? system_.zones->displacements() : std::vector<double>());
+      std::move(start_zone_displacement));
   const std::string prefix = prefix_ + "_stage" + std::to_string(k + 1) + "_mechanism";
   double mechanism = 0.0;
   TrialHooks hooks;
@@ -106,6 +118,8 @@ int BlockCycle::factor_of_safety(const std::vector<StageSpec>& stages, unsigned 
         return;
       CheckpointWriter out;
       view.system.solver->save_state(out);
+      if (view.system.zones) // (as StrengthReductionTrials::show loads it)
+        view.system.zones->save_state(out);
       payload = out.bytes();
     };
     r = find_factor_of_safety_on_ranks(

@@ -1,6 +1,7 @@
 #include "block_arrays.h"
 
 #include <talus/joint/continuously_yielding.h>
+#include <talus/solver/deformable_solver.h>
 
 #include <algorithm>
 #include <cstdint>
@@ -46,8 +47,12 @@ void BlockMigration::gather_whole(const RigidSolver& split, const RankBlocks& bl
 {
   // visit_block_arrays takes a solver it may change; here it only reads.
   RigidSolver& s = const_cast<RigidSolver&>(split);
-  if (s.zones_ != nullptr || whole.zones_ != nullptr)
-    throw std::logic_error("BlockMigration::gather_whole: rigid blocks only");
+  // With zones, a sub-contact's gridpoints travel by their numbers in the
+  // whole mesh, which are the whole (one run's) solver's own numbers.
+  const GridpointShare* gridpoints = s.zones_ != nullptr ? s.zones_->share() : nullptr;
+  const bool nodes = s.zones_ != nullptr;
+  if ((s.zones_ != nullptr) != (whole.zones_ != nullptr) || (nodes && gridpoints == nullptr))
+    throw std::logic_error("BlockMigration::gather_whole: the solvers' zones do not match");
   const BlockModel& m = s.m_;
   BlockModel& wm = whole.m_;
   const unsigned int n_whole = wm.n_blocks();
@@ -106,9 +111,21 @@ void BlockMigration::gather_whole(const RigidSolver& split, const RankBlocks& bl
   {
     if (!cs.alive[c] || !blocks.owned[cs.block_a[c]])
       continue;
-    block_records::put_contact(out, cs, c, blocks.local[cs.block_a[c]], blocks.local[cs.block_b[c]],
-                               sc_begin[c], sc_end[c], dilation, yielding,
-                               [](Bytes&, unsigned int) {});
+    block_records::put_contact(
+        out, cs, c, blocks.local[cs.block_a[c]], blocks.local[cs.block_b[c]], sc_begin[c],
+        sc_end[c], dilation, yielding,
+        [&](Bytes& to, unsigned int k)
+        {
+          if (nodes)
+            for (unsigned int n = 6 * k; n < 6 * k + 6; ++n)
+            {
+              to.put<int>(
+                  cs.sc_node[n] < 0
+                      ? -1
+                      : static_cast<int>(gridpoints->whole_gridpoint[std::size_t(cs.sc_node[n])]));
+              to.put(cs.sc_weight[n]);
+            }
+        });
   }
 
   std::vector<int> counts, starts;
@@ -152,7 +169,7 @@ void BlockMigration::gather_whole(const RigidSolver& split, const RankBlocks& bl
       const unsigned int a = in.get<unsigned int>(), b = in.get<unsigned int>();
       in.at += block_records::contact_head_size - sizeof(unsigned int);
       const unsigned int n_sc = in.get<unsigned int>();
-      in.at += n_sc * block_records::subcontact_size(dilation, yielding, false);
+      in.at += n_sc * block_records::subcontact_size(dilation, yielding, nodes);
       contacts.emplace_back((static_cast<std::uint64_t>(a) << 32) | b, start);
     }
   }
@@ -167,7 +184,17 @@ void BlockMigration::gather_whole(const RigidSolver& split, const RankBlocks& bl
   {
     const unsigned int c = append_contact_slot(laid, key);
     Reader in{record_at + 2 * sizeof(unsigned int)};
-    block_records::get_contact(in, laid, c, dilation, yielding, [](Reader&) {});
+    block_records::get_contact(in, laid, c, dilation, yielding,
+                               [&](Reader& from)
+                               {
+                                 if (!nodes)
+                                   return;
+                                 for (int n = 0; n < 6; ++n)
+                                 {
+                                   laid.sc_node.push_back(from.get<int>());
+                                   laid.sc_weight.push_back(from.get<double>());
+                                 }
+                               });
   }
   laid.is_deformable_ = whole.contacts_.is_deformable_;
   laid.vertex_gridpoint_ = whole.contacts_.vertex_gridpoint_;

@@ -1,5 +1,7 @@
 #include "block_arrays.h"
 
+#include <talus/base/gather.h>
+
 #include <talus/solver/deformable_solver.h>
 #include <talus/solver/zone_migration.h>
 
@@ -133,6 +135,8 @@ void DeformableSolver::take_moved_state(const DeformableSolver& before,
   time_ = before.time_;
   ratio_ = before.ratio_;
   ratio_whole_gridpoint_ = before.ratio_whole_gridpoint_;
+  if (!share_) // the whole model's solver: its gridpoints are the whole mesh's
+    ratio_gridpoint_ = before.share_ ? before.ratio_whole_gridpoint_ : before.ratio_gridpoint_;
   step_ = before.step_;
   motion_dt_ = before.motion_dt_;
   rest_at_next_motion_ = before.rest_at_next_motion_;
@@ -244,6 +248,80 @@ void move_zone_state(const DeformableSolver& from, const std::vector<unsigned in
         got[r].data() + want_gridpoints[r].size() * gsize + zone_source[z].second * zsize;
   }
   to.take_moved_state(from, gridpoint_record, zone_record);
+}
+
+void gather_whole_zones(const DeformableSolver& split, const std::vector<unsigned int>& split_zone,
+                        DeformableSolver& whole, MPI_Comm comm)
+{
+  const GridpointShare* share = split.share();
+  if (share == nullptr || whole.share() != nullptr)
+    throw std::logic_error("gather_whole_zones: a split solver into a whole one");
+  // This rank's owned gridpoints and the zones it counts (each zone on one
+  // rank: by the owner of its first corner), each with its whole number.
+  std::vector<unsigned int> gridpoints(share->n_owned), zones;
+  for (unsigned int g = 0; g < share->n_owned; ++g)
+    gridpoints[g] = g;
+  const TetMesh& mesh = split.mesh();
+  for (unsigned int z = 0; z < mesh.n_zones(); ++z)
+    if (share->counts(mesh.zone_gridpoint[z][0]))
+      zones.push_back(z);
+  std::vector<char> gridpoint_records, zone_records;
+  split.put_gridpoint_records(gridpoints, gridpoint_records);
+  split.put_zone_records(zones, zone_records);
+  const std::size_t gsize = DeformableSolver::gridpoint_record_size(),
+                    zsize = split.zone_record_size();
+  Bytes out;
+  out.put(static_cast<unsigned int>(gridpoints.size()));
+  out.put(static_cast<unsigned int>(zones.size()));
+  for (unsigned int g : gridpoints)
+    out.put(share->whole_gridpoint[g]);
+  for (unsigned int z : zones)
+    out.put(split_zone[z]);
+  out.data.insert(out.data.end(), gridpoint_records.begin(), gridpoint_records.end());
+  out.data.insert(out.data.end(), zone_records.begin(), zone_records.end());
+  const std::vector<char> all = gathered_on_every_rank(out.data, comm);
+
+  const std::size_t ng = whole.mesh().n_gridpoints(), nz = whole.mesh().n_zones();
+  std::vector<const char*> gridpoint_record(ng, nullptr), zone_record(nz, nullptr);
+  for (const char* at = all.data(); at != all.data() + all.size();)
+  {
+    Reader in{at};
+    const unsigned int n_g = in.get<unsigned int>(), n_z = in.get<unsigned int>();
+    const char* numbers = in.at;
+    const char* records = numbers + (std::size_t(n_g) + n_z) * sizeof(unsigned int);
+    for (unsigned int k = 0; k < n_g + n_z; ++k)
+    {
+      const unsigned int w = in.get<unsigned int>();
+      const bool gridpoint = k < n_g;
+      if (w >= (gridpoint ? ng : nz) || (gridpoint ? gridpoint_record[w] : zone_record[w]))
+        throw std::logic_error("gather_whole_zones: a gridpoint or zone not of the whole mesh, "
+                               "or sent twice");
+      (gridpoint ? gridpoint_record[w] : zone_record[w]) =
+          gridpoint ? records + k * gsize : records + n_g * gsize + (k - n_g) * zsize;
+    }
+    at = records + n_g * gsize + std::size_t(n_z) * zsize;
+  }
+  if (std::count(gridpoint_record.begin(), gridpoint_record.end(), nullptr) != 0 ||
+      std::count(zone_record.begin(), zone_record.end(), nullptr) != 0)
+    throw std::logic_error(
+        "gather_whole_zones: a gridpoint or zone of the whole mesh was not sent");
+  whole.take_moved_state(split, gridpoint_record, zone_record);
+  // The energy account's terms, which each rank keeps for its own
+  // gridpoints and zones, as the whole model's.
+  double terms[9] = {
+      whole.gravity_work_,     whole.boundary_work_,      whole.damping_work_,
+      whole.quiet_work_,       whole.kinetic_whole_step_, whole.plastic_stress_work_,
+      whole.nodal_mixed_work_, whole.initial_elastic_,    whole.initial_plastic_elastic_};
+  MPI_Allreduce(MPI_IN_PLACE, terms, 9, MPI_DOUBLE, MPI_SUM, comm);
+  whole.gravity_work_ = terms[0];
+  whole.boundary_work_ = terms[1];
+  whole.damping_work_ = terms[2];
+  whole.quiet_work_ = terms[3];
+  whole.kinetic_whole_step_ = terms[4];
+  whole.plastic_stress_work_ = terms[5];
+  whole.nodal_mixed_work_ = terms[6];
+  whole.initial_elastic_ = terms[7];
+  whole.initial_plastic_elastic_ = terms[8];
 }
 
 } // namespace talus

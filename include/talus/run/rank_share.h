@@ -36,10 +36,9 @@ int world_rank();
 /// exceptions pass as they are.
 void agree_on_input_errors(const std::function<void()>& build);
 
-/// Refuses, with one message naming the entry, a scene that talus cannot
-/// yet run split among ranks: a stage's factor of safety with deformable
-/// blocks (its trials start from the whole model's state, gathered for
-/// rigid blocks alone: BlockMigration::gather_whole).
+/// Refuses, with one message naming the entry, what talus cannot run
+/// split among ranks: today only a bad TALUS_REBALANCE_THRESHOLD (every
+/// scene runs on ranks).
 void check_runs_on_ranks(const Scene& scene, int ranks);
 
 /// This rank's share of a model of rigid blocks split among the ranks of

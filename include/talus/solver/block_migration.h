@@ -143,7 +143,10 @@ public:
   /// numbers and contacts in block-pair order, so that its save_state is
   /// what the serial run's would load as. Each owner sends its blocks and
   /// the contacts whose first block it owns to every rank (one
-  /// MPI_Allgatherv). Rigid blocks only (std::logic_error with zones).
+  /// MPI_Allgatherv). With zones (both solvers, `whole`'s of the whole mesh
+  /// as one run meshes it) the sub-contacts' gridpoints come by their
+  /// numbers in the whole mesh; the zones' own state is gathered apart
+  /// (gather_whole_zones).
   static void gather_whole(const RigidSolver& solver, const RankBlocks& blocks, RigidSolver& whole,
                            MPI_Comm comm);
 

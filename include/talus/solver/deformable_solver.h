@@ -332,6 +332,9 @@ public:
   }
 
 private:
+  friend void gather_whole_zones(const DeformableSolver& split,
+                                 const std::vector<unsigned int>& split_zone,
+                                 DeformableSolver& whole, MPI_Comm comm);
   struct PetscState;
   /// Eq. 84, each gridpoint's step 2 sqrt(m / k) lowered by
   /// stiffness_damping_step_factor for Rayleigh's `beta` (s).

@@ -26,4 +26,14 @@ void move_zone_state(const DeformableSolver& from, const std::vector<unsigned in
                      const std::function<int(unsigned int)>& old_owner_of_gridpoint,
                      const std::function<int(unsigned int)>& old_owner_of_zone, MPI_Comm comm);
 
+/// A stage's factor of safety on ranks (whose trials are runs of the whole
+/// model): `whole`, a solver of the whole mesh on every rank (as one run
+/// meshes it), takes the state of the zones split among the ranks of
+/// `comm` (`split`, this rank's, its local zones being the whole mesh's
+/// `split_zone`) as one run would hold it now: every gridpoint's and zone's
+/// values from its owner (one MPI_Allgatherv), and the energy account's
+/// terms summed over the ranks. Collective.
+void gather_whole_zones(const DeformableSolver& split, const std::vector<unsigned int>& split_zone,
+                        DeformableSolver& whole, MPI_Comm comm);
+
 } // namespace talus
