@@ -8,6 +8,7 @@
 #include <talus/joint/continuously_yielding.h>
 #include <talus/solver/block_migration.h>
 #include <talus/solver/rigid_solver.h>
+#include <talus/zone/gridpoint_share.h>
 
 #include <cstring>
 #include <vector>
@@ -74,6 +75,21 @@ inline std::size_t subcontact_size(bool dilation, bool yielding, bool nodes)
   return sizeof(Vec3) + 9 * sizeof(double) + 3 * sizeof(unsigned char) +
          (dilation ? sizeof(double) : 0) + (yielding ? yield_state_size * sizeof(double) : 0) +
          (nodes ? 6 * (sizeof(int) + sizeof(double)) : 0);
+}
+
+/// Sub-contact k's gridpoints (6) with their weights, each gridpoint by
+/// its number in the whole mesh (`gridpoints`: the split zones' share), -1
+/// for none: how they travel between ranks.
+inline void put_subcontact_nodes(Bytes& to, const ContactSet& cs, unsigned int k,
+                                 const GridpointShare& gridpoints)
+{
+  for (unsigned int n = 6 * k; n < 6 * k + 6; ++n)
+  {
+    to.put<int>(cs.sc_node[n] < 0
+                    ? -1
+                    : static_cast<int>(gridpoints.whole_gridpoint[std::size_t(cs.sc_node[n])]));
+    to.put(cs.sc_weight[n]);
+  }
 }
 
 /// Each contact slot's sub-contacts, [begin[c], end[c]): contiguous, in

@@ -416,21 +416,13 @@ bool BlockMigration::migrate(RigidSolver& s, RankBlocks& blocks, bool may_refuse
   // A contact with its sub-contacts, blocks by global number.
   const auto put_contact = [&](Bytes& out, unsigned int c)
   {
-    block_records::put_contact(
-        out, cs, c, old_local[cs.block_a[c]], old_local[cs.block_b[c]], sc_begin[c], sc_end[c],
-        dilation, yielding,
-        [&](Bytes& to, unsigned int k)
-        {
-          if (nodes)
-            for (unsigned int n = 6 * k; n < 6 * k + 6; ++n)
-            {
-              to.put<int>(
-                  cs.sc_node[n] < 0
-                      ? -1
-                      : static_cast<int>(gridpoints->whole_gridpoint[std::size_t(cs.sc_node[n])]));
-              to.put(cs.sc_weight[n]);
-            }
-        });
+    block_records::put_contact(out, cs, c, old_local[cs.block_a[c]], old_local[cs.block_b[c]],
+                               sc_begin[c], sc_end[c], dilation, yielding,
+                               [&](Bytes& to, unsigned int k)
+                               {
+                                 if (nodes)
+                                   block_records::put_subcontact_nodes(to, cs, k, *gridpoints);
+                               });
   };
   std::vector<std::vector<char>> reply(n_ranks);
   for (int r = 0; r < n_ranks; ++r)

@@ -111,21 +111,13 @@ void BlockMigration::gather_whole(const RigidSolver& split, const RankBlocks& bl
   {
     if (!cs.alive[c] || !blocks.owned[cs.block_a[c]])
       continue;
-    block_records::put_contact(
-        out, cs, c, blocks.local[cs.block_a[c]], blocks.local[cs.block_b[c]], sc_begin[c],
-        sc_end[c], dilation, yielding,
-        [&](Bytes& to, unsigned int k)
-        {
-          if (nodes)
-            for (unsigned int n = 6 * k; n < 6 * k + 6; ++n)
-            {
-              to.put<int>(
-                  cs.sc_node[n] < 0
-                      ? -1
-                      : static_cast<int>(gridpoints->whole_gridpoint[std::size_t(cs.sc_node[n])]));
-              to.put(cs.sc_weight[n]);
-            }
-        });
+    block_records::put_contact(out, cs, c, blocks.local[cs.block_a[c]], blocks.local[cs.block_b[c]],
+                               sc_begin[c], sc_end[c], dilation, yielding,
+                               [&](Bytes& to, unsigned int k)
+                               {
+                                 if (nodes)
+                                   block_records::put_subcontact_nodes(to, cs, k, *gridpoints);
+                               });
   }
 
   std::vector<int> counts, starts;
