@@ -175,8 +175,8 @@ BlockCycle::BlockCycle(Scene& scene, BlockModel& model, const std::string& prefi
         {
           const double start = now();
           MovedZones moved =
-              move_zones_on_ranks(scene_, *whole_zones_, *system_.zones, rank_zones_, before, next,
-                                  next_model, share_->reach(), share_->comm());
+              move_zones_on_ranks(scene_, *whole_zones_, *points_, *system_.zones, rank_zones_,
+                                  before, next, next_model, share_->reach(), share_->comm());
           zone_move_seconds_ += now() - start;
           // The old solver lives until the migration has ended (it sends
           // the contacts' gridpoints by their old numbers).

@@ -320,9 +320,10 @@ BlockSystem build_block_system_on_ranks(const Scene& scene, const BlockModel& wh
 }
 
 MovedZones move_zones_on_ranks(const Scene& scene, const WholeZones& zones,
-                               const DeformableSolver& before, RankZones& kept,
-                               const RankBlocks& held_before, const RankBlocks& next,
-                               const BlockModel& next_model, double reach, MPI_Comm comm)
+                               const PointHistory& points, const DeformableSolver& before,
+                               RankZones& kept, const RankBlocks& held_before,
+                               const RankBlocks& next, const BlockModel& next_model, double reach,
+                               MPI_Comm comm)
 {
   int rank = 0, ranks = 1;
   MPI_Comm_rank(comm, &rank);
@@ -376,8 +377,7 @@ MovedZones move_zones_on_ranks(const Scene& scene, const WholeZones& zones,
   MeshShare part = zone_part(zones, block_owner, surfaces, rank, ranks, comm, local_gridpoint);
   moved.mesh = std::make_unique<TetMesh>(std::move(part.mesh));
   const std::vector<unsigned int> zones_before = kept.zone;
-  keep_part(kept, *moved.mesh, part, zones, block_owner, local_gridpoint,
-            PointHistory(zones.mesh, scene.solver.history_points), next.local, rank);
+  keep_part(kept, *moved.mesh, part, zones, block_owner, local_gridpoint, points, next.local, rank);
   kept.surfaces = surfaces;
   surfaces_on_gridpoints(zones, next.local, block_owner, surfaces, local_gridpoint, rank,
                          moved.vertex_gridpoint, moved.held_surfaces);

@@ -113,12 +113,14 @@ struct MovedZones
 /// held until now and `before` this rank's solver until now. The surfaces
 /// held are chosen as at the start, from the boxes as they are now (those
 /// of the deformable blocks are sent to every rank). The new solver takes
-/// the state (move_zone_state); `kept` is updated. Then the stages'
+/// the state (move_zone_state); `kept` is updated (`points`: the history
+/// points as the whole mesh has them). Then the stages'
 /// changes of the zones must be set again (BlockCycle). Collective.
 MovedZones move_zones_on_ranks(const Scene& scene, const WholeZones& zones,
-                               const DeformableSolver& before, RankZones& kept,
-                               const RankBlocks& held_before, const RankBlocks& next,
-                               const BlockModel& next_model, double reach, MPI_Comm comm);
+                               const PointHistory& points, const DeformableSolver& before,
+                               RankZones& kept, const RankBlocks& held_before,
+                               const RankBlocks& next, const BlockModel& next_model, double reach,
+                               MPI_Comm comm);
 
 /// Appends to `row` the history points' values (the columns of `points`)
 /// of zones split among the ranks of `comm`: point k's displacement,
