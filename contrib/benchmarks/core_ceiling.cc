@@ -30,23 +30,10 @@
 #include <vector>
 
 using rank_figures::seconds_since;
+using rank_figures::wait_for_all;
 
 namespace
 {
-/// Returns when every rank has come here, sleeping between polls so that
-/// a waiting rank leaves its core to the ones still working.
-void wait_for_all(MPI_Comm comm)
-{
-  MPI_Request request;
-  MPI_Ibarrier(comm, &request);
-  for (int done = 0; !done;)
-  {
-    MPI_Test(&request, &done, MPI_STATUS_IGNORE);
-    if (!done)
-      std::this_thread::sleep_for(std::chrono::milliseconds(1));
-  }
-}
-
 /// The arrays of one loop, made before it is timed.
 struct Arrays
 {

@@ -14,6 +14,7 @@
 #include <cstring>
 #include <fstream>
 #include <string>
+#include <thread>
 #include <vector>
 
 namespace rank_figures
@@ -31,6 +32,22 @@ inline std::string cpu_model()
 inline double seconds_since(std::chrono::steady_clock::time_point t)
 {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - t).count();
+}
+
+/// Returns when every rank has come here, sleeping between polls so that
+/// a waiting rank leaves its core to the ones still working (a rank
+/// spinning in MPI_Barrier would take a share of a core its host may
+/// give to the one that works). Collective.
+inline void wait_for_all(MPI_Comm comm)
+{
+  MPI_Request request;
+  MPI_Ibarrier(comm, &request);
+  for (int done = 0; !done;)
+  {
+    MPI_Test(&request, &done, MPI_STATUS_IGNORE);
+    if (!done)
+      std::this_thread::sleep_for(std::chrono::milliseconds(1));
+  }
 }
 
 /// Resident memory of this process now (bytes), after handing freed heap

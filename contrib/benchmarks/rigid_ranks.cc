@@ -6,10 +6,14 @@
 // each contact across ranks computed by one rank (SubContactExchange), and
 // owners that follow the blocks (BlockMigration's check after every step);
 // then split again with those contacts computed on both sides, for the
-// ratio. Prints the rates, the speed-ups measured in this one run, the
-// blocks each rank holds and the exchange volume per step.
+// ratio; then, for each further round, whole and split (computed once)
+// again from the start. A shared host slows one run and not the next by
+// up to a third, so the speed-up is given round by round, as their median
+// and as the best whole run's time over the best split run's (the runs
+// least disturbed). Prints the rates, the blocks each rank holds and the
+// exchange volume per step.
 //   cmake --build build --target benchmark_rigid_ranks
-//   mpirun -np 2 build/contrib/benchmarks/benchmark_rigid_ranks [n] [steps]
+//   mpirun -np 2 build/contrib/benchmarks/benchmark_rigid_ranks [n] [steps] [rounds]
 
 #include "benchmark_arguments.h"
 #include "rank_figures.h"
@@ -43,6 +47,7 @@ using namespace talus;
 
 using rank_figures::cpu_model;
 using rank_figures::seconds_since;
+using rank_figures::wait_for_all;
 
 int main(int argc, char** argv)
 {
@@ -57,24 +62,33 @@ int main(int argc, char** argv)
   const unsigned long steps =
       argc > 2 ? whole_argument(argv[0], argv[2], "the step count (second argument)", 1, 1000000)
                : 200;
+  const unsigned long rounds =
+      argc > 3 ? whole_argument(argv[0], argv[3], "the rounds (third argument)", 1, 20) : 3;
 
   SolverSettings s;
   BlockModel model = settling_cubes(n, steps, s);
 
   // 1. Whole, on rank 0 alone.
   double serial_seconds = 0.0;
-  BlockModel whole;
-  std::unique_ptr<RigidSolver> whole_solver;
+  // What the whole run ends with, kept for the comparisons; its model and
+  // solver are freed before the split.
+  struct EndState
+  {
+    std::vector<Vec3> centroid, velocity, spin;
+    unsigned int subcontacts = 0;
+  } whole;
   if (rank == 0)
   {
-    whole = model;
-    whole_solver = std::make_unique<RigidSolver>(whole, 2650.0, s);
+    BlockModel whole_model = model;
+    auto whole_solver = std::make_unique<RigidSolver>(whole_model, 2650.0, s);
     const auto start = std::chrono::steady_clock::now();
     for (unsigned long k = 0; k < steps; ++k)
       whole_solver->step();
     serial_seconds = seconds_since(start);
+    whole = {whole_model.centroid, whole_solver->velocity, whole_solver->spin,
+             whole_solver->contacts().n_subcontacts()};
   }
-  MPI_Barrier(comm);
+  wait_for_all(comm);
 
   // 2. Split among the ranks.
   Box domain{Vec3::Zero(), Vec3(n, n, n + 1)};
@@ -127,11 +141,9 @@ int main(int argc, char** argv)
     for (std::size_t k = 0; k < all_state.size(); k += 10, ++compared)
     {
       const unsigned int b = static_cast<unsigned int>(all_state[k]);
-      const double serial[9] = {whole.centroid[b].x(),         whole.centroid[b].y(),
-                                whole.centroid[b].z(),         whole_solver->velocity[b].x(),
-                                whole_solver->velocity[b].y(), whole_solver->velocity[b].z(),
-                                whole_solver->spin[b].x(),     whole_solver->spin[b].y(),
-                                whole_solver->spin[b].z()};
+      const double serial[9] = {whole.centroid[b].x(), whole.centroid[b].y(), whole.centroid[b].z(),
+                                whole.velocity[b].x(), whole.velocity[b].y(), whole.velocity[b].z(),
+                                whole.spin[b].x(),     whole.spin[b].y(),     whole.spin[b].z()};
       differ += std::memcmp(serial, &all_state[k + 1], sizeof serial) != 0;
     }
   // The rise of the peak resident memory of a rank that never ran the whole
@@ -144,6 +156,31 @@ int main(int argc, char** argv)
   // 3. The same split with the contacts across ranks computed on both
   // sides (no SubContactExchange), then once more computed once, so that
   // the order of the runs shows: the times, and the same answer.
+  // The machine's ceiling for this work at this moment: every rank runs the
+  // whole model at once, sharing nothing; P times the whole run's time
+  // alone over the slowest of these is what P cores give at all (a
+  // shared host gives less than P when both cores work). Rank 0's run
+  // must end where its first whole run did, bit for bit.
+  unsigned long at_once_differ = 0;
+  const auto whole_at_once = [&]()
+  {
+    BlockModel copy = model;
+    RigidSolver copy_solver(copy, 2650.0, s);
+    MPI_Barrier(comm);
+    const auto at_once_start = std::chrono::steady_clock::now();
+    for (unsigned long k = 0; k < steps; ++k)
+      copy_solver.step();
+    double mine_at_once = seconds_since(at_once_start), slowest = 0.0;
+    MPI_Allreduce(&mine_at_once, &slowest, 1, MPI_DOUBLE, MPI_MAX, comm);
+    if (rank == 0)
+      for (unsigned int b = 0; b < model.n_blocks(); ++b)
+        at_once_differ += copy.centroid[b] != whole.centroid[b] ||
+                          copy_solver.velocity[b] != whole.velocity[b] ||
+                          copy_solver.spin[b] != whole.spin[b];
+    return slowest;
+  };
+  std::vector<double> at_once_times{whole_at_once()};
+
   const auto split_again = [&](bool once, double& seconds, unsigned long& differing)
   {
     RankBlocks mine_again =
@@ -176,10 +213,37 @@ int main(int argc, char** argv)
       differing = mine.local.size();
     MPI_Allreduce(MPI_IN_PLACE, &differing, 1, MPI_UNSIGNED_LONG, MPI_SUM, comm);
   };
-  double both_sides_seconds = 0.0, once_again_seconds = 0.0;
-  unsigned long both_differ = 0, once_again_differ = 0;
+  double both_sides_seconds = 0.0;
+  unsigned long both_differ = 0;
   split_again(false, both_sides_seconds, both_differ);
-  split_again(true, once_again_seconds, once_again_differ);
+
+  // 4. The further rounds: whole again on rank 0 (which must end where the
+  // first whole run did, bit for bit), then split again, computed once.
+  std::vector<double> whole_times{serial_seconds}, split_times;
+  unsigned long rounds_differ = 0; // blocks, over the further rounds, whole and split
+  for (unsigned long r = 1; r < rounds; ++r)
+  {
+    if (rank == 0)
+    {
+      BlockModel again = model;
+      RigidSolver again_solver(again, 2650.0, s);
+      const auto again_start = std::chrono::steady_clock::now();
+      for (unsigned long k = 0; k < steps; ++k)
+        again_solver.step();
+      whole_times.push_back(seconds_since(again_start));
+      for (unsigned int b = 0; b < model.n_blocks(); ++b)
+        rounds_differ += again.centroid[b] != whole.centroid[b] ||
+                         again_solver.velocity[b] != whole.velocity[b] ||
+                         again_solver.spin[b] != whole.spin[b];
+    }
+    wait_for_all(comm);
+    double seconds = 0.0;
+    unsigned long differing = 0;
+    split_again(true, seconds, differing);
+    split_times.push_back(seconds);
+    rounds_differ += differing;
+    at_once_times.push_back(whole_at_once());
+  }
 
   // This machine's MPI between ranks 0 and 1, for the exchange model.
   const rank_figures::MpiFigures mpi_figures = rank_figures::measure_mpi(comm);
@@ -198,8 +262,29 @@ int main(int argc, char** argv)
   int same = at_start.local == mine.local && at_start.owned == mine.owned &&
              at_start.send == mine.send && at_start.receive == mine.receive;
   MPI_Allreduce(MPI_IN_PLACE, &same, 1, MPI_INT, MPI_LAND, comm);
-  double split_seconds = 0.0;
-  MPI_Reduce(&mine_seconds, &split_seconds, 1, MPI_DOUBLE, MPI_MAX, 0, comm);
+  double first_split_seconds = 0.0;
+  MPI_Reduce(&mine_seconds, &first_split_seconds, 1, MPI_DOUBLE, MPI_MAX, 0, comm);
+  split_times.insert(split_times.begin(), first_split_seconds);
+  // The least disturbed runs: the best whole and the best split time.
+  const double best_whole = *std::min_element(whole_times.begin(), whole_times.end());
+  const double split_seconds = *std::min_element(split_times.begin(), split_times.end());
+  // Per round (rank 0's times alone are whole): the speed-up, the ceiling,
+  // and the speed-up's share of the ceiling; their medians.
+  std::vector<double> speed_ups, ceilings, shares;
+  if (rank == 0)
+    for (std::size_t r = 0; r < rounds; ++r)
+    {
+      speed_ups.push_back(whole_times[r] / split_times[r]);
+      ceilings.push_back(ranks * whole_times[r] / at_once_times[r]);
+      shares.push_back(speed_ups.back() / ceilings.back());
+    }
+  const auto median = [](std::vector<double> v)
+  {
+    std::sort(v.begin(), v.end());
+    const std::size_t k = v.size();
+    return k == 0 ? 0.0 : k % 2 == 1 ? v[k / 2] : 0.5 * (v[k / 2 - 1] + v[k / 2]);
+  };
+  const double median_speed_up = median(speed_ups);
   std::fprintf(stderr, "rank %d: %u owned, %zu held, %.0f doubles sent per step, %.3f s\n", rank,
                mine.n_owned(), mine.local.size(), double(exchange.sent()), mine_seconds);
   long held = static_cast<long>(mine.local.size()), held_all = 0;
@@ -224,34 +309,36 @@ int main(int argc, char** argv)
     std::printf("split run against the whole run: %lu of %lu blocks (%s) differ in centroid, "
                 "velocity or spin, bit for bit\n",
                 differ, compared, compared == model.n_blocks() ? "all" : "NOT ALL");
-    std::printf("whole on one rank: %.3f s, %.0f block-cycles/s\n", serial_seconds,
-                double(model.n_blocks()) * steps / serial_seconds);
-    // Each split run's time, rate and speed-up over the whole run; for one
-    // computed once, the ratio of the run computed on both sides to it.
-    const auto report_split = [&](const std::string& what, double seconds, bool once)
-    {
-      std::printf("%s: %.3f s, %.0f block-cycles/s; speed-up %.2f", what.c_str(), seconds,
-                  double(model.n_blocks()) * steps / seconds, serial_seconds / seconds);
-      if (once)
-        std::printf("; computed on both sides against this %.3f", both_sides_seconds / seconds);
-      std::printf("\n");
-    };
-    report_split("split on " + std::to_string(ranks) +
-                     " ranks, each contact across ranks computed once",
-                 split_seconds, true);
-    report_split("split again, contacts across ranks computed on both sides", both_sides_seconds,
-                 false);
-    report_split("split a third time, computed once again", once_again_seconds, true);
-    std::printf("the second and third split runs against the first: %lu and %lu blocks differ, "
-                "bit for bit\n",
-                both_differ, once_again_differ);
+    const double block_steps = double(model.n_blocks()) * steps;
+    for (std::size_t r = 0; r < rounds; ++r)
+      std::printf("round %zu: whole on one rank %.3f s (%.0f block-cycles/s), split on %d ranks, "
+                  "each contact across ranks computed once, %.3f s (%.0f); speed-up %.2f; the "
+                  "whole model on every rank at once %.3f s: ceiling %.2f\n",
+                  r + 1, whole_times[r], block_steps / whole_times[r], ranks, split_times[r],
+                  block_steps / split_times[r], whole_times[r] / split_times[r], at_once_times[r],
+                  ranks * whole_times[r] / at_once_times[r]);
+    std::printf("speed-up: %.2f, the best whole run (%.3f s, %.0f block-cycles/s) over the best "
+                "split run (%.3f s, %.0f); median of the %lu rounds %.2f\n",
+                best_whole / split_seconds, best_whole, block_steps / best_whole, split_seconds,
+                block_steps / split_seconds, rounds, median_speed_up);
+    std::printf("ceiling (median of the rounds): %.2f; the speed-up over the ceiling (median of "
+                "the rounds): %.2f\n",
+                median(ceilings), median(shares));
+    std::printf("split with the contacts across ranks computed on both sides (after round 1): "
+                "%.3f s, speed-up %.2f over the best whole run; the best split computed once "
+                "against it %.3f\n",
+                both_sides_seconds, best_whole / both_sides_seconds,
+                both_sides_seconds / split_seconds);
+    std::printf("the later split runs against round 1's, the later whole runs against round 1's "
+                "and rank 0's runs at once against it: %lu, %lu and %lu blocks differ, bit for "
+                "bit\n",
+                both_differ, rounds_differ, at_once_differ);
     std::printf("sub-contacts computed a step: %lu on all ranks (%lu held, %lu of them taken "
                 "from another rank), %u on one rank: %.4f times one rank's work (computed on "
                 "both sides: %.4f)\n",
                 held_subcontacts_all - taken_all, held_subcontacts_all, taken_all,
-                whole_solver->contacts().n_subcontacts(),
-                double(held_subcontacts_all - taken_all) / whole_solver->contacts().n_subcontacts(),
-                double(held_subcontacts_all) / whole_solver->contacts().n_subcontacts());
+                whole.subcontacts, double(held_subcontacts_all - taken_all) / whole.subcontacts,
+                double(held_subcontacts_all) / whole.subcontacts);
     std::printf("blocks held %.3f times the model (ghosts); exchange %.0f bytes per step in "
                 "all (%.0f of them sub-contacts' state, %lu sub-contacts taken), %.0f bytes "
                 "per block-step\n",
@@ -263,8 +350,9 @@ int main(int argc, char** argv)
                 same ? "the blocks and lists of the start" : "OTHER BLOCKS OR LISTS (wrong)");
     if (ranks < 2)
       return 0;
-    std::printf("exchange: %.1f %% of the split run's time (the slowest rank in GhostExchange)\n",
-                100.0 * exchange_all / split_seconds);
+    std::printf("exchange: %.1f %% of round 1's split run's time (the slowest rank in "
+                "GhostExchange)\n",
+                100.0 * exchange_all / first_split_seconds);
     std::printf("MPI between ranks 0 and 1: latency %.2f us, bandwidth %.2f GB/s, one "
                 "MPI_Allreduce %.2f us\n",
                 1e6 * latency, 1e-9 * bandwidth, 1e6 * allreduce);
@@ -282,14 +370,13 @@ int main(int argc, char** argv)
     // within g layers of a face to that neighbour ((L + 2 g)^3 - L^3 in all)
     // at the measured bytes per ghost, to 26 neighbours (latency each), and
     // takes part in 5 reductions of log2 P latencies each.
-    const double t_block = serial_seconds / (double(model.n_blocks()) * steps);
+    const double t_block = best_whole / (double(model.n_blocks()) * steps);
     const double ghosts_here = double(held_all - model.n_blocks());
     const double bytes_per_ghost = ghosts_here > 0.0 ? sent_all / ghosts_here : 0.0;
     const double t_ghost =
-        ghosts_here > 0.0
-            ? std::max(0.0, (ranks * (split_seconds - exchange_all) - serial_seconds) /
-                                (ghosts_here * steps))
-            : 0.0;
+        ghosts_here > 0.0 ? std::max(0.0, (ranks * (split_seconds - exchange_all) - best_whole) /
+                                              (ghosts_here * steps))
+                          : 0.0;
     std::printf("model inputs: %.3g s per block-step (whole run), %.3g s per ghost-step, %.0f "
                 "bytes per ghost sent\n",
                 t_block, t_ghost, bytes_per_ghost);
