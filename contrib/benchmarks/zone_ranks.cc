@@ -15,13 +15,20 @@
 // the whole run bit for bit, which the benchmark checks (every gridpoint's
 // position, gathered on rank 0).
 //
-// Prints both rates and the speed-up measured in this one run, the zones
-// held over the model's, the exchange per step, the memory per zone held,
-// this machine's MPI, and a model of 100 million zones on 64 and 1,000
-// ranks from those figures.
+// It runs in rounds, as benchmark_rigid_ranks does: whole on rank 0 alone
+// (the others sleeping between polls), split, then whole on every rank at
+// once, sharing nothing, for the machine's ceiling for this work at that
+// moment (P times the time alone over the slowest at once). Every later
+// run must end as the first of its kind, bit for bit.
+//
+// Prints each round's rates, speed-up and ceiling, the best whole time
+// over the best split time and the medians, the zones held over the
+// model's, the exchange per step, the memory per zone held, this machine's
+// MPI, and a model of 100 million zones on 64 and 1,000 ranks from those
+// figures.
 //   cmake --build build --target benchmark_zone_ranks
-//   mpirun -np 2 build/contrib/benchmarks/benchmark_zone_ranks [n] [steps]
-// Defaults: n = 59 (1,026,895 zones), 100 steps.
+//   mpirun -np 2 build/contrib/benchmarks/benchmark_zone_ranks [n] [steps] [rounds]
+// Defaults: n = 59 (1,026,895 zones), 100 steps, 3 rounds.
 
 #include "benchmark_arguments.h"
 #include "gravity_cube.h"
@@ -60,6 +67,8 @@ int main(int argc, char** argv)
   const unsigned long steps =
       argc > 2 ? whole_argument(argv[0], argv[2], "the step count (second argument)", 1, 100000)
                : 100;
+  const unsigned long rounds =
+      argc > 3 ? whole_argument(argv[0], argv[3], "the rounds (third argument)", 1, 20) : 3;
 
   const GravityCube cube;
   const double side = cube.side;
@@ -75,20 +84,30 @@ int main(int argc, char** argv)
   const TetMesh mesh = mesh_blocks(blocks, {0}, side / n, report, ZoneElement::tet4);
   const unsigned int nz = mesh.n_zones(), ng = mesh.n_gridpoints();
 
-  // 1. Whole, on rank 0 alone.
-  double whole_seconds = 0.0;
+  // 1. Whole, on rank 0 alone; the first run's positions are kept for the
+  // comparisons, every later one must end there too.
   std::vector<double> whole_x;
-  if (rank == 0)
+  unsigned long later_differ = 0; // gridpoints, over the later runs
+  const auto whole_alone = [&]()
   {
-    DeformableSolver solver(mesh, {elastic}, std::vector<unsigned int>(nz, 0), settings, {base}, {},
-                            &initial);
-    const auto start = std::chrono::steady_clock::now();
-    for (unsigned long k = 0; k < steps; ++k)
-      solver.step();
-    whole_seconds = seconds_since(start);
-    whole_x = solver.positions();
-  }
-  MPI_Barrier(comm);
+    double seconds = 0.0;
+    if (rank == 0)
+    {
+      DeformableSolver solver(mesh, {elastic}, std::vector<unsigned int>(nz, 0), settings, {base},
+                              {}, &initial);
+      const auto start = std::chrono::steady_clock::now();
+      for (unsigned long k = 0; k < steps; ++k)
+        solver.step();
+      seconds = seconds_since(start);
+      if (whole_x.empty())
+        whole_x = solver.positions();
+      else
+        later_differ += solver.positions() != whole_x ? 1 : 0;
+    }
+    rank_figures::wait_for_all(comm);
+    return seconds;
+  };
+  std::vector<double> whole_times{whole_alone()};
 
   // 2. Split among the ranks: owners from a partition of the gridpoints
   // weighed by their zones, on cells of a tenth of the side.
@@ -108,6 +127,41 @@ int main(int argc, char** argv)
   const double memory_per_zone =
       rank == 1 ? (rank_figures::resident_bytes() - memory_before) / double(held_zones) : 0.0;
 
+  // The machine's ceiling for this work now: the whole model on every rank
+  // at once. Rank 0's run must end as its first whole run.
+  const auto whole_at_once = [&]()
+  {
+    DeformableSolver copy(mesh, {elastic}, std::vector<unsigned int>(nz, 0), settings, {base}, {},
+                          &initial);
+    MPI_Barrier(comm);
+    const auto at_once_start = std::chrono::steady_clock::now();
+    for (unsigned long k = 0; k < steps; ++k)
+      copy.step();
+    double mine_at_once = seconds_since(at_once_start), slowest = 0.0;
+    MPI_Allreduce(&mine_at_once, &slowest, 1, MPI_DOUBLE, MPI_MAX, comm);
+    if (rank == 0)
+      later_differ += copy.positions() != whole_x ? 1 : 0;
+    return slowest;
+  };
+  // A later split run, from the start on the same share: it must end as
+  // the first split run, bit for bit.
+  const std::vector<double> first_split_x = solver.positions();
+  const auto split_again = [&]()
+  {
+    DeformableSolver again(mine.mesh, {elastic}, std::vector<unsigned int>(held_zones, 0), settings,
+                           {base}, {}, &initial, &mine.share);
+    MPI_Barrier(comm);
+    const auto again_start = std::chrono::steady_clock::now();
+    for (unsigned long k = 0; k < steps; ++k)
+      again.step();
+    double mine_again = seconds_since(again_start), slowest = 0.0;
+    MPI_Allreduce(&mine_again, &slowest, 1, MPI_DOUBLE, MPI_MAX, comm);
+    unsigned long differing = again.positions() != first_split_x ? 1 : 0;
+    MPI_Allreduce(MPI_IN_PLACE, &differing, 1, MPI_UNSIGNED_LONG, MPI_SUM, comm);
+    later_differ += rank == 0 ? differing : 0;
+    return slowest;
+  };
+
   // The split run must be the whole run: own gridpoints' positions on rank 0.
   const std::vector<double> x = solver.positions();
   std::vector<double> state;
@@ -118,8 +172,17 @@ int main(int argc, char** argv)
   }
   const std::vector<double> all_state = rank_figures::gather_on_rank_0(state, comm);
 
-  double split_seconds = 0.0, memory = 0.0;
-  MPI_Reduce(&mine_seconds, &split_seconds, 1, MPI_DOUBLE, MPI_MAX, 0, comm);
+  double first_split_seconds = 0.0, memory = 0.0;
+  MPI_Allreduce(&mine_seconds, &first_split_seconds, 1, MPI_DOUBLE, MPI_MAX, comm);
+  std::vector<double> split_times{first_split_seconds}, at_once_times{whole_at_once()};
+  for (unsigned long r = 1; r < rounds; ++r)
+  {
+    whole_times.push_back(whole_alone());
+    split_times.push_back(split_again());
+    at_once_times.push_back(whole_at_once());
+  }
+  const double best_whole = *std::min_element(whole_times.begin(), whole_times.end());
+  const double split_seconds = *std::min_element(split_times.begin(), split_times.end());
   MPI_Allreduce(&memory_per_zone, &memory, 1, MPI_DOUBLE, MPI_MAX, comm);
   long held[2] = {long(held_zones), long(mine.mesh.n_gridpoints() - mine.share.n_owned)},
        held_all[2] = {0, 0};
@@ -140,10 +203,35 @@ int main(int argc, char** argv)
   std::printf("split run against the whole run: %lu of %lu gridpoints (%s) differ in position, "
               "bit for bit\n",
               differ, compared, compared == ng ? "all" : "NOT ALL");
-  std::printf("whole on one rank: %.3f s, %.3g zone-cycles/s\n", whole_seconds,
-              double(nz) * steps / whole_seconds);
-  std::printf("split on %d ranks: %.3f s, %.3g zone-cycles/s; speed-up %.2f\n", ranks,
-              split_seconds, double(nz) * steps / split_seconds, whole_seconds / split_seconds);
+  const double zone_steps = double(nz) * steps;
+  std::vector<double> speed_ups, ceilings, shares;
+  for (std::size_t r = 0; r < rounds; ++r)
+  {
+    speed_ups.push_back(whole_times[r] / split_times[r]);
+    ceilings.push_back(ranks * whole_times[r] / at_once_times[r]);
+    shares.push_back(speed_ups.back() / ceilings.back());
+    std::printf("round %zu: whole on one rank %.3f s (%.3g zone-cycles/s), split on %d ranks "
+                "%.3f s (%.3g); speed-up %.2f; the whole model on every rank at once %.3f s: "
+                "ceiling %.2f\n",
+                r + 1, whole_times[r], zone_steps / whole_times[r], ranks, split_times[r],
+                zone_steps / split_times[r], speed_ups.back(), at_once_times[r], ceilings.back());
+  }
+  const auto median = [](std::vector<double> v)
+  {
+    std::sort(v.begin(), v.end());
+    const std::size_t k = v.size();
+    return k == 0 ? 0.0 : k % 2 == 1 ? v[k / 2] : 0.5 * (v[k / 2 - 1] + v[k / 2]);
+  };
+  std::printf("speed-up: %.2f, the best whole run (%.3f s, %.3g zone-cycles/s) over the best "
+              "split run (%.3f s, %.3g); median of the %lu rounds %.2f\n",
+              best_whole / split_seconds, best_whole, zone_steps / best_whole, split_seconds,
+              zone_steps / split_seconds, rounds, median(speed_ups));
+  std::printf("ceiling (median of the rounds): %.2f; the speed-up over the ceiling (median of "
+              "the rounds): %.2f\n",
+              median(ceilings), median(shares));
+  std::printf("later runs (whole, split, at once) that did not end as the first of their kind, "
+              "bit for bit: %lu\n",
+              later_differ);
   const double ghost_gridpoints = double(held_all[1]);
   const double exchange_bytes = ghost_gridpoints * 6 * sizeof(double); // positions, velocities
   std::printf("zones held %.4f times the model's (the zones of the cuts on both sides); ghost "
@@ -167,7 +255,7 @@ int main(int argc, char** argv)
   // neighbours (latency each), with 2 reductions of log2 P latencies.
   if (ranks == 2)
   {
-    const double t_zone = whole_seconds / (double(nz) * steps);
+    const double t_zone = best_whole / (double(nz) * steps);
     const double depth = (double(held_all[0]) - nz) / (2.0 * 5.0 * n * n);
     const double ghost_depth = ghost_gridpoints / (2.0 * (n + 1.0) * (n + 1.0));
     std::printf("model inputs: %.3g s per zone-step (whole run); a cut adds %.2f cells of zones "
