@@ -66,7 +66,12 @@ int main(int argc, char** argv)
       argc > 3 ? whole_argument(argv[0], argv[3], "the rounds (third argument)", 1, 20) : 3;
 
   SolverSettings s;
+  // Every rank builds the whole block model (as talus's set-up does on
+  // ranks): its bytes per block, the rise of the resident memory.
+  const double resident_before_model = rank_figures::resident_bytes();
   BlockModel model = settling_cubes(n, steps, s);
+  const double model_bytes_per_block =
+      (rank_figures::resident_bytes() - resident_before_model) / double(model.n_blocks());
 
   // 1. Whole, on rank 0 alone.
   double serial_seconds = 0.0;
@@ -359,6 +364,8 @@ int main(int argc, char** argv)
     std::printf("memory per block held (rank 1: the rise of its peak resident memory with its "
                 "share, ghosts included): %.0f bytes\n",
                 memory_per_block);
+    std::printf("the whole block model every rank builds at set-up: %.0f bytes per block\n",
+                model_bytes_per_block);
 
     // The exchange model: P ranks, each a cube of m = N / P blocks of side
     // L = m^(1/3) (in block sizes). A rank holds (L + 2 g)^3 blocks (g

@@ -81,7 +81,10 @@ int main(int argc, char** argv)
   BlockModel blocks;
   blocks.add_block(ConvexPolyhedron::box(Vec3::Zero(), Vec3::Constant(side)), 0);
   MeshReport report;
+  const double resident_before_mesh = rank_figures::resident_bytes();
   const TetMesh mesh = mesh_blocks(blocks, {0}, side / n, report, ZoneElement::tet4);
+  const double mesh_bytes_per_zone =
+      (rank_figures::resident_bytes() - resident_before_mesh) / double(mesh.n_zones());
   const unsigned int nz = mesh.n_zones(), ng = mesh.n_gridpoints();
 
   // 1. Whole, on rank 0 alone; the first run's positions are kept for the
@@ -245,6 +248,8 @@ int main(int argc, char** argv)
     std::printf("memory per zone held (rank 1: the rise of its resident memory with its share "
                 "and its solver, ghosts included): %.0f bytes\n",
                 memory);
+  std::printf("the whole mesh every rank builds at set-up (TetMesh): %.0f bytes per zone\n",
+              mesh_bytes_per_zone);
 
   // The model: P ranks, each a cube of m = Z / P zones, L = (m / 5)^(1/3)
   // cells on a side. Zones held: 5 (L + 2 t)^3, with t the depth of the
