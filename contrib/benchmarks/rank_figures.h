@@ -8,6 +8,7 @@
 #include <malloc.h>
 #include <mpi.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cstddef>
 #include <cstdlib>
@@ -48,6 +49,28 @@ inline void wait_for_all(MPI_Comm comm)
     if (!done)
       std::this_thread::sleep_for(std::chrono::milliseconds(1));
   }
+}
+
+/// Runs `steps` steps of `solver` on every rank at once (from a barrier)
+/// and returns the slowest rank's time, s, on every rank. Collective.
+template <class Solver>
+double slowest_steps(Solver& solver, unsigned long steps, MPI_Comm comm)
+{
+  MPI_Barrier(comm);
+  const auto start = std::chrono::steady_clock::now();
+  for (unsigned long k = 0; k < steps; ++k)
+    solver.step();
+  double mine = seconds_since(start), slowest = 0.0;
+  MPI_Allreduce(&mine, &slowest, 1, MPI_DOUBLE, MPI_MAX, comm);
+  return slowest;
+}
+
+/// The median of `values` (0 when empty).
+inline double median(std::vector<double> values)
+{
+  std::sort(values.begin(), values.end());
+  const std::size_t k = values.size();
+  return k == 0 ? 0.0 : k % 2 == 1 ? values[k / 2] : 0.5 * (values[k / 2 - 1] + values[k / 2]);
 }
 
 /// Resident memory of this process now (bytes), after handing freed heap

@@ -171,12 +171,7 @@ int main(int argc, char** argv)
   {
     BlockModel copy = model;
     RigidSolver copy_solver(copy, 2650.0, s);
-    MPI_Barrier(comm);
-    const auto at_once_start = std::chrono::steady_clock::now();
-    for (unsigned long k = 0; k < steps; ++k)
-      copy_solver.step();
-    double mine_at_once = seconds_since(at_once_start), slowest = 0.0;
-    MPI_Allreduce(&mine_at_once, &slowest, 1, MPI_DOUBLE, MPI_MAX, comm);
+    const double slowest = rank_figures::slowest_steps(copy_solver, steps, comm);
     if (rank == 0)
       for (unsigned int b = 0; b < model.n_blocks(); ++b)
         at_once_differ += copy.centroid[b] != whole.centroid[b] ||
@@ -283,13 +278,7 @@ int main(int argc, char** argv)
       ceilings.push_back(ranks * whole_times[r] / at_once_times[r]);
       shares.push_back(speed_ups.back() / ceilings.back());
     }
-  const auto median = [](std::vector<double> v)
-  {
-    std::sort(v.begin(), v.end());
-    const std::size_t k = v.size();
-    return k == 0 ? 0.0 : k % 2 == 1 ? v[k / 2] : 0.5 * (v[k / 2 - 1] + v[k / 2]);
-  };
-  const double median_speed_up = median(speed_ups);
+  const double median_speed_up = rank_figures::median(speed_ups);
   std::fprintf(stderr, "rank %d: %u owned, %zu held, %.0f doubles sent per step, %.3f s\n", rank,
                mine.n_owned(), mine.local.size(), double(exchange.sent()), mine_seconds);
   long held = static_cast<long>(mine.local.size()), held_all = 0;
@@ -328,7 +317,7 @@ int main(int argc, char** argv)
                 block_steps / split_seconds, rounds, median_speed_up);
     std::printf("ceiling (median of the rounds): %.2f; the speed-up over the ceiling (median of "
                 "the rounds): %.2f\n",
-                median(ceilings), median(shares));
+                rank_figures::median(ceilings), rank_figures::median(shares));
     std::printf("split with the contacts across ranks computed on both sides (after round 1): "
                 "%.3f s, speed-up %.2f over the best whole run; the best split computed once "
                 "against it %.3f\n",

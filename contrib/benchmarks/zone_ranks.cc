@@ -136,12 +136,7 @@ int main(int argc, char** argv)
   {
     DeformableSolver copy(mesh, {elastic}, std::vector<unsigned int>(nz, 0), settings, {base}, {},
                           &initial);
-    MPI_Barrier(comm);
-    const auto at_once_start = std::chrono::steady_clock::now();
-    for (unsigned long k = 0; k < steps; ++k)
-      copy.step();
-    double mine_at_once = seconds_since(at_once_start), slowest = 0.0;
-    MPI_Allreduce(&mine_at_once, &slowest, 1, MPI_DOUBLE, MPI_MAX, comm);
+    const double slowest = rank_figures::slowest_steps(copy, steps, comm);
     if (rank == 0)
       later_differ += copy.positions() != whole_x ? 1 : 0;
     return slowest;
@@ -153,12 +148,7 @@ int main(int argc, char** argv)
   {
     DeformableSolver again(mine.mesh, {elastic}, std::vector<unsigned int>(held_zones, 0), settings,
                            {base}, {}, &initial, &mine.share);
-    MPI_Barrier(comm);
-    const auto again_start = std::chrono::steady_clock::now();
-    for (unsigned long k = 0; k < steps; ++k)
-      again.step();
-    double mine_again = seconds_since(again_start), slowest = 0.0;
-    MPI_Allreduce(&mine_again, &slowest, 1, MPI_DOUBLE, MPI_MAX, comm);
+    const double slowest = rank_figures::slowest_steps(again, steps, comm);
     unsigned long differing = again.positions() != first_split_x ? 1 : 0;
     MPI_Allreduce(MPI_IN_PLACE, &differing, 1, MPI_UNSIGNED_LONG, MPI_SUM, comm);
     later_differ += rank == 0 ? differing : 0;
@@ -219,19 +209,13 @@ int main(int argc, char** argv)
                 r + 1, whole_times[r], zone_steps / whole_times[r], ranks, split_times[r],
                 zone_steps / split_times[r], speed_ups.back(), at_once_times[r], ceilings.back());
   }
-  const auto median = [](std::vector<double> v)
-  {
-    std::sort(v.begin(), v.end());
-    const std::size_t k = v.size();
-    return k == 0 ? 0.0 : k % 2 == 1 ? v[k / 2] : 0.5 * (v[k / 2 - 1] + v[k / 2]);
-  };
   std::printf("speed-up: %.2f, the best whole run (%.3f s, %.3g zone-cycles/s) over the best "
               "split run (%.3f s, %.3g); median of the %lu rounds %.2f\n",
               best_whole / split_seconds, best_whole, zone_steps / best_whole, split_seconds,
-              zone_steps / split_seconds, rounds, median(speed_ups));
+              zone_steps / split_seconds, rounds, rank_figures::median(speed_ups));
   std::printf("ceiling (median of the rounds): %.2f; the speed-up over the ceiling (median of "
               "the rounds): %.2f\n",
-              median(ceilings), median(shares));
+              rank_figures::median(ceilings), rank_figures::median(shares));
   std::printf("later runs (whole, split, at once) that did not end as the first of their kind, "
               "bit for bit: %lu\n",
               later_differ);
