@@ -90,7 +90,7 @@ int main(int argc, char** argv)
   // 1. Whole, on rank 0 alone; the first run's positions are kept for the
   // comparisons, every later one must end there too.
   std::vector<double> whole_x;
-  unsigned long later_differ = 0; // gridpoints, over the later runs
+  unsigned long later_differ = 0; // later runs that did not end as the first of their kind
   const auto whole_alone = [&]()
   {
     double seconds = 0.0;
