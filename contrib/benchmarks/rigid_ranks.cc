@@ -39,7 +39,6 @@
 #include <cstring>
 #include <ctime>
 #include <fstream>
-#include <memory>
 #include <string>
 #include <vector>
 
@@ -73,27 +72,45 @@ int main(int argc, char** argv)
   const double model_bytes_per_block =
       (rank_figures::resident_bytes() - resident_before_model) / double(model.n_blocks());
 
-  // 1. Whole, on rank 0 alone.
-  double serial_seconds = 0.0;
-  // What the whole run ends with, kept for the comparisons; its model and
-  // solver are freed before the split.
+  // 1. Whole, on rank 0 alone. What the first whole run ends with is kept
+  // for the comparisons (its model and solver are freed before the split);
+  // every later whole run must end there too, bit for bit.
   struct EndState
   {
     std::vector<Vec3> centroid, velocity, spin;
     unsigned int subcontacts = 0;
   } whole;
-  if (rank == 0)
+  // Blocks of a whole run that do not end as the first whole run.
+  const auto differing_from_whole = [&](const BlockModel& m, const RigidSolver& solver)
   {
-    BlockModel whole_model = model;
-    auto whole_solver = std::make_unique<RigidSolver>(whole_model, 2650.0, s);
-    const auto start = std::chrono::steady_clock::now();
-    for (unsigned long k = 0; k < steps; ++k)
-      whole_solver->step();
-    serial_seconds = seconds_since(start);
-    whole = {whole_model.centroid, whole_solver->velocity, whole_solver->spin,
-             whole_solver->contacts().n_subcontacts()};
-  }
-  wait_for_all(comm);
+    unsigned long differing = 0;
+    for (unsigned int b = 0; b < m.n_blocks(); ++b)
+      differing += m.centroid[b] != whole.centroid[b] || solver.velocity[b] != whole.velocity[b] ||
+                   solver.spin[b] != whole.spin[b];
+    return differing;
+  };
+  unsigned long rounds_differ = 0; // blocks, over the further rounds, whole and split
+  const auto whole_alone = [&]()
+  {
+    double seconds = 0.0;
+    if (rank == 0)
+    {
+      BlockModel whole_model = model;
+      RigidSolver whole_solver(whole_model, 2650.0, s);
+      const auto start = std::chrono::steady_clock::now();
+      for (unsigned long k = 0; k < steps; ++k)
+        whole_solver.step();
+      seconds = seconds_since(start);
+      if (whole.centroid.empty())
+        whole = {whole_model.centroid, whole_solver.velocity, whole_solver.spin,
+                 whole_solver.contacts().n_subcontacts()};
+      else
+        rounds_differ += differing_from_whole(whole_model, whole_solver);
+    }
+    wait_for_all(comm);
+    return seconds;
+  };
+  std::vector<double> whole_times{whole_alone()};
 
   // 2. Split among the ranks.
   Box domain{Vec3::Zero(), Vec3(n, n, n + 1)};
@@ -173,10 +190,7 @@ int main(int argc, char** argv)
     RigidSolver copy_solver(copy, 2650.0, s);
     const double slowest = rank_figures::slowest_steps(copy_solver, steps, comm);
     if (rank == 0)
-      for (unsigned int b = 0; b < model.n_blocks(); ++b)
-        at_once_differ += copy.centroid[b] != whole.centroid[b] ||
-                          copy_solver.velocity[b] != whole.velocity[b] ||
-                          copy_solver.spin[b] != whole.spin[b];
+      at_once_differ += differing_from_whole(copy, copy_solver);
     return slowest;
   };
   std::vector<double> at_once_times{whole_at_once()};
@@ -219,24 +233,10 @@ int main(int argc, char** argv)
 
   // 4. The further rounds: whole again on rank 0 (which must end where the
   // first whole run did, bit for bit), then split again, computed once.
-  std::vector<double> whole_times{serial_seconds}, split_times;
-  unsigned long rounds_differ = 0; // blocks, over the further rounds, whole and split
+  std::vector<double> split_times;
   for (unsigned long r = 1; r < rounds; ++r)
   {
-    if (rank == 0)
-    {
-      BlockModel again = model;
-      RigidSolver again_solver(again, 2650.0, s);
-      const auto again_start = std::chrono::steady_clock::now();
-      for (unsigned long k = 0; k < steps; ++k)
-        again_solver.step();
-      whole_times.push_back(seconds_since(again_start));
-      for (unsigned int b = 0; b < model.n_blocks(); ++b)
-        rounds_differ += again.centroid[b] != whole.centroid[b] ||
-                         again_solver.velocity[b] != whole.velocity[b] ||
-                         again_solver.spin[b] != whole.spin[b];
-    }
-    wait_for_all(comm);
+    whole_times.push_back(whole_alone());
     double seconds = 0.0;
     unsigned long differing = 0;
     split_again(true, seconds, differing);
