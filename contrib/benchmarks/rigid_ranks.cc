@@ -79,6 +79,7 @@ int main(int argc, char** argv)
   {
     std::vector<Vec3> centroid, velocity, spin;
     unsigned int subcontacts = 0;
+    unsigned long planes = 0; ///< common planes computed in the steps
   } whole;
   // Blocks of a whole run that do not end as the first whole run.
   const auto differing_from_whole = [&](const BlockModel& m, const RigidSolver& solver)
@@ -97,13 +98,15 @@ int main(int argc, char** argv)
     {
       BlockModel whole_model = model;
       RigidSolver whole_solver(whole_model, 2650.0, s);
+      const unsigned long planes_before = whole_solver.contacts().planes_computed();
       const auto start = std::chrono::steady_clock::now();
       for (unsigned long k = 0; k < steps; ++k)
         whole_solver.step();
       seconds = seconds_since(start);
       if (whole.centroid.empty())
         whole = {whole_model.centroid, whole_solver.velocity, whole_solver.spin,
-                 whole_solver.contacts().n_subcontacts()};
+                 whole_solver.contacts().n_subcontacts(),
+                 whole_solver.contacts().planes_computed() - planes_before};
       else
         rounds_differ += differing_from_whole(whole_model, whole_solver);
     }
@@ -132,6 +135,7 @@ int main(int argc, char** argv)
   SubContactExchange shared(mine, comm);
   solver.share_subcontacts(&shared);
   BlockMigration migration(solver, mine, partition, reach, layers, comm);
+  const unsigned long planes_before = solver.contacts().planes_computed();
   MPI_Barrier(comm);
   const auto start = std::chrono::steady_clock::now();
   double exchange_seconds = 0.0; // in GhostExchange::refresh, this rank
@@ -145,6 +149,8 @@ int main(int argc, char** argv)
   }
   const double mine_seconds = seconds_since(start);
   const std::size_t subcontacts_sent = shared.sent(), subcontacts_taken = shared.received();
+  unsigned long planes = solver.contacts().planes_computed() - planes_before, planes_all = 0;
+  MPI_Reduce(&planes, &planes_all, 1, MPI_UNSIGNED_LONG, MPI_SUM, 0, comm);
 
   // The split run must be the whole run: every owned block's centroid,
   // velocity and spin, gathered on rank 0 and compared bit for bit (this
@@ -195,7 +201,8 @@ int main(int argc, char** argv)
   };
   std::vector<double> at_once_times{whole_at_once()};
 
-  const auto split_again = [&](bool once, double& seconds, unsigned long& differing)
+  const auto split_again =
+      [&](bool once, double& seconds, unsigned long& differing, unsigned long& planes_again)
   {
     RankBlocks mine_again =
         decompose_blocks(model, partition, static_cast<unsigned int>(rank), reach, layers);
@@ -207,6 +214,7 @@ int main(int argc, char** argv)
     if (once)
       again.share_subcontacts(&shared_again);
     BlockMigration migration_again(again, mine_again, partition, reach, layers, comm);
+    const unsigned long planes_at_start = again.contacts().planes_computed();
     MPI_Barrier(comm);
     const auto again_start = std::chrono::steady_clock::now();
     for (unsigned long k = 0; k < steps; ++k)
@@ -217,6 +225,8 @@ int main(int argc, char** argv)
     }
     const double again_seconds = seconds_since(again_start);
     MPI_Reduce(&again_seconds, &seconds, 1, MPI_DOUBLE, MPI_MAX, 0, comm);
+    const unsigned long planes_here = again.contacts().planes_computed() - planes_at_start;
+    MPI_Reduce(&planes_here, &planes_again, 1, MPI_UNSIGNED_LONG, MPI_SUM, 0, comm);
     differing = 0;
     if (mine_again.local == mine.local)
       for (std::size_t i = 0; i < mine.local.size(); ++i)
@@ -228,8 +238,8 @@ int main(int argc, char** argv)
     MPI_Allreduce(MPI_IN_PLACE, &differing, 1, MPI_UNSIGNED_LONG, MPI_SUM, comm);
   };
   double both_sides_seconds = 0.0;
-  unsigned long both_differ = 0;
-  split_again(false, both_sides_seconds, both_differ);
+  unsigned long both_differ = 0, both_planes = 0;
+  split_again(false, both_sides_seconds, both_differ, both_planes);
 
   // 4. The further rounds: whole again on rank 0 (which must end where the
   // first whole run did, bit for bit), then split again, computed once.
@@ -238,8 +248,8 @@ int main(int argc, char** argv)
   {
     whole_times.push_back(whole_alone());
     double seconds = 0.0;
-    unsigned long differing = 0;
-    split_again(true, seconds, differing);
+    unsigned long differing = 0, planes_again = 0;
+    split_again(true, seconds, differing, planes_again);
     split_times.push_back(seconds);
     rounds_differ += differing;
     at_once_times.push_back(whole_at_once());
@@ -333,6 +343,10 @@ int main(int argc, char** argv)
                 held_subcontacts_all - taken_all, held_subcontacts_all, taken_all,
                 whole.subcontacts, double(held_subcontacts_all - taken_all) / whole.subcontacts,
                 double(held_subcontacts_all) / whole.subcontacts);
+    std::printf("common planes computed in the steps: %lu on all ranks, %lu on one rank: %.4f "
+                "times one rank's work (computed on both sides: %.4f)\n",
+                planes_all, whole.planes, double(planes_all) / whole.planes,
+                double(both_planes) / whole.planes);
     std::printf("blocks held %.3f times the model (ghosts); exchange %.0f bytes per step in "
                 "all (%.0f of them sub-contacts' state, %lu sub-contacts taken), %.0f bytes "
                 "per block-step\n",

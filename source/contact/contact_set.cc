@@ -176,6 +176,7 @@ void ContactSet::try_create(unsigned int a, unsigned int b, const BlockModel& m,
   const bool near = separating_axis_start(m, a, b, cp);
   CommonPlaneSettings cps = settings.common_plane;
   cps.contact_tolerance = settings.tolerance;
+  ++planes_computed_;
   const CommonPlaneResult r = update_common_plane(
       cp, &m.vertex[m.vertex_start[a]], m.vertex_start[a + 1] - m.vertex_start[a],
       &m.vertex[m.vertex_start[b]], m.vertex_start[b + 1] - m.vertex_start[b], cps, !near);
@@ -220,7 +221,8 @@ void ContactSet::remove(unsigned int c)
   alive[c] = 0;
   free_.push_back(c);
   --n_alive_;
-  pair_order_stale_ = true;
+  // The order stays sorted with the slot dead in it: every reader skips
+  // dead slots, and a slot is only reused by a new contact, which sorts.
 }
 
 void ContactSet::sort_by_pair()
@@ -311,8 +313,20 @@ void ContactSet::drop_contacts_among(const std::vector<char>& among)
   }
 }
 
+unsigned int ContactSet::append_slot(std::uint64_t key)
+{
+  const unsigned int c = n_slots();
+  block_a.push_back(static_cast<unsigned int>(key >> 32));
+  block_b.push_back(static_cast<unsigned int>(key & 0xffffffffu));
+  alive.push_back(1);
+  slot_of_pair_[key] = c;
+  ++n_alive_;
+  pair_order_stale_ = true;
+  return c;
+}
+
 void ContactSet::update(const BlockModel& m, const ContactSettings& settings,
-                        const std::vector<double>* path)
+                        const std::vector<double>* path, const std::vector<char>* elsewhere)
 {
   // Keep the previous sub-contacts for carry-over.
   old_start_.assign(n_slots(), 0);
@@ -358,14 +372,16 @@ void ContactSet::update(const BlockModel& m, const ContactSettings& settings,
 
   CommonPlaneSettings cps = settings.common_plane;
   cps.contact_tolerance = settings.tolerance;
-  // In block-pair order (sort_by_pair); a removal below only marks the
-  // order stale, so the loop may read it.
+  // In block-pair order (sort_by_pair); a removal below leaves the slot
+  // dead in it.
   sort_by_pair();
   for (const unsigned int c : pair_order_)
   {
     if (!alive[c])
       continue;
     const unsigned int a = block_a[c], b = block_b[c];
+    if (elsewhere != nullptr && (*elsewhere)[a])
+      continue;
     if (path != nullptr)
     {
       const double travelled = (*path)[a] + (*path)[b];
@@ -404,6 +420,7 @@ void ContactSet::update(const BlockModel& m, const ContactSettings& settings,
       }
       path_at_update[c] = travelled;
     }
+    ++planes_computed_;
     const CommonPlaneResult r = update_common_plane(
         plane[c], &m.vertex[m.vertex_start[a]], m.vertex_start[a + 1] - m.vertex_start[a],
         &m.vertex[m.vertex_start[b]], m.vertex_start[b + 1] - m.vertex_start[b], cps, false);

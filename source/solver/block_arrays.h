@@ -11,21 +11,12 @@
 #include <talus/zone/gridpoint_share.h>
 
 #include <cstring>
+#include <stdexcept>
+#include <unordered_map>
 #include <vector>
 
 namespace talus
 {
-
-inline unsigned int BlockMigration::append_contact_slot(ContactSet& laid, std::uint64_t key)
-{
-  const unsigned int c = laid.n_slots();
-  laid.block_a.push_back(static_cast<unsigned int>(key >> 32));
-  laid.block_b.push_back(static_cast<unsigned int>(key & 0xffffffffu));
-  laid.alive.push_back(1);
-  laid.slot_of_pair_[key] = c;
-  ++laid.n_alive_;
-  return c;
-}
 
 namespace block_records
 {
@@ -181,6 +172,68 @@ void get_contact(Reader& in, ContactSet& laid, unsigned int c, bool dilation, bo
       for (unsigned int y = 0; y < yield_state_size; ++y)
         laid.sc_yield.push_back(in.get<double>());
     get_nodes(in);
+  }
+}
+
+/// Appends contact `old` of `cs`, with its sub-contacts [begin, end), to
+/// `laid` as slot c (ContactSet::append_slot): every value as it is, but
+/// each gridpoint of its sub-contacts (if they have them: `nodes`) renamed
+/// by `node_now(node)`.
+template <typename NodeNow>
+void copy_contact(ContactSet& laid, unsigned int c, const ContactSet& cs, unsigned int old,
+                  unsigned int begin, unsigned int end, bool dilation, bool yielding, bool nodes,
+                  NodeNow&& node_now)
+{
+  laid.plane.push_back(cs.plane[old]);
+  laid.gap.push_back(cs.gap[old]);
+  laid.type.push_back(cs.type[old]);
+  laid.material.push_back(cs.material[old]);
+  laid.path_at_update.push_back(cs.path_at_update[old]);
+  for (unsigned int k = begin; k < end; ++k)
+  {
+    laid.sc_contact.push_back(c);
+    laid.sc_position.push_back(cs.sc_position[k]);
+    laid.sc_area.push_back(cs.sc_area[k]);
+    laid.sc_un.push_back(cs.sc_un[k]);
+    laid.sc_fn.push_back(cs.sc_fn[k]);
+    laid.sc_fs.insert(laid.sc_fs.end(), &cs.sc_fs[3 * k], &cs.sc_fs[3 * k] + 3);
+    laid.sc_us.insert(laid.sc_us.end(), &cs.sc_us[3 * k], &cs.sc_us[3 * k] + 3);
+    laid.sc_state.push_back(cs.sc_state[k]);
+    laid.sc_material.push_back(cs.sc_material[k]);
+    laid.sc_fresh.push_back(cs.sc_fresh[k]);
+    if (dilation)
+      laid.sc_dilation.push_back(cs.sc_dilation[k]);
+    if (yielding)
+      laid.sc_yield.insert(laid.sc_yield.end(), &cs.sc_yield[yield_state_size * k],
+                           &cs.sc_yield[yield_state_size * k] + yield_state_size);
+    if (nodes)
+    {
+      for (unsigned int n = 6 * k; n < 6 * k + 6; ++n)
+        laid.sc_node.push_back(node_now(cs.sc_node[n]));
+      laid.sc_weight.insert(laid.sc_weight.end(), &cs.sc_weight[6 * k], &cs.sc_weight[6 * k] + 6);
+    }
+  }
+}
+
+/// Reads one sub-contact's gridpoints (put_subcontact_nodes: by their
+/// numbers in the whole mesh) into `laid`, each by the local number `held`
+/// gives it; throws std::logic_error(`missing`) for one not held here.
+inline void get_nodes_held(Reader& from, ContactSet& laid,
+                           const std::unordered_map<unsigned int, int>& held, const char* missing)
+{
+  for (int n = 0; n < 6; ++n)
+  {
+    const int whole = from.get<int>();
+    int node = -1;
+    if (whole >= 0)
+    {
+      const auto it = held.find(static_cast<unsigned int>(whole));
+      if (it == held.end())
+        throw std::logic_error(missing);
+      node = it->second;
+    }
+    laid.sc_node.push_back(node);
+    laid.sc_weight.push_back(from.get<double>());
   }
 }
 

@@ -572,66 +572,22 @@ bool BlockMigration::migrate(RigidSolver& s, RankBlocks& blocks, bool may_refuse
       kept.emplace_back(pair_key(new_of[cs.block_a[c]], new_of[cs.block_b[c]]), c);
   std::sort(received_contacts.begin(), received_contacts.end());
   ContactSet laid;
-  const auto add_contact = [&](std::uint64_t key) { return append_contact_slot(laid, key); };
   const auto add_kept = [&](std::uint64_t key, unsigned int old)
   {
-    const unsigned int c = add_contact(key);
-    laid.plane.push_back(cs.plane[old]);
-    laid.gap.push_back(cs.gap[old]);
-    laid.type.push_back(cs.type[old]);
-    laid.material.push_back(cs.material[old]);
-    laid.path_at_update.push_back(cs.path_at_update[old]);
-    for (unsigned int k = sc_begin[old]; k < sc_end[old]; ++k)
-    {
-      laid.sc_contact.push_back(c);
-      laid.sc_position.push_back(cs.sc_position[k]);
-      laid.sc_area.push_back(cs.sc_area[k]);
-      laid.sc_un.push_back(cs.sc_un[k]);
-      laid.sc_fn.push_back(cs.sc_fn[k]);
-      laid.sc_fs.insert(laid.sc_fs.end(), &cs.sc_fs[3 * k], &cs.sc_fs[3 * k] + 3);
-      laid.sc_us.insert(laid.sc_us.end(), &cs.sc_us[3 * k], &cs.sc_us[3 * k] + 3);
-      laid.sc_state.push_back(cs.sc_state[k]);
-      laid.sc_material.push_back(cs.sc_material[k]);
-      laid.sc_fresh.push_back(cs.sc_fresh[k]);
-      if (dilation)
-        laid.sc_dilation.push_back(cs.sc_dilation[k]);
-      if (yielding)
-        laid.sc_yield.insert(laid.sc_yield.end(), &cs.sc_yield[yield_state_size * k],
-                             &cs.sc_yield[yield_state_size * k] + yield_state_size);
-      if (nodes)
-      {
-        for (unsigned int n = 6 * k; n < 6 * k + 6; ++n)
-          laid.sc_node.push_back(node_now(cs.sc_node[n]));
-        laid.sc_weight.insert(laid.sc_weight.end(), &cs.sc_weight[6 * k], &cs.sc_weight[6 * k] + 6);
-      }
-    }
+    block_records::copy_contact(laid, laid.append_slot(key), cs, old, sc_begin[old], sc_end[old],
+                                dilation, yielding, nodes, node_now);
   };
   const auto add_received = [&](std::uint64_t key, const char* record)
   {
     Reader in{record + 2 * sizeof(unsigned int)};
-    const unsigned int c = add_contact(key);
-    block_records::get_contact(
-        in, laid, c, dilation, yielding,
-        [&](Reader& from)
-        {
-          if (!nodes)
-            return;
-          for (int n = 0; n < 6; ++n)
-          {
-            const int whole = from.get<int>();
-            int node = -1;
-            if (whole >= 0)
-            {
-              const auto& held = zones_move ? next_gridpoint : local_gridpoint;
-              const auto it = held.find(static_cast<unsigned int>(whole));
-              if (it == held.end())
-                throw std::logic_error("BlockMigration: a contact's gridpoint is not held here");
-              node = it->second;
-            }
-            laid.sc_node.push_back(node);
-            laid.sc_weight.push_back(from.get<double>());
-          }
-        });
+    block_records::get_contact(in, laid, laid.append_slot(key), dilation, yielding,
+                               [&](Reader& from)
+                               {
+                                 if (nodes)
+                                   block_records::get_nodes_held(
+                                       from, laid, zones_move ? next_gridpoint : local_gridpoint,
+                                       "BlockMigration: a contact's gridpoint is not held here");
+                               });
   };
   for (std::size_t k = 0, r = 0; k < kept.size() || r < received_contacts.size();)
     if (r == received_contacts.size() ||
@@ -647,6 +603,7 @@ bool BlockMigration::migrate(RigidSolver& s, RankBlocks& blocks, bool may_refuse
     }
   laid.is_deformable_ = cs.is_deformable_; // rigid only: none
   laid.vertex_gridpoint_ = cs.vertex_gridpoint_;
+  laid.planes_computed_ = cs.planes_computed_;
   cs = std::move(laid);
 
   // 7. The rest of the solver: ghosts, the cell space on the blocks held

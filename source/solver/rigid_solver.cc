@@ -349,7 +349,7 @@ void RigidSolver::remove_blocks(const std::vector<unsigned int>& blocks)
     applied_force[b] = applied_force_rate[b] = Vec3::Zero();
   }
   contacts_.remove_contacts_of(removed_);
-  contacts_.update(m_, s_.contact, &path);
+  update_contacts(s_.contact, &path);
   subcontacts_stale_ = true;
   if (zones_ != nullptr)
   {
@@ -705,10 +705,26 @@ void RigidSolver::detect_contacts(bool everything)
   }
   cells_.map(envelopes_);
   cells_.candidate_pairs(envelopes_, everything ? std::vector<char>() : flagged, pairs_);
-  // Split among ranks, two ghosts' contact is their owners' work alone.
+  // Split among ranks, two ghosts' contact is their owners' work alone;
+  // with contacts from owners, so is any of a ghost first block.
+  const bool from_owners = contacts_from_owners();
   for (const auto& [a, b] : pairs_)
-    if (!(fixed[a] && fixed[b]) && !removed_[a] && !removed_[b] && !(is_ghost(a) && is_ghost(b)))
+    if (!(fixed[a] && fixed[b]) && !removed_[a] && !removed_[b] &&
+        !(is_ghost(a) && (is_ghost(b) || from_owners)))
       contacts_.try_create(a, b, m_, s_.contact);
+}
+
+void RigidSolver::update_contacts(const ContactSettings& settings, const std::vector<double>* path)
+{
+  if (!contacts_from_owners())
+  {
+    contacts_.update(m_, settings, path);
+    return;
+  }
+  contacts_.update(m_, settings, path, &ghost_);
+  subcontact_exchange_->share_layout(contacts_, settings.dilation, settings.yielding,
+                                     zones_ != nullptr ? zones_->share() : nullptr);
+  subcontacts_stale_ = true;
 }
 
 void RigidSolver::contact_forces()
@@ -1200,7 +1216,7 @@ void RigidSolver::step()
     timing_.seconds_detection += seconds_since(t0);
     t0 = std::chrono::steady_clock::now();
     if (any(periodic || contacts_.n_contacts() > before))
-      contacts_.update(m_, s_.contact, &path);
+      update_contacts(s_.contact, &path);
     timing_.seconds_planes += seconds_since(t0);
     t0 = std::chrono::steady_clock::now();
   }

@@ -9,13 +9,19 @@
 #include <sstream>
 #include <stdexcept>
 #include <string>
+#include <unordered_map>
 
 namespace talus
 {
 
 namespace
 {
-constexpr int header_tag = 2402, state_tag = 2403;
+constexpr int header_tag = 2402, state_tag = 2403, layout_tag = 2404;
+
+std::uint64_t pair_key(unsigned int a, unsigned int b)
+{
+  return (static_cast<std::uint64_t>(a) << 32) | b;
+}
 
 /// Doubles per sub-contact in a swap: position (3), normal displacement,
 /// normal force, shear force (3), shear displacement (3), state; then the
@@ -34,17 +40,18 @@ void wait_all(std::vector<MPI_Request>& requests)
 }
 } // namespace
 
-void SubContactExchange::match(const ContactSet& cs)
+std::vector<unsigned int> SubContactExchange::owners() const
 {
-  const std::size_t n_local = blocks_.local.size();
-  std::vector<unsigned int> owner(n_local, blocks_.rank);
+  std::vector<unsigned int> owner(blocks_.local.size(), blocks_.rank);
   for (const auto& [from, ghosts] : blocks_.receive)
     for (unsigned int i : ghosts)
       owner[i] = from;
-  const auto ghost = [&](unsigned int b) { return blocks_.owned[b] == 0; };
+  return owner;
+}
 
-  // Every rank that sends ghosts here or takes ghosts from here: the
-  // relation is symmetric, so both sides of each pair expect a message.
+std::vector<unsigned int> SubContactExchange::neighbour_ranks() const
+{
+  // The relation is symmetric: both sides of each pair expect a message.
   std::vector<unsigned int> ranks;
   for (const auto& [to, mine] : blocks_.send)
     ranks.push_back(to);
@@ -52,6 +59,16 @@ void SubContactExchange::match(const ContactSet& cs)
     ranks.push_back(from);
   std::sort(ranks.begin(), ranks.end());
   ranks.erase(std::unique(ranks.begin(), ranks.end()), ranks.end());
+  return ranks;
+}
+
+void SubContactExchange::match(const ContactSet& cs)
+{
+  const std::vector<unsigned int> owner = owners();
+  const auto ghost = [&](unsigned int b) { return blocks_.owned[b] == 0; };
+
+  // Every rank that sends ghosts here or takes ghosts from here.
+  const std::vector<unsigned int> ranks = neighbour_ranks();
   neighbours_.assign(ranks.size(), Neighbour{});
   for (std::size_t k = 0; k < ranks.size(); ++k)
     neighbours_[k].rank = ranks[k];
@@ -128,6 +145,138 @@ void SubContactExchange::match(const ContactSet& cs)
   wait_all(requests);
   if (!disagreement.empty())
     throw std::logic_error("SubContactExchange: " + disagreement);
+}
+
+void SubContactExchange::share_layout(ContactSet& cs, bool dilation, bool yielding,
+                                      const GridpointShare* gridpoints)
+{
+  using block_records::Bytes;
+  using block_records::Reader;
+  const bool nodes = cs.has_deformable();
+  if (nodes && gridpoints == nullptr)
+    throw std::logic_error("SubContactExchange: sub-contacts with gridpoints, zones not split");
+  const std::vector<unsigned int> owner = owners();
+  const auto ghost = [&](unsigned int b) { return blocks_.owned[b] == 0; };
+  // Only the neighbours talk (a rank without ghosts has none).
+  const std::vector<unsigned int> ranks = neighbour_ranks();
+  const auto slot_of = [&](unsigned int rank)
+  { return std::size_t(std::lower_bound(ranks.begin(), ranks.end(), rank) - ranks.begin()); };
+  std::vector<unsigned int> begin, end;
+  block_records::subcontact_ranges(cs, begin, end);
+  cs.sort_by_pair(); // no work after update(), which only removes
+
+  // The contacts this rank computed for the owner of their second block,
+  // blocks by global number, in pair order.
+  std::vector<Bytes> out(ranks.size());
+  for (const unsigned int c : cs.pair_order_)
+  {
+    const unsigned int a = cs.block_a[c], b = cs.block_b[c];
+    if (!cs.alive[c] || ghost(a) || !ghost(b))
+      continue;
+    block_records::put_contact(out[slot_of(owner[b])], cs, c, blocks_.local[a], blocks_.local[b],
+                               begin[c], end[c], dilation, yielding,
+                               [&](Bytes& to, unsigned int k)
+                               {
+                                 if (nodes)
+                                   block_records::put_subcontact_nodes(to, cs, k, *gridpoints);
+                               });
+  }
+  std::vector<MPI_Request> requests(ranks.size());
+  for (std::size_t k = 0; k < ranks.size(); ++k)
+    MPI_Isend(out[k].data.data(), static_cast<int>(out[k].data.size()), MPI_CHAR,
+              static_cast<int>(ranks[k]), layout_tag, comm_, &requests[k]);
+  std::vector<std::vector<char>> got(ranks.size());
+  for (std::size_t k = 0; k < ranks.size(); ++k)
+  {
+    MPI_Status status;
+    MPI_Probe(static_cast<int>(ranks[k]), layout_tag, comm_, &status);
+    int count = 0;
+    MPI_Get_count(&status, MPI_CHAR, &count);
+    got[k].resize(static_cast<std::size_t>(count));
+    MPI_Recv(got[k].data(), count, MPI_CHAR, static_cast<int>(ranks[k]), layout_tag, comm_,
+             MPI_STATUS_IGNORE);
+  }
+  wait_all(requests);
+
+  // What arrived, by local pair, in pair order.
+  const auto local_of = [&](unsigned int g)
+  {
+    const auto it = std::lower_bound(blocks_.local.begin(), blocks_.local.end(), g);
+    return it != blocks_.local.end() && *it == g ? static_cast<long>(it - blocks_.local.begin())
+                                                 : -1l;
+  };
+  std::vector<std::pair<std::uint64_t, const char*>> taken;
+  for (std::size_t k = 0; k < ranks.size(); ++k)
+  {
+    const unsigned int r = ranks[k];
+    Reader in{got[k].data()};
+    const char* const stop = got[k].data() + got[k].size();
+    while (in.at < stop)
+    {
+      const char* record = in.at;
+      const unsigned int ga = in.get<unsigned int>(), gb = in.get<unsigned int>();
+      in.at += block_records::contact_head_size - sizeof(unsigned int);
+      const unsigned int n_sc = in.get<unsigned int>();
+      in.at += n_sc * block_records::subcontact_size(dilation, yielding, nodes);
+      const long a = local_of(ga), b = local_of(gb);
+      if (a < 0 || b < 0 || !ghost(static_cast<unsigned int>(a)) ||
+          ghost(static_cast<unsigned int>(b)) || owner[std::size_t(a)] != r)
+        throw std::logic_error("SubContactExchange: rank " + std::to_string(r) +
+                               " sent a contact of blocks " + std::to_string(ga) + " and " +
+                               std::to_string(gb) + " that rank " + std::to_string(blocks_.rank) +
+                               " does not hold as its ghost and its own");
+      taken.emplace_back(pair_key(unsigned(a), unsigned(b)), record);
+    }
+  }
+  std::sort(taken.begin(), taken.end());
+  contacts_taken_ = taken.size();
+
+  // Both in pair order, slots in that order: this rank's own contacts as
+  // they are, those of a ghost first block as their owner sent them.
+  std::unordered_map<unsigned int, int> held;
+  if (nodes)
+    for (std::size_t i = 0; i < gridpoints->whole_gridpoint.size(); ++i)
+      held[gridpoints->whole_gridpoint[i]] = static_cast<int>(i);
+  ContactSet laid;
+  const auto keep = [&](unsigned int c)
+  {
+    block_records::copy_contact(laid, laid.append_slot(pair_key(cs.block_a[c], cs.block_b[c])), cs,
+                                c, begin[c], end[c], dilation, yielding, nodes,
+                                [](int node) { return node; });
+  };
+  const auto take = [&](std::uint64_t key, const char* record)
+  {
+    Reader in{record + 2 * sizeof(unsigned int)};
+    block_records::get_contact(in, laid, laid.append_slot(key), dilation, yielding,
+                               [&](Reader& from)
+                               {
+                                 if (nodes)
+                                   block_records::get_nodes_held(
+                                       from, laid, held,
+                                       "SubContactExchange: a contact's gridpoint is not held "
+                                       "on the rank that takes it");
+                               });
+  };
+  std::size_t r = 0;
+  for (const unsigned int c : cs.pair_order_)
+  {
+    if (!cs.alive[c] || ghost(cs.block_a[c]))
+      continue;
+    const std::uint64_t key = pair_key(cs.block_a[c], cs.block_b[c]);
+    for (; r < taken.size() && taken[r].first < key; ++r)
+      take(taken[r].first, taken[r].second);
+    keep(c);
+  }
+  for (; r < taken.size(); ++r)
+    take(taken[r].first, taken[r].second);
+  laid.is_deformable_ = cs.is_deformable_;
+  laid.vertex_gridpoint_ = cs.vertex_gridpoint_;
+  laid.pair_order_.resize(laid.n_slots());
+  for (unsigned int c = 0; c < laid.n_slots(); ++c)
+    laid.pair_order_[c] = c;
+  laid.pair_order_stale_ = false;
+  laid.planes_computed_ = cs.planes_computed_;
+  cs = std::move(laid);
 }
 
 void SubContactExchange::start(const ContactSet& cs, const std::vector<double>* velocity)

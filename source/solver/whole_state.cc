@@ -174,7 +174,7 @@ void BlockMigration::gather_whole(const RigidSolver& split, const RankBlocks& bl
   ContactSet laid;
   for (const auto& [key, record_at] : contacts)
   {
-    const unsigned int c = append_contact_slot(laid, key);
+    const unsigned int c = laid.append_slot(key);
     Reader in{record_at + 2 * sizeof(unsigned int)};
     block_records::get_contact(in, laid, c, dilation, yielding,
                                [&](Reader& from)

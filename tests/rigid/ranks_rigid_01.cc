@@ -6,7 +6,11 @@
 // which searches and updates contacts when any rank must. After 1,500
 // dynamic or static steps each owned block's vertices, velocity and spin must equal the
 // serial run's bit for bit: the contacts of an owned block are all held
-// and summed in the serial order (ContactSet's order by block pair).
+// and summed in the serial order (ContactSet's order by block pair). Each
+// contact is computed once: the common planes the ranks compute over the
+// steps add up to the serial run's, a contact across ranks being found,
+// updated and laid out by the owner of its first block alone and taken by
+// the other rank (SubContactExchange::share_layout).
 //
 // The scene: a slab 24 m x 4 m x 3 m cut by three orthogonal joint sets at
 // 1 m and an oblique one (slivers, blocks of different sizes), its bottom
@@ -123,17 +127,27 @@ void run_case(const Scene& scene, const BlockModel& model, const SolverSettings&
   GhostExchange exchange(mine, comm);
   SubContactExchange shared(mine, comm); // each contact across ranks computed once
   solver.share_subcontacts(&shared);
+  // Common planes computed from here on (the set-up computes those of the
+  // blocks each holds).
+  const unsigned long serial_planes = serial.contacts().planes_computed(),
+                      split_planes = solver.contacts().planes_computed();
 
   long taken = 0; // sub-contacts whose state came from another rank, summed over steps
+  long laid = 0;  // contacts laid out by another rank, summed over updates
   for (unsigned long s = 0; s < settings.steps; ++s)
   {
     serial.step();
     solver.step();
     taken += static_cast<long>(shared.received());
+    laid += static_cast<long>(shared.contacts_taken());
     exchange.refresh(solver);
   }
-  long taken_everywhere = 0;
+  long taken_everywhere = 0, laid_everywhere = 0, planes_everywhere = 0;
   MPI_Allreduce(&taken, &taken_everywhere, 1, MPI_LONG, MPI_SUM, comm);
+  MPI_Allreduce(&laid, &laid_everywhere, 1, MPI_LONG, MPI_SUM, comm);
+  const long my_planes = static_cast<long>(solver.contacts().planes_computed() - split_planes);
+  MPI_Allreduce(&my_planes, &planes_everywhere, 1, MPI_LONG, MPI_SUM, comm);
+  const long planes_serial = static_cast<long>(serial.contacts().planes_computed() - serial_planes);
   const double serial_ratio = serial.unbalanced_ratio(), split_ratio = solver.unbalanced_ratio();
   const bool same_step = serial.dt() == solver.dt();
 
@@ -171,6 +185,12 @@ void run_case(const Scene& scene, const BlockModel& model, const SolverSettings&
                 talus_test::verdict(total[3] == 0));
     std::printf("  contacts across ranks computed by one rank, the other taking their state %s\n",
                 talus_test::verdict(taken_everywhere > 0));
+    std::printf("  contacts across ranks laid out by one rank, the other taking them %s\n",
+                talus_test::verdict(laid_everywhere > 0));
+    std::printf("  every common plane computed once: the ranks' add up to the serial run's %s\n",
+                talus_test::verdict(planes_everywhere == planes_serial));
+    std::fprintf(stderr, "common planes: %ld on the ranks, %ld serial\n", planes_everywhere,
+                 planes_serial);
     std::fprintf(stderr, "largest displacement %.3g m; %ld blocks differ\n", moved, total[1]);
   }
 }

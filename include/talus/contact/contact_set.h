@@ -70,8 +70,13 @@ public:
   /// tolerance) and rebuilds the sub-contacts of every contact whose blocks
   /// have moved: `path[b]` is the distance block b's vertices have travelled
   /// since the start (m, never reset). Without `path`, every contact.
+  /// A contact whose first block is marked in `elsewhere` (a ghost of a
+  /// model split among ranks) is another rank's work: it is left as it is,
+  /// without sub-contacts, for that rank's layout to replace
+  /// (SubContactExchange::share_layout).
   void update(const BlockModel& blocks, const ContactSettings& settings,
-              const std::vector<double>* path = nullptr);
+              const std::vector<double>* path = nullptr,
+              const std::vector<char>* elsewhere = nullptr);
 
   /// Deletes the contacts of the blocks with `gone[b]` (excavated); their
   /// sub-contacts go at the next update().
@@ -96,6 +101,9 @@ public:
   unsigned int n_contacts() const { return n_alive_; }
   unsigned int n_slots() const { return static_cast<unsigned int>(block_a.size()); }
   unsigned int n_subcontacts() const { return static_cast<unsigned int>(sc_contact.size()); }
+  /// Common planes computed by this set (a candidate pair's search, an
+  /// update's), since it was made: its share of the contact work.
+  unsigned long planes_computed() const { return planes_computed_; }
 
   // Contacts (slot-indexed; `alive` says which slots hold one).
   std::vector<unsigned int> block_a, block_b;
@@ -140,21 +148,31 @@ public:
   void save_state(CheckpointWriter& out) const;
   void load_state(CheckpointReader& in, unsigned int n_blocks);
 
+  /// Appends a live contact slot for the block pair `key` (a << 32 | b),
+  /// its plane, state and sub-contacts still to be appended by the caller:
+  /// how a set is laid out again from records, in pair order (blocks
+  /// changing rank, contacts computed on another rank). Returns the slot.
+  unsigned int append_slot(std::uint64_t key);
+
 private:
   /// Lays contacts out again when blocks move between ranks (block_migration.h).
   friend class BlockMigration;
+  /// Lays the contacts across ranks out as their first block's owner sent
+  /// them (SubContactExchange::share_layout).
+  friend class SubContactExchange;
   void remove(unsigned int c);
   void build_subcontacts(unsigned int c, const BlockModel& blocks, const ContactSettings& settings,
                          const Vec3& old_normal);
 
   std::unordered_map<std::uint64_t, unsigned int> slot_of_pair_;
   std::vector<unsigned int> free_;
-  /// Live slots in the order of their block pairs, and whether a contact
-  /// was created or removed since it was sorted.
+  /// Live slots in the order of their block pairs, with those removed since
+  /// the sort left in it dead; and whether a contact was made since.
   std::vector<unsigned int> pair_order_;
   bool pair_order_stale_ = true;
   void sort_by_pair();
   unsigned int n_alive_ = 0;
+  unsigned long planes_computed_ = 0;
   // Sub-contacts of the previous update, indexed by contact slot, for carry-over.
   std::vector<unsigned int> old_start_, old_end_;
   std::vector<double> old_un_, old_fn_, old_fs_, old_us_, old_dilation_, old_yield_;

@@ -163,9 +163,6 @@ private:
   /// rank loses it.
   template <typename Visit>
   static void visit_block_arrays(RigidSolver& solver, Visit&& visit);
-  /// A live contact slot appended to `laid` for the block pair `key`
-  /// (a << 32 | b), its state still to come; returns the slot.
-  static unsigned int append_contact_slot(ContactSet& laid, std::uint64_t key);
 
   const CellPartition& partition_;
   double reach_;

@@ -381,6 +381,13 @@ private:
   std::vector<unsigned char> timed_held_;
 
   void detect_contacts(bool everything);
+  /// Whether the contacts whose first block is a ghost come from its owner
+  /// (share_subcontacts on a split model): this rank neither finds nor
+  /// updates them.
+  bool contacts_from_owners() const { return subcontact_exchange_ != nullptr && !ghost_.empty(); }
+  /// ContactSet::update with `settings`, then, split among ranks with an
+  /// exchange, the contacts of a ghost first block taken from its owner.
+  void update_contacts(const ContactSettings& settings, const std::vector<double>* path);
   /// Eq. 87 block by block with the stiffness-proportional coefficient
   /// `beta` (s) of Rayleigh damping.
   double stable_time_step(double beta) const;

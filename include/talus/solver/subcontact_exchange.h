@@ -11,17 +11,21 @@ namespace talus
 {
 
 class ContactSet;
+struct GridpointShare;
 
 /// A model split among ranks computes each contact once (issue 24): the
-/// rank that owns the contact's first block runs its sub-contacts through
-/// the displacement increments and the joint model; a rank that holds that
-/// block as a ghost (and owns the second one) takes their new state from it
-/// instead, one message per neighbour rank each way. The sub-contacts' force
-/// sums then run on both ranks over the same numbers, in the same order as
-/// one rank would, so that the answer is still the serial one, bit for bit.
+/// rank that owns the contact's first block finds it, updates its common
+/// plane and builds its sub-contacts, then runs them through the
+/// displacement increments and the joint model at every step; a rank that
+/// holds that block as a ghost (and owns the second one) takes the contact
+/// from it instead: its plane and sub-contacts at each update
+/// (share_layout), their new state at each step (start, finish), one
+/// message per neighbour rank each way. The sub-contacts' force sums then
+/// run on both ranks over the same numbers, in the same order as one rank
+/// would, so that the answer is still the serial one, bit for bit.
 ///
-/// Both ranks hold such a contact with the same sub-contacts (they build it
-/// from the same blocks); match() checks that and throws when not.
+/// Both ranks hold such a contact with the same sub-contacts; match()
+/// checks that and throws when not.
 class SubContactExchange
 {
 public:
@@ -33,6 +37,20 @@ public:
   /// neighbour the pairs (global numbers) and sub-contact counts it will
   /// receive, and throws std::logic_error when they are not those it holds.
   void match(const ContactSet& cs);
+
+  /// After every rank's ContactSet::update, which left the contacts whose
+  /// first block is a ghost here to that block's owner (its `elsewhere`):
+  /// sends each neighbour the contacts this rank holds with a ghost of it
+  /// as second block, with their planes, state and sub-contacts, and puts
+  /// those received in place of its own, all in pair order. Contacts are
+  /// laid out again in new slots. `gridpoints`: the split zones' share,
+  /// when the sub-contacts have gridpoints (ContactSet::has_deformable).
+  /// Every rank with neighbours calls it at the same update (one message
+  /// to each neighbour each way); throws std::logic_error when a contact arrives for blocks
+  /// not held as its sender's ghost and owned here.
+  void share_layout(ContactSet& cs, bool dilation, bool yielding, const GridpointShare* gridpoints);
+  /// Contacts this rank took from its neighbours at the last share_layout.
+  std::size_t contacts_taken() const { return contacts_taken_; }
 
   /// Per sub-contact of the matched layout: 1 for those this rank computes
   /// and sends (its first block owned here, its second a ghost), which go
@@ -68,7 +86,11 @@ private:
   std::vector<Neighbour> neighbours_;
   std::vector<unsigned char> sent_first_, computed_after_;
   std::vector<MPI_Request> requests_;
-  std::size_t sent_ = 0, n_received_ = 0;
+  std::size_t sent_ = 0, n_received_ = 0, contacts_taken_ = 0;
+  /// Per block held: the rank that owns it.
+  std::vector<unsigned int> owners() const;
+  /// The ranks that send ghosts here or take ghosts from here, ascending.
+  std::vector<unsigned int> neighbour_ranks() const;
 };
 
 } // namespace talus
