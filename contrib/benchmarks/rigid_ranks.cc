@@ -225,7 +225,14 @@ int main(int argc, char** argv)
     }
     const double again_seconds = seconds_since(again_start);
     MPI_Reduce(&again_seconds, &seconds, 1, MPI_DOUBLE, MPI_MAX, 0, comm);
+    // Where each rank's time went (waits included in the phase they end).
+    const SolverReport report = again.report();
     const unsigned long planes_here = again.contacts().planes_computed() - planes_at_start;
+    std::fprintf(stderr,
+                 "rank %d, split computed %s: %.3f s; search %.3f, planes %.3f, forces %.3f, "
+                 "motion %.3f; %lu common planes computed\n",
+                 rank, once ? "once" : "on both sides", again_seconds, report.seconds_detection,
+                 report.seconds_planes, report.seconds_forces, report.seconds_motion, planes_here);
     MPI_Reduce(&planes_here, &planes_again, 1, MPI_UNSIGNED_LONG, MPI_SUM, 0, comm);
     differing = 0;
     if (mine_again.local == mine.local)
@@ -237,9 +244,18 @@ int main(int argc, char** argv)
       differing = mine.local.size();
     MPI_Allreduce(MPI_IN_PLACE, &differing, 1, MPI_UNSIGNED_LONG, MPI_SUM, comm);
   };
-  double both_sides_seconds = 0.0;
+  // Every round ends with the split computed on both sides.
+  std::vector<double> both_times;
   unsigned long both_differ = 0, both_planes = 0;
-  split_again(false, both_sides_seconds, both_differ, both_planes);
+  const auto split_both_sides = [&]()
+  {
+    double seconds = 0.0;
+    unsigned long differing = 0;
+    split_again(false, seconds, differing, both_planes);
+    both_times.push_back(seconds);
+    both_differ += differing;
+  };
+  split_both_sides();
 
   // 4. The further rounds: whole again on rank 0 (which must end where the
   // first whole run did, bit for bit), then split again, computed once.
@@ -253,6 +269,7 @@ int main(int argc, char** argv)
     split_times.push_back(seconds);
     rounds_differ += differing;
     at_once_times.push_back(whole_at_once());
+    split_both_sides();
   }
 
   // This machine's MPI between ranks 0 and 1, for the exchange model.
@@ -280,10 +297,11 @@ int main(int argc, char** argv)
   const double split_seconds = *std::min_element(split_times.begin(), split_times.end());
   // Per round (rank 0's times alone are whole): the speed-up, the ceiling,
   // and the speed-up's share of the ceiling; their medians.
-  std::vector<double> speed_ups, ceilings, shares;
+  std::vector<double> speed_ups, ceilings, shares, once_over_both;
   if (rank == 0)
     for (std::size_t r = 0; r < rounds; ++r)
     {
+      once_over_both.push_back(split_times[r] / both_times[r]);
       speed_ups.push_back(whole_times[r] / split_times[r]);
       ceilings.push_back(ranks * whole_times[r] / at_once_times[r]);
       shares.push_back(speed_ups.back() / ceilings.back());
@@ -328,14 +346,15 @@ int main(int argc, char** argv)
     std::printf("ceiling (median of the rounds): %.2f; the speed-up over the ceiling (median of "
                 "the rounds): %.2f\n",
                 rank_figures::median(ceilings), rank_figures::median(shares));
-    std::printf("split with the contacts across ranks computed on both sides (after round 1): "
-                "%.3f s, speed-up %.2f over the best whole run; the best split computed once "
-                "against it %.3f\n",
-                both_sides_seconds, best_whole / both_sides_seconds,
-                both_sides_seconds / split_seconds);
-    std::printf("the later split runs against round 1's, the later whole runs against round 1's "
-                "and rank 0's runs at once against it: %lu, %lu and %lu blocks differ, bit for "
-                "bit\n",
+    for (std::size_t r = 0; r < rounds; ++r)
+      std::printf("round %zu: split with the contacts across ranks computed on both sides "
+                  "%.3f s (speed-up %.2f); computed once took %.3f times that\n",
+                  r + 1, both_times[r], whole_times[r] / both_times[r], once_over_both[r]);
+    std::printf("computed once over computed on both sides, median of the rounds: %.3f\n",
+                rank_figures::median(once_over_both));
+    std::printf("the split runs on both sides and the later split runs against round 1's, the "
+                "later whole runs against round 1's and rank 0's runs at once against it: %lu, "
+                "%lu and %lu blocks differ, bit for bit\n",
                 both_differ, rounds_differ, at_once_differ);
     std::printf("sub-contacts computed a step: %lu on all ranks (%lu held, %lu of them taken "
                 "from another rank), %u on one rank: %.4f times one rank's work (computed on "

@@ -325,10 +325,8 @@ unsigned int ContactSet::append_slot(std::uint64_t key)
   return c;
 }
 
-void ContactSet::update(const BlockModel& m, const ContactSettings& settings,
-                        const std::vector<double>* path, const std::vector<char>* elsewhere)
+void ContactSet::set_old_subcontacts_aside()
 {
-  // Keep the previous sub-contacts for carry-over.
   old_start_.assign(n_slots(), 0);
   old_end_.assign(n_slots(), 0);
   for (unsigned int i = 0; i < n_subcontacts(); ++i)
@@ -338,6 +336,7 @@ void ContactSet::update(const BlockModel& m, const ContactSettings& settings,
       old_start_[c] = i;
     old_end_[c] = i + 1;
   }
+  // Swapped with the arrays of the last update, which keep their memory.
   std::swap(old_un_, sc_un);
   std::swap(old_fn_, sc_fn);
   std::swap(old_fs_, sc_fs);
@@ -345,18 +344,20 @@ void ContactSet::update(const BlockModel& m, const ContactSettings& settings,
   std::swap(old_dilation_, sc_dilation);
   std::swap(old_yield_, sc_yield);
   std::swap(old_state_, sc_state);
-  std::vector<Vec3> old_position;
-  std::swap(old_position, sc_position);
-  std::vector<double> old_area;
-  std::swap(old_area, sc_area);
-  std::vector<int> old_node;
-  std::swap(old_node, sc_node);
-  std::vector<double> old_weight;
-  std::swap(old_weight, sc_weight);
+  std::swap(old_position_, sc_position);
+  std::swap(old_area_, sc_area);
+  std::swap(old_node_, sc_node);
+  std::swap(old_weight_, sc_weight);
   old_normal_.resize(n_slots());
   for (unsigned int c = 0; c < n_slots(); ++c)
     old_normal_[c] = plane[c].normal;
+  clear_subcontacts();
+}
+
+void ContactSet::clear_subcontacts()
+{
   sc_contact.clear();
+  sc_position.clear();
   sc_area.clear();
   sc_un.clear();
   sc_fn.clear();
@@ -369,132 +370,143 @@ void ContactSet::update(const BlockModel& m, const ContactSettings& settings,
   sc_fresh.clear();
   sc_node.clear();
   sc_weight.clear();
+}
 
+void ContactSet::update(const BlockModel& m, const ContactSettings& settings,
+                        const std::vector<double>* path, ContactTrade* trade)
+{
+  set_old_subcontacts_aside();
   CommonPlaneSettings cps = settings.common_plane;
   cps.contact_tolerance = settings.tolerance;
-  // In block-pair order (sort_by_pair); a removal below leaves the slot
-  // dead in it.
+  // In block-pair order (sort_by_pair); a removal leaves the slot dead in it.
   sort_by_pair();
-  for (const unsigned int c : pair_order_)
+  if (trade != nullptr)
   {
-    if (!alive[c])
-      continue;
-    const unsigned int a = block_a[c], b = block_b[c];
-    if (elsewhere != nullptr && (*elsewhere)[a])
-      continue;
-    if (path != nullptr)
+    update_across_ranks(m, settings, cps, path, *trade);
+    return;
+  }
+  for (const unsigned int c : pair_order_)
+    if (alive[c])
+      update_contact(c, m, settings, cps, path);
+}
+
+void ContactSet::update_contact(unsigned int c, const BlockModel& m,
+                                const ContactSettings& settings, const CommonPlaneSettings& cps,
+                                const std::vector<double>* path)
+{
+  const unsigned int a = block_a[c], b = block_b[c];
+  if (path != nullptr)
+  {
+    const double travelled = (*path)[a] + (*path)[b];
+    if (path_at_update[c] >= 0.0 &&
+        travelled - path_at_update[c] < settings.update_motion_fraction * settings.tolerance)
     {
-      const double travelled = (*path)[a] + (*path)[b];
-      if (path_at_update[c] >= 0.0 &&
-          travelled - path_at_update[c] < settings.update_motion_fraction * settings.tolerance)
-      {
-        // Neither block has moved enough to change the plane: keep the
-        // sub-contacts as they are.
-        for (unsigned int o = old_start_[c]; o < old_end_[c]; ++o)
-        {
-          sc_contact.push_back(c);
-          sc_position.push_back(old_position[o]);
-          sc_area.push_back(old_area[o]);
-          sc_un.push_back(old_un_[o]);
-          sc_fn.push_back(old_fn_[o]);
-          for (int d = 0; d < 3; ++d)
-            sc_fs.push_back(old_fs_[3 * o + d]);
-          for (int d = 0; d < 3; ++d)
-            sc_us.push_back(old_us_[3 * o + d]);
-          if (settings.dilation)
-            sc_dilation.push_back(old_dilation_[o]);
-          if (settings.yielding)
-            for (unsigned int k = 0; k < yield_state_size; ++k)
-              sc_yield.push_back(old_yield_[yield_state_size * o + k]);
-          sc_state.push_back(old_state_[o]);
-          sc_material.push_back(material[c]);
-          sc_fresh.push_back(0);
-          if (has_deformable())
-            for (int k = 0; k < 6; ++k)
-            {
-              sc_node.push_back(old_node[6 * o + k]);
-              sc_weight.push_back(old_weight[6 * o + k]);
-            }
-        }
-        continue;
-      }
-      path_at_update[c] = travelled;
-    }
-    ++planes_computed_;
-    const CommonPlaneResult r = update_common_plane(
-        plane[c], &m.vertex[m.vertex_start[a]], m.vertex_start[a + 1] - m.vertex_start[a],
-        &m.vertex[m.vertex_start[b]], m.vertex_start[b + 1] - m.vertex_start[b], cps, false);
-    gap[c] = r.gap;
-    type[c] = r.type;
-    if (!r.within_tolerance || r.gap > settings.tolerance)
-    {
-      remove(c);
-      continue;
-    }
-    // Eq. 13: keep the reference point on both blocks.
-    Vec3& ref = plane[c].reference;
-    const Vec3& n = plane[c].normal;
-    for (unsigned int blk : {a, b})
-      for (unsigned int f = m.face_start[blk]; f < m.face_start[blk + 1]; ++f)
-      {
-        const Vec3& nf = m.face_normal[f];
-        const double d = nf.dot(ref - m.vertex[m.face_vertex[m.face_loop_start[f]]]);
-        if (d > 0.0)
-          ref += (n * n.dot(nf) - nf) * d;
-      }
-    const std::size_t first = sc_position.size();
-    build_subcontacts(c, m, settings, old_normal_[c]);
-    // Carry the shear over from the nearest old sub-contact of this contact.
-    for (std::size_t i = first; i < sc_position.size(); ++i)
-    {
-      double best = 1e300;
-      unsigned int match = 0;
+      // Neither block has moved enough to change the plane: keep the
+      // sub-contacts as they are.
       for (unsigned int o = old_start_[c]; o < old_end_[c]; ++o)
       {
-        const double d = (old_position[o] - sc_position[i]).squaredNorm();
-        if (d < best)
-        {
-          best = d;
-          match = o;
-        }
-      }
-      if (old_end_[c] > old_start_[c] && best < 0.25 * sc_area[i])
-      {
-        // Eq. 23 in exact form: turn the shear force with the plane.
-        const Eigen::Quaterniond turn = Eigen::Quaterniond::FromTwoVectors(old_normal_[c], n);
-        Vec3 fs = turn * Vec3(old_fs_[3 * match], old_fs_[3 * match + 1], old_fs_[3 * match + 2]);
-        fs -= n * n.dot(fs);
-        // The shear stress is carried, not the force: the spring's energy
-        // |fs|^2 / (2 ks A) then follows the area, so sub-contacts rebuilt
-        // with other areas (or more of them) neither make nor lose energy
-        // and the contact's total shear force follows its area.
-        fs *= sc_area[i] / old_area[match];
-        Vec3 us = turn * Vec3(old_us_[3 * match], old_us_[3 * match + 1], old_us_[3 * match + 2]);
-        us -= n * n.dot(us);
+        sc_contact.push_back(c);
+        sc_position.push_back(old_position_[o]);
+        sc_area.push_back(old_area_[o]);
+        sc_un.push_back(old_un_[o]);
+        sc_fn.push_back(old_fn_[o]);
         for (int d = 0; d < 3; ++d)
-        {
-          sc_fs[3 * i + d] = fs[d];
-          sc_us[3 * i + d] = us[d];
-        }
+          sc_fs.push_back(old_fs_[3 * o + d]);
+        for (int d = 0; d < 3; ++d)
+          sc_us.push_back(old_us_[3 * o + d]);
         if (settings.dilation)
-          sc_dilation[i] = old_dilation_[match];
+          sc_dilation.push_back(old_dilation_[o]);
         if (settings.yielding)
-        {
-          // The plastic shear and reversal ratio go with the shear; the
-          // loading direction turns with the plane as the force does.
-          const double* y = &old_yield_[yield_state_size * match];
-          double* to = &sc_yield[yield_state_size * i];
-          to[plastic_shear_displacement] = y[plastic_shear_displacement];
-          to[reversal_ratio] = y[reversal_ratio];
-          Vec3 dir =
-              turn * Vec3(y[loading_direction], y[loading_direction + 1], y[loading_direction + 2]);
-          dir -= n * n.dot(dir);
-          const double length = dir.norm();
-          for (int d = 0; d < 3; ++d)
-            to[loading_direction + d] = length > 0.0 ? dir[d] / length : 0.0;
-        }
-        sc_state[i] = old_state_[match];
+          for (unsigned int k = 0; k < yield_state_size; ++k)
+            sc_yield.push_back(old_yield_[yield_state_size * o + k]);
+        sc_state.push_back(old_state_[o]);
+        sc_material.push_back(material[c]);
+        sc_fresh.push_back(0);
+        if (has_deformable())
+          for (int k = 0; k < 6; ++k)
+          {
+            sc_node.push_back(old_node_[6 * o + k]);
+            sc_weight.push_back(old_weight_[6 * o + k]);
+          }
       }
+      return;
+    }
+    path_at_update[c] = travelled;
+  }
+  ++planes_computed_;
+  const CommonPlaneResult r = update_common_plane(
+      plane[c], &m.vertex[m.vertex_start[a]], m.vertex_start[a + 1] - m.vertex_start[a],
+      &m.vertex[m.vertex_start[b]], m.vertex_start[b + 1] - m.vertex_start[b], cps, false);
+  gap[c] = r.gap;
+  type[c] = r.type;
+  if (!r.within_tolerance || r.gap > settings.tolerance)
+  {
+    remove(c);
+    return;
+  }
+  // Eq. 13: keep the reference point on both blocks.
+  Vec3& ref = plane[c].reference;
+  const Vec3& n = plane[c].normal;
+  for (unsigned int blk : {a, b})
+    for (unsigned int f = m.face_start[blk]; f < m.face_start[blk + 1]; ++f)
+    {
+      const Vec3& nf = m.face_normal[f];
+      const double d = nf.dot(ref - m.vertex[m.face_vertex[m.face_loop_start[f]]]);
+      if (d > 0.0)
+        ref += (n * n.dot(nf) - nf) * d;
+    }
+  const std::size_t first = sc_position.size();
+  build_subcontacts(c, m, settings, old_normal_[c]);
+  // Carry the shear over from the nearest old sub-contact of this contact.
+  for (std::size_t i = first; i < sc_position.size(); ++i)
+  {
+    double best = 1e300;
+    unsigned int match = 0;
+    for (unsigned int o = old_start_[c]; o < old_end_[c]; ++o)
+    {
+      const double d = (old_position_[o] - sc_position[i]).squaredNorm();
+      if (d < best)
+      {
+        best = d;
+        match = o;
+      }
+    }
+    if (old_end_[c] > old_start_[c] && best < 0.25 * sc_area[i])
+    {
+      // Eq. 23 in exact form: turn the shear force with the plane.
+      const Eigen::Quaterniond turn = Eigen::Quaterniond::FromTwoVectors(old_normal_[c], n);
+      Vec3 fs = turn * Vec3(old_fs_[3 * match], old_fs_[3 * match + 1], old_fs_[3 * match + 2]);
+      fs -= n * n.dot(fs);
+      // The shear stress is carried, not the force: the spring's energy
+      // |fs|^2 / (2 ks A) then follows the area, so sub-contacts rebuilt
+      // with other areas (or more of them) neither make nor lose energy
+      // and the contact's total shear force follows its area.
+      fs *= sc_area[i] / old_area_[match];
+      Vec3 us = turn * Vec3(old_us_[3 * match], old_us_[3 * match + 1], old_us_[3 * match + 2]);
+      us -= n * n.dot(us);
+      for (int d = 0; d < 3; ++d)
+      {
+        sc_fs[3 * i + d] = fs[d];
+        sc_us[3 * i + d] = us[d];
+      }
+      if (settings.dilation)
+        sc_dilation[i] = old_dilation_[match];
+      if (settings.yielding)
+      {
+        // The plastic shear and reversal ratio go with the shear; the
+        // loading direction turns with the plane as the force does.
+        const double* y = &old_yield_[yield_state_size * match];
+        double* to = &sc_yield[yield_state_size * i];
+        to[plastic_shear_displacement] = y[plastic_shear_displacement];
+        to[reversal_ratio] = y[reversal_ratio];
+        Vec3 dir =
+            turn * Vec3(y[loading_direction], y[loading_direction + 1], y[loading_direction + 2]);
+        dir -= n * n.dot(dir);
+        const double length = dir.norm();
+        for (int d = 0; d < 3; ++d)
+          to[loading_direction + d] = length > 0.0 ? dir[d] / length : 0.0;
+      }
+      sc_state[i] = old_state_[match];
     }
   }
 }

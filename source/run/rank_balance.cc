@@ -64,7 +64,11 @@ bool RankBalance::choose(const RigidSolver& solver, const RankBlocks& blocks,
   for (unsigned int c : cs.sc_contact)
     ++subcontacts[c];
   for (unsigned int c = 0; c < cs.n_slots(); ++c)
-    if (cs.alive[c] && blocks.owned[cs.block_a[c]]) // computed by the owner of its first block
+    // Counted for the owner of its first block. A contact across ranks is
+    // computed by one of its two ranks by the parity of its blocks' numbers
+    // (RankBlocks::computes_contact), so half of those are counted on the
+    // other side of the cut: a few percent of a boundary rank's work.
+    if (cs.alive[c] && blocks.owned[cs.block_a[c]])
       work[cs.block_a[c]] += costs_.contact + costs_.subcontact * subcontacts[c];
   double mine = 0.0;
   for (unsigned int i = 0; i < n; ++i)

@@ -706,11 +706,12 @@ void RigidSolver::detect_contacts(bool everything)
   cells_.map(envelopes_);
   cells_.candidate_pairs(envelopes_, everything ? std::vector<char>() : flagged, pairs_);
   // Split among ranks, two ghosts' contact is their owners' work alone;
-  // with contacts from owners, so is any of a ghost first block.
-  const bool from_owners = contacts_from_owners();
+  // with contacts from owners, so is one across ranks that the other rank
+  // computes.
+  const RankBlocks* blocks = contacts_from_owners() ? &subcontact_exchange_->blocks() : nullptr;
   for (const auto& [a, b] : pairs_)
     if (!(fixed[a] && fixed[b]) && !removed_[a] && !removed_[b] &&
-        !(is_ghost(a) && (is_ghost(b) || from_owners)))
+        (blocks != nullptr ? blocks->computes_contact(a, b) : !(is_ghost(a) && is_ghost(b))))
       contacts_.try_create(a, b, m_, s_.contact);
 }
 
@@ -721,9 +722,29 @@ void RigidSolver::update_contacts(const ContactSettings& settings, const std::ve
     contacts_.update(m_, settings, path);
     return;
   }
-  contacts_.update(m_, settings, path, &ghost_);
-  subcontact_exchange_->share_layout(contacts_, settings.dilation, settings.yielding,
-                                     zones_ != nullptr ? zones_->share() : nullptr);
+  // The contacts across ranks through this rank's sub-contact exchange.
+  struct Trade final : ContactTrade
+  {
+    SubContactExchange& exchange;
+    bool dilation, yielding;
+    const GridpointShare* gridpoints;
+    Trade(SubContactExchange& e, bool d, bool y, const GridpointShare* p)
+        : exchange(e), dilation(d), yielding(y), gridpoints(p)
+    {
+    }
+    const RankBlocks& blocks() const override { return exchange.blocks(); }
+    void send(const ContactSet& cs, const std::vector<unsigned int>& slots,
+              const std::vector<unsigned int>& begin, const std::vector<unsigned int>& end) override
+    {
+      exchange.send_layout(cs, slots, begin, end, dilation, yielding, gridpoints);
+    }
+    void receive(ContactSet& taken) override
+    {
+      exchange.receive_layout(taken, dilation, yielding, gridpoints);
+    }
+  } trade(*subcontact_exchange_, settings.dilation, settings.yielding,
+          zones_ != nullptr ? zones_->share() : nullptr);
+  contacts_.update(m_, settings, path, &trade);
   subcontacts_stale_ = true;
 }
 
@@ -733,17 +754,22 @@ void RigidSolver::contact_forces()
   const unsigned int n = cs.n_subcontacts();
   du_n_.resize(n);
   du_s_.resize(3 * n);
-  // Split among ranks: a contact's work is counted by the owner of its
-  // first block alone. With an exchange, that rank alone computes it and
-  // sends its sub-contacts' state on; without, every rank holding both
-  // blocks computes it.
+  // Split among ranks: a contact's work is counted by one rank alone. With
+  // an exchange, that rank alone computes it and sends its sub-contacts'
+  // state on (RankBlocks::computes_contact); without, every rank holding
+  // both blocks computes it, and the owner of its first block counts it.
+  const bool exchanged = contacts_from_owners();
   if (!ghost_.empty())
   {
     sc_counted_.resize(n);
+    const RankBlocks* blocks = exchanged ? &subcontact_exchange_->blocks() : nullptr;
     for (unsigned int i = 0; i < n; ++i)
-      sc_counted_[i] = !ghost_[cs.block_a[cs.sc_contact[i]]];
+    {
+      const unsigned int c = cs.sc_contact[i];
+      sc_counted_[i] = blocks != nullptr ? blocks->computes_contact(cs.block_a[c], cs.block_b[c])
+                                         : !ghost_[cs.block_a[c]];
+    }
   }
-  const bool exchanged = subcontact_exchange_ != nullptr && !ghost_.empty();
   if (exchanged && subcontacts_stale_)
   {
     subcontact_exchange_->match(cs);

@@ -83,8 +83,9 @@ void SubContactExchange::match(const ContactSet& cs)
   for (unsigned int k = 0; k < cs.n_subcontacts(); ++k)
   {
     const unsigned int c = cs.sc_contact[k];
-    computed_after_[k] = !ghost(cs.block_a[c]) && !ghost(cs.block_b[c]);
-    sent_first_[k] = !ghost(cs.block_a[c]) && ghost(cs.block_b[c]);
+    const unsigned int a = cs.block_a[c], b = cs.block_b[c];
+    computed_after_[k] = !ghost(a) && !ghost(b);
+    sent_first_[k] = ghost(a) != ghost(b) && blocks_.computes_contact(a, b);
   }
   // The contacts across ranks in pair order (local order is global order).
   std::vector<std::array<unsigned int, 3>> cut;
@@ -96,8 +97,8 @@ void SubContactExchange::match(const ContactSet& cs)
   std::vector<std::vector<unsigned long long>> told(ranks.size());
   for (const auto& [a, b, c] : cut)
   {
-    const bool sending = !ghost(a);
-    const unsigned int other = sending ? owner[b] : owner[a];
+    const bool sending = blocks_.computes_contact(a, b);
+    const unsigned int other = owner[ghost(a) ? a : b];
     if (other == blocks_.rank)
       throw std::logic_error("SubContactExchange: a ghost on rank " + std::to_string(other) +
                              " that no other rank sends");
@@ -147,56 +148,68 @@ void SubContactExchange::match(const ContactSet& cs)
     throw std::logic_error("SubContactExchange: " + disagreement);
 }
 
-void SubContactExchange::share_layout(ContactSet& cs, bool dilation, bool yielding,
-                                      const GridpointShare* gridpoints)
+void SubContactExchange::send_layout(const ContactSet& cs, const std::vector<unsigned int>& slots,
+                                     const std::vector<unsigned int>& begin,
+                                     const std::vector<unsigned int>& end, bool dilation,
+                                     bool yielding, const GridpointShare* gridpoints)
 {
   using block_records::Bytes;
-  using block_records::Reader;
-  const bool nodes = cs.has_deformable();
-  if (nodes && gridpoints == nullptr)
-    throw std::logic_error("SubContactExchange: sub-contacts with gridpoints, zones not split");
+  // Records carry gridpoints exactly when the zones are split.
+  const bool nodes = gridpoints != nullptr;
+  if (nodes != cs.has_deformable())
+    throw std::logic_error("SubContactExchange: sub-contacts with gridpoints need the zones' "
+                           "split, and only they have it");
   const std::vector<unsigned int> owner = owners();
-  const auto ghost = [&](unsigned int b) { return blocks_.owned[b] == 0; };
-  // Only the neighbours talk (a rank without ghosts has none).
-  const std::vector<unsigned int> ranks = neighbour_ranks();
+  // Only the neighbours talk (a rank without ghosts has none); each hears
+  // from each, if only an empty message.
+  layout_ranks_ = neighbour_ranks();
   const auto slot_of = [&](unsigned int rank)
-  { return std::size_t(std::lower_bound(ranks.begin(), ranks.end(), rank) - ranks.begin()); };
-  std::vector<unsigned int> begin, end;
-  block_records::subcontact_ranges(cs, begin, end);
-  cs.sort_by_pair(); // no work after update(), which only removes
-
-  // The contacts this rank computed for the owner of their second block,
-  // blocks by global number, in pair order.
-  std::vector<Bytes> out(ranks.size());
-  for (const unsigned int c : cs.pair_order_)
   {
-    const unsigned int a = cs.block_a[c], b = cs.block_b[c];
-    if (!cs.alive[c] || ghost(a) || !ghost(b))
-      continue;
-    block_records::put_contact(out[slot_of(owner[b])], cs, c, blocks_.local[a], blocks_.local[b],
-                               begin[c], end[c], dilation, yielding,
+    return std::size_t(std::lower_bound(layout_ranks_.begin(), layout_ranks_.end(), rank) -
+                       layout_ranks_.begin());
+  };
+  std::vector<Bytes> out(layout_ranks_.size());
+  for (std::size_t i = 0; i < slots.size(); ++i)
+  {
+    const unsigned int c = slots[i], a = cs.block_a[c], b = cs.block_b[c];
+    block_records::put_contact(out[slot_of(owner[blocks_.owned[a] ? b : a])], cs, c,
+                               blocks_.local[a], blocks_.local[b], begin[i], end[i], dilation,
+                               yielding,
                                [&](Bytes& to, unsigned int k)
                                {
                                  if (nodes)
                                    block_records::put_subcontact_nodes(to, cs, k, *gridpoints);
                                });
   }
-  std::vector<MPI_Request> requests(ranks.size());
-  for (std::size_t k = 0; k < ranks.size(); ++k)
-    MPI_Isend(out[k].data.data(), static_cast<int>(out[k].data.size()), MPI_CHAR,
-              static_cast<int>(ranks[k]), layout_tag, comm_, &requests[k]);
-  std::vector<std::vector<char>> got(ranks.size());
-  for (std::size_t k = 0; k < ranks.size(); ++k)
+  layout_out_.resize(out.size());
+  layout_requests_.assign(out.size(), MPI_REQUEST_NULL);
+  for (std::size_t k = 0; k < out.size(); ++k)
+  {
+    layout_out_[k] = std::move(out[k].data);
+    MPI_Isend(layout_out_[k].data(), static_cast<int>(layout_out_[k].size()), MPI_CHAR,
+              static_cast<int>(layout_ranks_[k]), layout_tag, comm_, &layout_requests_[k]);
+  }
+}
+
+void SubContactExchange::receive_layout(ContactSet& taken, bool dilation, bool yielding,
+                                        const GridpointShare* gridpoints)
+{
+  using block_records::Reader;
+  const bool nodes = gridpoints != nullptr;
+  const std::vector<unsigned int> owner = owners();
+  const auto ghost = [&](unsigned int b) { return blocks_.owned[b] == 0; };
+  std::vector<std::vector<char>> got(layout_ranks_.size());
+  for (std::size_t k = 0; k < layout_ranks_.size(); ++k)
   {
     MPI_Status status;
-    MPI_Probe(static_cast<int>(ranks[k]), layout_tag, comm_, &status);
+    MPI_Probe(static_cast<int>(layout_ranks_[k]), layout_tag, comm_, &status);
     int count = 0;
     MPI_Get_count(&status, MPI_CHAR, &count);
     got[k].resize(static_cast<std::size_t>(count));
-    MPI_Recv(got[k].data(), count, MPI_CHAR, static_cast<int>(ranks[k]), layout_tag, comm_,
+    MPI_Recv(got[k].data(), count, MPI_CHAR, static_cast<int>(layout_ranks_[k]), layout_tag, comm_,
              MPI_STATUS_IGNORE);
   }
-  wait_all(requests);
+  wait_all(layout_requests_);
 
   // What arrived, by local pair, in pair order.
   const auto local_of = [&](unsigned int g)
@@ -205,10 +218,10 @@ void SubContactExchange::share_layout(ContactSet& cs, bool dilation, bool yieldi
     return it != blocks_.local.end() && *it == g ? static_cast<long>(it - blocks_.local.begin())
                                                  : -1l;
   };
-  std::vector<std::pair<std::uint64_t, const char*>> taken;
-  for (std::size_t k = 0; k < ranks.size(); ++k)
+  std::vector<std::pair<std::uint64_t, const char*>> records;
+  for (std::size_t k = 0; k < layout_ranks_.size(); ++k)
   {
-    const unsigned int r = ranks[k];
+    const unsigned int r = layout_ranks_[k];
     Reader in{got[k].data()};
     const char* const stop = got[k].data() + got[k].size();
     while (in.at < stop)
@@ -219,64 +232,39 @@ void SubContactExchange::share_layout(ContactSet& cs, bool dilation, bool yieldi
       const unsigned int n_sc = in.get<unsigned int>();
       in.at += n_sc * block_records::subcontact_size(dilation, yielding, nodes);
       const long a = local_of(ga), b = local_of(gb);
-      if (a < 0 || b < 0 || !ghost(static_cast<unsigned int>(a)) ||
-          ghost(static_cast<unsigned int>(b)) || owner[std::size_t(a)] != r)
+      // Its computing block must be the sender's, a ghost here; the other
+      // this rank's own.
+      const long computing = RankBlocks::contact_computed_by_first(ga, gb) ? a : b,
+                 other = computing == a ? b : a;
+      if (a < 0 || b < 0 || !ghost(static_cast<unsigned int>(computing)) ||
+          ghost(static_cast<unsigned int>(other)) || owner[std::size_t(computing)] != r)
         throw std::logic_error("SubContactExchange: rank " + std::to_string(r) +
                                " sent a contact of blocks " + std::to_string(ga) + " and " +
                                std::to_string(gb) + " that rank " + std::to_string(blocks_.rank) +
-                               " does not hold as its ghost and its own");
-      taken.emplace_back(pair_key(unsigned(a), unsigned(b)), record);
+                               " does not hold as the sender's ghost and its own");
+      records.emplace_back(pair_key(unsigned(a), unsigned(b)), record);
     }
   }
-  std::sort(taken.begin(), taken.end());
-  contacts_taken_ = taken.size();
+  std::sort(records.begin(), records.end());
+  contacts_taken_ = records.size();
 
-  // Both in pair order, slots in that order: this rank's own contacts as
-  // they are, those of a ghost first block as their owner sent them.
   std::unordered_map<unsigned int, int> held;
   if (nodes)
     for (std::size_t i = 0; i < gridpoints->whole_gridpoint.size(); ++i)
       held[gridpoints->whole_gridpoint[i]] = static_cast<int>(i);
-  ContactSet laid;
-  const auto keep = [&](unsigned int c)
-  {
-    block_records::copy_contact(laid, laid.append_slot(pair_key(cs.block_a[c], cs.block_b[c])), cs,
-                                c, begin[c], end[c], dilation, yielding, nodes,
-                                [](int node) { return node; });
-  };
-  const auto take = [&](std::uint64_t key, const char* record)
+  for (const auto& [key, record] : records)
   {
     Reader in{record + 2 * sizeof(unsigned int)};
-    block_records::get_contact(in, laid, laid.append_slot(key), dilation, yielding,
+    block_records::get_contact(in, taken, taken.append_slot(key), dilation, yielding,
                                [&](Reader& from)
                                {
                                  if (nodes)
                                    block_records::get_nodes_held(
-                                       from, laid, held,
+                                       from, taken, held,
                                        "SubContactExchange: a contact's gridpoint is not held "
                                        "on the rank that takes it");
                                });
-  };
-  std::size_t r = 0;
-  for (const unsigned int c : cs.pair_order_)
-  {
-    if (!cs.alive[c] || ghost(cs.block_a[c]))
-      continue;
-    const std::uint64_t key = pair_key(cs.block_a[c], cs.block_b[c]);
-    for (; r < taken.size() && taken[r].first < key; ++r)
-      take(taken[r].first, taken[r].second);
-    keep(c);
   }
-  for (; r < taken.size(); ++r)
-    take(taken[r].first, taken[r].second);
-  laid.is_deformable_ = cs.is_deformable_;
-  laid.vertex_gridpoint_ = cs.vertex_gridpoint_;
-  laid.pair_order_.resize(laid.n_slots());
-  for (unsigned int c = 0; c < laid.n_slots(); ++c)
-    laid.pair_order_[c] = c;
-  laid.pair_order_stale_ = false;
-  laid.planes_computed_ = cs.planes_computed_;
-  cs = std::move(laid);
 }
 
 void SubContactExchange::start(const ContactSet& cs, const std::vector<double>* velocity)

@@ -29,6 +29,27 @@ struct RankBlocks
   std::vector<std::pair<unsigned int, std::vector<unsigned int>>> receive;
 
   unsigned int n_owned() const;
+
+  /// Whether this rank computes the contact of held blocks a and b (local
+  /// numbers, a < b): every contact of two owned blocks, none of two
+  /// ghosts, and of a contact across ranks the one its computing block's
+  /// owner computes (contact_computed_by_first).
+  bool computes_contact(unsigned int a, unsigned int b) const
+  {
+    if (owned[a] == owned[b])
+      return owned[a] != 0;
+    return contact_computed_by_first(local[a], local[b]) ? owned[a] != 0 : owned[b] != 0;
+  }
+
+  /// Which block's owner computes a contact across ranks between blocks of
+  /// global numbers ga < gb: the first's when ga + gb is even, the
+  /// second's when odd, so that two neighbour ranks share the contacts
+  /// between them about evenly (issue 24). Any rule that both ranks apply
+  /// alike gives the same answer; the computing side only does the work.
+  static bool contact_computed_by_first(unsigned int ga, unsigned int gb)
+  {
+    return ((ga + gb) & 1u) == 0;
+  }
 };
 
 /// Rank `rank`'s blocks. A block is a ghost on this rank when it lies

@@ -49,6 +49,33 @@ struct ContactSettings
   CommonPlaneSettings common_plane;
 };
 
+class ContactSet;
+struct RankBlocks;
+
+/// How a rank's share of a model split among ranks (issue 24) has each
+/// contact across ranks computed once, by one of its two ranks
+/// (RankBlocks::computes_contact): ContactSet::update calls send() once the
+/// contacts across ranks this rank computes are updated, then receive() for
+/// those the other ranks compute, before it lays everything out in pair
+/// order. Called once per update, never per contact.
+class ContactTrade
+{
+public:
+  virtual ~ContactTrade() = default;
+  /// The blocks this rank holds, owns and computes contacts of.
+  virtual const RankBlocks& blocks() const = 0;
+  /// Sends contacts `slots` of `cs` (pair order) to the ranks that hold
+  /// their computing block as a ghost, with their planes, state and
+  /// sub-contacts: those of slots[i] are [begin[i], end[i]) of cs.
+  virtual void send(const ContactSet& cs, const std::vector<unsigned int>& slots,
+                    const std::vector<unsigned int>& begin,
+                    const std::vector<unsigned int>& end) = 0;
+  /// Appends to the empty `taken` (ContactSet::append_slot, blocks by
+  /// local number, pair order) the contacts across ranks that others
+  /// compute, as they sent them, with their sub-contacts.
+  virtual void receive(ContactSet& taken) = 0;
+};
+
 /// Every contact between blocks (one common plane per pair) and their
 /// sub-contacts, in flat arrays. Contacts live in slots that are reused
 /// through a free list; sub-contacts are rebuilt at each update, each
@@ -70,13 +97,11 @@ public:
   /// tolerance) and rebuilds the sub-contacts of every contact whose blocks
   /// have moved: `path[b]` is the distance block b's vertices have travelled
   /// since the start (m, never reset). Without `path`, every contact.
-  /// A contact whose first block is marked in `elsewhere` (a ghost of a
-  /// model split among ranks) is another rank's work: it is left as it is,
-  /// without sub-contacts, for that rank's layout to replace
-  /// (SubContactExchange::share_layout).
+  /// With `trade` (a model split among ranks), a contact across ranks that
+  /// another rank computes is taken from it, and one this rank computes is
+  /// updated first and sent (source/contact/contact_trade.cc).
   void update(const BlockModel& blocks, const ContactSettings& settings,
-              const std::vector<double>* path = nullptr,
-              const std::vector<char>* elsewhere = nullptr);
+              const std::vector<double>* path = nullptr, ContactTrade* trade = nullptr);
 
   /// Deletes the contacts of the blocks with `gone[b]` (excavated); their
   /// sub-contacts go at the next update().
@@ -157,10 +182,22 @@ public:
 private:
   /// Lays contacts out again when blocks move between ranks (block_migration.h).
   friend class BlockMigration;
-  /// Lays the contacts across ranks out as their first block's owner sent
-  /// them (SubContactExchange::share_layout).
-  friend class SubContactExchange;
   void remove(unsigned int c);
+  /// Sets the previous sub-contacts aside (old_*) for carry-over.
+  void set_old_subcontacts_aside();
+  /// One live contact of update(): its plane and sub-contacts again, or
+  /// their old ones kept when its blocks have not moved, or its removal.
+  void update_contact(unsigned int c, const BlockModel& blocks, const ContactSettings& settings,
+                      const CommonPlaneSettings& planes, const std::vector<double>* path);
+  /// update() with a ContactTrade (contact_trade.cc).
+  void update_across_ranks(const BlockModel& blocks, const ContactSettings& settings,
+                           const CommonPlaneSettings& planes, const std::vector<double>* path,
+                           ContactTrade& trade);
+  /// Appends sub-contacts [begin, end) of `from` (laid out alike) as
+  /// sub-contacts of contact c.
+  void append_subcontacts(const ContactSet& from, unsigned int begin, unsigned int end,
+                          unsigned int c);
+  void clear_subcontacts();
   void build_subcontacts(unsigned int c, const BlockModel& blocks, const ContactSettings& settings,
                          const Vec3& old_normal);
 
@@ -177,7 +214,9 @@ private:
   std::vector<unsigned int> old_start_, old_end_;
   std::vector<double> old_un_, old_fn_, old_fs_, old_us_, old_dilation_, old_yield_;
   std::vector<unsigned char> old_state_;
-  std::vector<Vec3> old_normal_;
+  std::vector<Vec3> old_normal_, old_position_;
+  std::vector<double> old_area_, old_weight_;
+  std::vector<int> old_node_;
   const std::vector<char>* is_deformable_ = nullptr;
   const std::vector<int>* vertex_gridpoint_ = nullptr;
 };

@@ -252,10 +252,11 @@ public:
   /// comes through `reductions`. Masses and the time step are set again.
   void split_among_ranks(std::vector<char> ghost, RankReductions reductions);
   bool is_ghost(unsigned int b) const { return !ghost_.empty() && ghost_[b] != 0; }
-  /// Split among ranks: each contact computed by the owner of its first
-  /// block alone, which sends its sub-contacts' state to the rank that
-  /// holds that block as a ghost (`exchange`: kept by the caller; null:
-  /// every rank that holds both blocks computes their contact).
+  /// Split among ranks: each contact across ranks found, updated and
+  /// computed by one of its two ranks alone, which sends the contact at each
+  /// update and its sub-contacts' state at each step to the other
+  /// (`exchange`: kept by the caller, with the blocks it was made with;
+  /// null: every rank that holds both blocks computes their contact).
   void share_subcontacts(SubContactExchange* exchange)
   {
     subcontact_exchange_ = exchange;
@@ -381,12 +382,12 @@ private:
   std::vector<unsigned char> timed_held_;
 
   void detect_contacts(bool everything);
-  /// Whether the contacts whose first block is a ghost come from its owner
-  /// (share_subcontacts on a split model): this rank neither finds nor
-  /// updates them.
+  /// Whether each contact across ranks is computed by one of its two ranks
+  /// and taken by the other (share_subcontacts on a split model), which
+  /// neither finds nor updates it.
   bool contacts_from_owners() const { return subcontact_exchange_ != nullptr && !ghost_.empty(); }
-  /// ContactSet::update with `settings`, then, split among ranks with an
-  /// exchange, the contacts of a ghost first block taken from its owner.
+  /// ContactSet::update with `settings`; split among ranks with an
+  /// exchange, with the contacts across ranks traded (ContactTrade).
   void update_contacts(const ContactSettings& settings, const std::vector<double>* path);
   /// Eq. 87 block by block with the stiffness-proportional coefficient
   /// `beta` (s) of Rayleigh damping.

@@ -13,14 +13,14 @@ namespace talus
 class ContactSet;
 struct GridpointShare;
 
-/// A model split among ranks computes each contact once (issue 24): the
-/// rank that owns the contact's first block finds it, updates its common
-/// plane and builds its sub-contacts, then runs them through the
-/// displacement increments and the joint model at every step; a rank that
-/// holds that block as a ghost (and owns the second one) takes the contact
-/// from it instead: its plane and sub-contacts at each update
-/// (share_layout), their new state at each step (start, finish), one
-/// message per neighbour rank each way. The sub-contacts' force sums then
+/// A model split among ranks computes each contact once (issue 24): of a
+/// contact across two ranks, one (RankBlocks::computes_contact, about half
+/// of them each) finds it, updates its common plane and builds its
+/// sub-contacts, then runs them through the displacement increments and
+/// the joint model at every step; the other takes the contact from it: its
+/// plane and sub-contacts at each update (send_layout, receive_layout),
+/// their new state at each step (start, finish), one message per neighbour
+/// rank each way. The sub-contacts' force sums then
 /// run on both ranks over the same numbers, in the same order as one rank
 /// would, so that the answer is still the serial one, bit for bit.
 ///
@@ -38,22 +38,25 @@ public:
   /// receive, and throws std::logic_error when they are not those it holds.
   void match(const ContactSet& cs);
 
-  /// After every rank's ContactSet::update, which left the contacts whose
-  /// first block is a ghost here to that block's owner (its `elsewhere`):
-  /// sends each neighbour the contacts this rank holds with a ghost of it
-  /// as second block, with their planes, state and sub-contacts, and puts
-  /// those received in place of its own, all in pair order. Contacts are
-  /// laid out again in new slots. `gridpoints`: the split zones' share,
-  /// when the sub-contacts have gridpoints (ContactSet::has_deformable).
-  /// Every rank with neighbours calls it at the same update (one message
-  /// to each neighbour each way); throws std::logic_error when a contact arrives for blocks
-  /// not held as its sender's ghost and owned here.
-  void share_layout(ContactSet& cs, bool dilation, bool yielding, const GridpointShare* gridpoints);
-  /// Contacts this rank took from its neighbours at the last share_layout.
+  /// The two halves of a ContactSet::update's ContactTrade (every rank
+  /// with neighbours calls both at the same update; one message to each
+  /// neighbour each way). send_layout posts, for each neighbour, the
+  /// contacts `slots` of `cs` whose second block it owns, with their planes,
+  /// state and sub-contacts [begin[i], end[i]); receive_layout appends to
+  /// `taken` those the neighbours sent, in pair order, and throws
+  /// std::logic_error for one whose blocks are not held here as its
+  /// sender's ghost and this rank's own. `gridpoints`: the split zones'
+  /// share, when the sub-contacts have gridpoints.
+  void send_layout(const ContactSet& cs, const std::vector<unsigned int>& slots,
+                   const std::vector<unsigned int>& begin, const std::vector<unsigned int>& end,
+                   bool dilation, bool yielding, const GridpointShare* gridpoints);
+  void receive_layout(ContactSet& taken, bool dilation, bool yielding,
+                      const GridpointShare* gridpoints);
+  /// Contacts this rank took from its neighbours at the last receive_layout.
   std::size_t contacts_taken() const { return contacts_taken_; }
 
   /// Per sub-contact of the matched layout: 1 for those this rank computes
-  /// and sends (its first block owned here, its second a ghost), which go
+  /// and sends (of a contact across ranks that it computes), which go
   /// through the joint model first; and 1 for the others it computes
   /// (both blocks owned), which go through it while the messages travel.
   const std::vector<unsigned char>& sent_first() const { return sent_first_; }
@@ -68,6 +71,9 @@ public:
   /// Waits for the messages start() posted and writes what arrived into
   /// the sub-contacts this rank does not compute.
   void finish(ContactSet& cs, std::vector<double>* velocity);
+
+  /// The blocks this rank holds (kept by the caller, changed in place).
+  const RankBlocks& blocks() const { return blocks_; }
 
   /// Doubles sent by this rank at the last start().
   std::size_t sent() const { return sent_; }
@@ -91,6 +97,9 @@ private:
   std::vector<unsigned int> owners() const;
   /// The ranks that send ghosts here or take ghosts from here, ascending.
   std::vector<unsigned int> neighbour_ranks() const;
+  std::vector<unsigned int> layout_ranks_; ///< the neighbours at the last send_layout
+  std::vector<std::vector<char>> layout_out_;
+  std::vector<MPI_Request> layout_requests_;
 };
 
 } // namespace talus

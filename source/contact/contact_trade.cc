@@ -1,0 +1,202 @@
+// ContactSet::update on a rank's share of a model split among ranks
+// (issue 24): each contact across ranks found, updated and laid out once,
+// by one of its two ranks (RankBlocks::computes_contact), and taken by the
+// other.
+
+#include <talus/contact/block_decomposition.h>
+#include <talus/contact/contact_set.h>
+#include <talus/joint/continuously_yielding.h>
+
+#include <algorithm>
+#include <stdexcept>
+
+namespace talus
+{
+
+namespace
+{
+std::uint64_t pair_key(unsigned int a, unsigned int b)
+{
+  return (static_cast<std::uint64_t>(a) << 32) | b;
+}
+
+/// The sub-contacts of each of `n` slots in `cs`, [begin[c], end[c])
+/// (contiguous; empty for a slot without any).
+void ranges(const ContactSet& cs, unsigned int n, std::vector<unsigned int>& begin,
+            std::vector<unsigned int>& end)
+{
+  begin.assign(n, 0);
+  end.assign(n, 0);
+  for (unsigned int k = 0; k < cs.n_subcontacts(); ++k)
+  {
+    const unsigned int c = cs.sc_contact[k];
+    if (end[c] == 0)
+      begin[c] = k;
+    end[c] = k + 1;
+  }
+}
+} // namespace
+
+void ContactSet::append_subcontacts(const ContactSet& from, unsigned int begin, unsigned int end,
+                                    unsigned int c)
+{
+  const bool dilation = !from.sc_dilation.empty(), yielding = !from.sc_yield.empty(),
+             nodes = !from.sc_node.empty();
+  for (unsigned int k = begin; k < end; ++k)
+  {
+    sc_contact.push_back(c);
+    sc_position.push_back(from.sc_position[k]);
+    sc_area.push_back(from.sc_area[k]);
+    sc_un.push_back(from.sc_un[k]);
+    sc_fn.push_back(from.sc_fn[k]);
+    sc_fs.insert(sc_fs.end(), &from.sc_fs[3 * k], &from.sc_fs[3 * k] + 3);
+    sc_us.insert(sc_us.end(), &from.sc_us[3 * k], &from.sc_us[3 * k] + 3);
+    if (dilation)
+      sc_dilation.push_back(from.sc_dilation[k]);
+    if (yielding)
+      sc_yield.insert(sc_yield.end(), &from.sc_yield[yield_state_size * k],
+                      &from.sc_yield[yield_state_size * k] + yield_state_size);
+    sc_state.push_back(from.sc_state[k]);
+    sc_material.push_back(from.sc_material[k]);
+    sc_fresh.push_back(from.sc_fresh[k]);
+    if (nodes)
+    {
+      sc_node.insert(sc_node.end(), &from.sc_node[6 * k], &from.sc_node[6 * k] + 6);
+      sc_weight.insert(sc_weight.end(), &from.sc_weight[6 * k], &from.sc_weight[6 * k] + 6);
+    }
+  }
+}
+
+void ContactSet::update_across_ranks(const BlockModel& m, const ContactSettings& settings,
+                                     const CommonPlaneSettings& cps,
+                                     const std::vector<double>* path, ContactTrade& trade)
+{
+  const RankBlocks& blocks = trade.blocks();
+  if (blocks.owned.size() != m.n_blocks())
+    throw std::logic_error("ContactSet: the trade's blocks are not those of the model");
+  // Per live contact: 0 computed here alone, 1 computed here for another
+  // rank too, 2 computed by another rank.
+  const auto kind = [&](unsigned int c)
+  {
+    const unsigned int a = block_a[c], b = block_b[c];
+    if (!blocks.computes_contact(a, b))
+      return 2;
+    return blocks.owned[a] && blocks.owned[b] ? 0 : 1;
+  };
+
+  // 1. The contacts this rank computes for another first, and sent at
+  // once: the other rank then waits for these alone.
+  std::vector<unsigned int> sent, sent_begin, sent_end;
+  for (const unsigned int c : pair_order_)
+  {
+    if (!alive[c] || kind(c) != 1)
+      continue;
+    const unsigned int first = n_subcontacts();
+    update_contact(c, m, settings, cps, path);
+    if (!alive[c])
+      continue;
+    sent.push_back(c);
+    sent_begin.push_back(first);
+    sent_end.push_back(n_subcontacts());
+  }
+  trade.send(*this, sent, sent_begin, sent_end);
+  // Their sub-contacts aside until they are laid out in pair order below
+  // (the arrays here keep their memory).
+  ContactSet computed;
+  for (std::size_t i = 0; i < sent.size(); ++i)
+    computed.append_subcontacts(*this, sent_begin[i], sent_end[i], sent[i]);
+  clear_subcontacts();
+
+  // 2. Those another rank computes, as it sent them: a contact it no
+  // longer has goes, one it made comes (new slots, merged into the pair
+  // order), the others take its plane and state.
+  ContactSet taken;
+  trade.receive(taken);
+  std::vector<unsigned int> made;                                // new slots, in pair order
+  std::vector<std::pair<unsigned int, unsigned int>> from_taken; // slot, taken's slot
+  const auto take = [&](unsigned int c, unsigned int t)
+  {
+    plane[c] = taken.plane[t];
+    gap[c] = taken.gap[t];
+    type[c] = taken.type[t];
+    material[c] = taken.material[t];
+    path_at_update[c] = taken.path_at_update[t];
+    from_taken.emplace_back(c, t);
+  };
+  const auto make = [&](unsigned int t)
+  {
+    // Appended, not from the free list: a slot freed in this walk is still
+    // in the pair order, dead.
+    const unsigned int c = n_slots();
+    block_a.push_back(taken.block_a[t]);
+    block_b.push_back(taken.block_b[t]);
+    plane.push_back(taken.plane[t]);
+    gap.push_back(0.0);
+    type.push_back(taken.type[t]);
+    alive.push_back(1);
+    material.push_back(0);
+    path_at_update.push_back(-1.0);
+    slot_of_pair_[pair_key(taken.block_a[t], taken.block_b[t])] = c;
+    ++n_alive_;
+    take(c, t);
+    made.push_back(c);
+  };
+  unsigned int t = 0;
+  const auto taken_key = [&](unsigned int k)
+  { return pair_key(taken.block_a[k], taken.block_b[k]); };
+  for (const unsigned int c : pair_order_)
+  {
+    if (!alive[c] || kind(c) != 2)
+      continue;
+    const std::uint64_t key = pair_key(block_a[c], block_b[c]);
+    for (; t < taken.n_slots() && taken_key(t) < key; ++t)
+      make(t);
+    if (t < taken.n_slots() && taken_key(t) == key)
+      take(c, t++);
+    else
+      remove(c);
+  }
+  for (; t < taken.n_slots(); ++t)
+    make(t);
+  if (!made.empty())
+  {
+    // The new slots merged into the pair order (both sorted).
+    std::vector<unsigned int> merged;
+    merged.reserve(pair_order_.size() + made.size());
+    std::size_t k = 0;
+    for (const unsigned int c : pair_order_)
+    {
+      if (!alive[c])
+        continue;
+      const std::uint64_t key = pair_key(block_a[c], block_b[c]);
+      for (; k < made.size() && pair_key(block_a[made[k]], block_b[made[k]]) < key; ++k)
+        merged.push_back(made[k]);
+      merged.push_back(c);
+    }
+    merged.insert(merged.end(), made.begin() + long(k), made.end());
+    pair_order_.swap(merged);
+  }
+
+  // 3. Everything in pair order: the contacts computed for another rank and
+  // those taken as they are, the rest updated here.
+  std::vector<int> taken_of(n_slots(), -1);
+  for (const auto& [c, k] : from_taken)
+    taken_of[c] = static_cast<int>(k);
+  std::vector<unsigned int> computed_begin, computed_end, taken_begin, taken_end;
+  ranges(computed, n_slots(), computed_begin, computed_end);
+  ranges(taken, taken.n_slots(), taken_begin, taken_end);
+  for (const unsigned int c : pair_order_)
+  {
+    if (!alive[c])
+      continue;
+    const int k = kind(c);
+    if (k == 2)
+      append_subcontacts(taken, taken_begin[taken_of[c]], taken_end[taken_of[c]], c);
+    else if (k == 1)
+      append_subcontacts(computed, computed_begin[c], computed_end[c], c);
+    else
+      update_contact(c, m, settings, cps, path);
+  }
+}
+
+} // namespace talus
