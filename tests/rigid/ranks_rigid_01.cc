@@ -9,8 +9,10 @@
 // and summed in the serial order (ContactSet's order by block pair). Each
 // contact is computed once: the common planes the ranks compute over the
 // steps add up to the serial run's, a contact across ranks being found,
-// updated and laid out by the owner of its first block alone and taken by
-// the other rank (SubContactExchange::share_layout).
+// updated and laid out by one of its two ranks alone and taken by the
+// other (ContactSet::update with a ContactTrade); which rank computes it
+// alternates (RankBlocks::computes_contact), so that every rank takes
+// some.
 //
 // The scene: a slab 24 m x 4 m x 3 m cut by three orthogonal joint sets at
 // 1 m and an oblique one (slivers, blocks of different sizes), its bottom
@@ -142,9 +144,10 @@ void run_case(const Scene& scene, const BlockModel& model, const SolverSettings&
     laid += static_cast<long>(shared.contacts_taken());
     exchange.refresh(solver);
   }
-  long taken_everywhere = 0, laid_everywhere = 0, planes_everywhere = 0;
+  long taken_everywhere = 0, laid_everywhere = 0, planes_everywhere = 0, laid_least = 0;
   MPI_Allreduce(&taken, &taken_everywhere, 1, MPI_LONG, MPI_SUM, comm);
   MPI_Allreduce(&laid, &laid_everywhere, 1, MPI_LONG, MPI_SUM, comm);
+  MPI_Allreduce(&laid, &laid_least, 1, MPI_LONG, MPI_MIN, comm);
   const long my_planes = static_cast<long>(solver.contacts().planes_computed() - split_planes);
   MPI_Allreduce(&my_planes, &planes_everywhere, 1, MPI_LONG, MPI_SUM, comm);
   const long planes_serial = static_cast<long>(serial.contacts().planes_computed() - serial_planes);
@@ -187,6 +190,8 @@ void run_case(const Scene& scene, const BlockModel& model, const SolverSettings&
                 talus_test::verdict(taken_everywhere > 0));
     std::printf("  contacts across ranks laid out by one rank, the other taking them %s\n",
                 talus_test::verdict(laid_everywhere > 0));
+    std::printf("  every rank takes some of them: neighbours share the contacts between them %s\n",
+                talus_test::verdict(laid_least > 0));
     std::printf("  every common plane computed once: the ranks' add up to the serial run's %s\n",
                 talus_test::verdict(planes_everywhere == planes_serial));
     std::fprintf(stderr, "common planes: %ld on the ranks, %ld serial\n", planes_everywhere,
