@@ -1,7 +1,7 @@
-// ContactSet::update on a rank's share of a model split among ranks
-// (issue 24): each contact across ranks found, updated and laid out once,
-// by one of its two ranks (RankBlocks::computes_contact), and taken by the
-// other.
+// The contacts of a rank's share of a model split among ranks (issue 24):
+// none between two ghosts, and each contact across ranks found, updated
+// and laid out once by ContactSet::update, by one of its two ranks
+// (RankBlocks::computes_contact), and taken by the other.
 
 #include <talus/contact/block_decomposition.h>
 #include <talus/contact/contact_set.h>
@@ -36,6 +36,71 @@ void ranges(const ContactSet& cs, unsigned int n, std::vector<unsigned int>& beg
   }
 }
 } // namespace
+
+void ContactSet::drop_contacts_among(const std::vector<char>& among)
+{
+  bool any = false;
+  for (unsigned int c = 0; c < n_slots(); ++c)
+    if (alive[c] && among[block_a[c]] && among[block_b[c]])
+    {
+      remove(c);
+      any = true;
+    }
+  if (!any)
+    return;
+  // Sub-contacts of the contacts left, moved down in place.
+  const bool nodes = !sc_node.empty(), dilated = !sc_dilation.empty(), yielded = !sc_yield.empty();
+  unsigned int kept = 0;
+  for (unsigned int i = 0; i < n_subcontacts(); ++i)
+  {
+    if (!alive[sc_contact[i]])
+      continue;
+    const unsigned int k = kept++;
+    sc_contact[k] = sc_contact[i];
+    sc_position[k] = sc_position[i];
+    sc_area[k] = sc_area[i];
+    sc_un[k] = sc_un[i];
+    sc_fn[k] = sc_fn[i];
+    for (int d = 0; d < 3; ++d)
+    {
+      sc_fs[3 * k + d] = sc_fs[3 * i + d];
+      sc_us[3 * k + d] = sc_us[3 * i + d];
+    }
+    if (dilated)
+      sc_dilation[k] = sc_dilation[i];
+    if (yielded)
+      for (unsigned int y = 0; y < yield_state_size; ++y)
+        sc_yield[yield_state_size * k + y] = sc_yield[yield_state_size * i + y];
+    sc_state[k] = sc_state[i];
+    sc_material[k] = sc_material[i];
+    sc_fresh[k] = sc_fresh[i];
+    if (nodes)
+      for (int n = 0; n < 6; ++n)
+      {
+        sc_node[6 * k + n] = sc_node[6 * i + n];
+        sc_weight[6 * k + n] = sc_weight[6 * i + n];
+      }
+  }
+  sc_contact.resize(kept);
+  sc_position.resize(kept);
+  sc_area.resize(kept);
+  sc_un.resize(kept);
+  sc_fn.resize(kept);
+  sc_fs.resize(3 * kept);
+  sc_us.resize(3 * kept);
+  if (dilated)
+    sc_dilation.resize(kept);
+  if (yielded)
+    sc_yield.resize(yield_state_size * kept);
+  sc_state.resize(kept);
+  sc_material.resize(kept);
+  sc_fresh.resize(kept);
+  if (nodes)
+  {
+    sc_node.resize(6 * kept);
+    sc_weight.resize(6 * kept);
+  }
+}
 
 void ContactSet::append_subcontacts(const ContactSet& from, unsigned int begin, unsigned int end,
                                     unsigned int c)
@@ -127,6 +192,9 @@ void ContactSet::update_across_ranks(const BlockModel& m, const ContactSettings&
   {
     // Appended, not from the free list: a slot freed in this walk is still
     // in the pair order, dead.
+    if (slot_of_pair_.count(pair_key(taken.block_a[t], taken.block_b[t])))
+      throw std::logic_error("ContactSet: a contact taken from another rank is one this rank "
+                             "computes");
     const unsigned int c = n_slots();
     block_a.push_back(taken.block_a[t]);
     block_b.push_back(taken.block_b[t]);
