@@ -108,8 +108,7 @@ void CellSpace::candidate_pairs(const std::vector<Box>& envelopes, const std::ve
           {
             const unsigned int other = cell_block_[e];
             // A pair of two flagged blocks is produced from its first block only.
-            if (other == b || seen[other] == b + 1 ||
-                ((only.empty() || only[other]) && other < b))
+            if (other == b || seen[other] == b + 1 || ((only.empty() || only[other]) && other < b))
               continue;
             seen[other] = b + 1;
             if (envelopes[b].overlaps(envelopes[other]))

@@ -16,11 +16,6 @@ namespace talus
 namespace
 {
 
-std::uint64_t pair_key(unsigned int a, unsigned int b)
-{
-  return (static_cast<std::uint64_t>(a) << 32) | b;
-}
-
 /// The side of one block facing the common plane.
 struct FacingSide
 {

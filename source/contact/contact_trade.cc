@@ -13,30 +13,6 @@
 namespace talus
 {
 
-namespace
-{
-std::uint64_t pair_key(unsigned int a, unsigned int b)
-{
-  return (static_cast<std::uint64_t>(a) << 32) | b;
-}
-
-/// The sub-contacts of each of `n` slots in `cs`, [begin[c], end[c])
-/// (contiguous; empty for a slot without any).
-void ranges(const ContactSet& cs, unsigned int n, std::vector<unsigned int>& begin,
-            std::vector<unsigned int>& end)
-{
-  begin.assign(n, 0);
-  end.assign(n, 0);
-  for (unsigned int k = 0; k < cs.n_subcontacts(); ++k)
-  {
-    const unsigned int c = cs.sc_contact[k];
-    if (end[c] == 0)
-      begin[c] = k;
-    end[c] = k + 1;
-  }
-}
-} // namespace
-
 void ContactSet::drop_contacts_among(const std::vector<char>& among)
 {
   bool any = false;
@@ -99,6 +75,20 @@ void ContactSet::drop_contacts_among(const std::vector<char>& among)
   {
     sc_node.resize(6 * kept);
     sc_weight.resize(6 * kept);
+  }
+}
+
+void ContactSet::subcontact_ranges(unsigned int n, std::vector<unsigned int>& begin,
+                                   std::vector<unsigned int>& end) const
+{
+  begin.assign(n, 0);
+  end.assign(n, 0);
+  for (unsigned int k = 0; k < n_subcontacts(); ++k)
+  {
+    const unsigned int c = sc_contact[k];
+    if (end[c] == 0)
+      begin[c] = k;
+    end[c] = k + 1;
   }
 }
 
@@ -251,8 +241,8 @@ void ContactSet::update_across_ranks(const BlockModel& m, const ContactSettings&
   for (const auto& [c, k] : from_taken)
     taken_of[c] = static_cast<int>(k);
   std::vector<unsigned int> computed_begin, computed_end, taken_begin, taken_end;
-  ranges(computed, n_slots(), computed_begin, computed_end);
-  ranges(taken, taken.n_slots(), taken_begin, taken_end);
+  computed.subcontact_ranges(n_slots(), computed_begin, computed_end);
+  taken.subcontact_ranges(taken.n_slots(), taken_begin, taken_end);
   for (const unsigned int c : pair_order_)
   {
     if (!alive[c])

@@ -83,22 +83,6 @@ inline void put_subcontact_nodes(Bytes& to, const ContactSet& cs, unsigned int k
   }
 }
 
-/// Each contact slot's sub-contacts, [begin[c], end[c]): contiguous, in
-/// block-pair order (empty for a contact without any).
-inline void subcontact_ranges(const ContactSet& cs, std::vector<unsigned int>& begin,
-                              std::vector<unsigned int>& end)
-{
-  begin.assign(cs.n_slots(), 0);
-  end.assign(cs.n_slots(), 0);
-  for (unsigned int k = 0; k < cs.n_subcontacts(); ++k)
-  {
-    const unsigned int c = cs.sc_contact[k];
-    if (end[c] == 0)
-      begin[c] = k;
-    end[c] = k + 1;
-  }
-}
-
 /// Appends contact c of `cs` between blocks numbered `a` and `b` (as the
 /// receiver knows them): its plane and state, then its sub-contacts
 /// [begin, end) with theirs; `put_nodes(out, k)` adds sub-contact k's

@@ -25,11 +25,6 @@ namespace
 using block_records::Bytes;
 using block_records::Reader;
 
-std::uint64_t pair_key(unsigned int a, unsigned int b)
-{
-  return (static_cast<std::uint64_t>(a) << 32) | b;
-}
-
 /// The position of global block g in the ascending `local`, or -1.
 int local_of(const std::vector<unsigned int>& local, unsigned int g)
 {
@@ -394,7 +389,7 @@ bool BlockMigration::migrate(RigidSolver& s, RankBlocks& blocks, bool may_refuse
   // solver and every contact it has (an owned block has all of its own).
   // The sub-contacts of a contact are contiguous (ContactSet's pair order).
   std::vector<unsigned int> sc_begin, sc_end;
-  block_records::subcontact_ranges(cs, sc_begin, sc_end);
+  cs.subcontact_ranges(cs.n_slots(), sc_begin, sc_end);
   std::vector<std::vector<unsigned int>> contacts_of(n_old);
   for (unsigned int c = 0; c < cs.n_slots(); ++c)
     if (cs.alive[c])
@@ -464,8 +459,8 @@ bool BlockMigration::migrate(RigidSolver& s, RankBlocks& blocks, bool may_refuse
     in.at += n_sc * block_records::subcontact_size(dilation, yielding, nodes);
     const int la = local_of(next.local, a), lb = local_of(next.local, b);
     if (la >= 0 && lb >= 0 && (next.owned[la] || next.owned[lb]) &&
-        have.insert(pair_key(la, lb)).second)
-      received_contacts.emplace_back(pair_key(la, lb), start);
+        have.insert(ContactSet::pair_key(la, lb)).second)
+      received_contacts.emplace_back(ContactSet::pair_key(la, lb), start);
   };
   std::size_t arrays_size = 0;
   visit_block_arrays(s, [&](auto& array) { arrays_size += sizeof(array[0]); });
@@ -569,7 +564,7 @@ bool BlockMigration::migrate(RigidSolver& s, RankBlocks& blocks, bool may_refuse
   for (const unsigned int c : cs.pair_order_)
     if (cs.alive[c] && new_of[cs.block_a[c]] >= 0 && new_of[cs.block_b[c]] >= 0 &&
         (next.owned[new_of[cs.block_a[c]]] || next.owned[new_of[cs.block_b[c]]]))
-      kept.emplace_back(pair_key(new_of[cs.block_a[c]], new_of[cs.block_b[c]]), c);
+      kept.emplace_back(ContactSet::pair_key(new_of[cs.block_a[c]], new_of[cs.block_b[c]]), c);
   std::sort(received_contacts.begin(), received_contacts.end());
   ContactSet laid;
   const auto add_kept = [&](std::uint64_t key, unsigned int old)

@@ -18,11 +18,6 @@ namespace
 {
 constexpr int header_tag = 2402, state_tag = 2403, layout_tag = 2404;
 
-std::uint64_t pair_key(unsigned int a, unsigned int b)
-{
-  return (static_cast<std::uint64_t>(a) << 32) | b;
-}
-
 /// Doubles per sub-contact in a swap: position (3), normal displacement,
 /// normal force, shear force (3), shear displacement (3), state; then the
 /// dilation, the yield state and the relative velocity when kept.
@@ -76,7 +71,7 @@ void SubContactExchange::match(const ContactSet& cs)
   { return neighbours_[std::lower_bound(ranks.begin(), ranks.end(), rank) - ranks.begin()]; };
 
   std::vector<unsigned int> begin, end;
-  block_records::subcontact_ranges(cs, begin, end);
+  cs.subcontact_ranges(cs.n_slots(), begin, end);
   n_received_ = 0;
   sent_first_.assign(cs.n_subcontacts(), 0);
   computed_after_.assign(cs.n_subcontacts(), 0);
@@ -242,7 +237,7 @@ void SubContactExchange::receive_layout(ContactSet& taken, bool dilation, bool y
                                " sent a contact of blocks " + std::to_string(ga) + " and " +
                                std::to_string(gb) + " that rank " + std::to_string(blocks_.rank) +
                                " does not hold as the sender's ghost and its own");
-      records.emplace_back(pair_key(unsigned(a), unsigned(b)), record);
+      records.emplace_back(ContactSet::pair_key(unsigned(a), unsigned(b)), record);
     }
   }
   std::sort(records.begin(), records.end());

@@ -100,7 +100,7 @@ void BlockMigration::gather_whole(const RigidSolver& split, const RankBlocks& bl
   // with their sub-contacts, which are contiguous (block-pair order).
   const ContactSet& cs = s.contacts_;
   std::vector<unsigned int> sc_begin, sc_end;
-  block_records::subcontact_ranges(cs, sc_begin, sc_end);
+  cs.subcontact_ranges(cs.n_slots(), sc_begin, sc_end);
   // (as the settings say, alike on every rank: a rank may have no sub-contacts)
   const bool dilation = s.s_.contact.dilation, yielding = s.s_.contact.yielding;
   unsigned int n_contacts = 0;

@@ -126,6 +126,10 @@ public:
   unsigned int n_contacts() const { return n_alive_; }
   unsigned int n_slots() const { return static_cast<unsigned int>(block_a.size()); }
   unsigned int n_subcontacts() const { return static_cast<unsigned int>(sc_contact.size()); }
+  /// The sub-contacts of each of the first `n` slots, [begin[c], end[c]):
+  /// contiguous, in block-pair order (empty for a slot without any).
+  void subcontact_ranges(unsigned int n, std::vector<unsigned int>& begin,
+                         std::vector<unsigned int>& end) const;
   /// Common planes computed by this set (a candidate pair's search, an
   /// update's), since it was made: its share of the contact work.
   unsigned long planes_computed() const { return planes_computed_; }
@@ -173,6 +177,11 @@ public:
   void save_state(CheckpointWriter& out) const;
   void load_state(CheckpointReader& in, unsigned int n_blocks);
 
+  /// The key of block pair (a, b) in pair order: a << 32 | b.
+  static std::uint64_t pair_key(unsigned int a, unsigned int b)
+  {
+    return (static_cast<std::uint64_t>(a) << 32) | b;
+  }
   /// Appends a live contact slot for the block pair `key` (a << 32 | b),
   /// its plane, state and sub-contacts still to be appended by the caller:
   /// how a set is laid out again from records, in pair order (blocks
