@@ -230,9 +230,13 @@ int main(int argc, char** argv)
     const unsigned long planes_here = again.contacts().planes_computed() - planes_at_start;
     std::fprintf(stderr,
                  "rank %d, split computed %s: %.3f s; search %.3f, planes %.3f, forces %.3f, "
-                 "motion %.3f; %lu common planes computed\n",
+                 "motion %.3f; %lu common planes computed; %u contacts, %u sub-contacts held; "
+                 "waited %.3f s for the sub-contacts' state, %.3f s for their layout\n",
                  rank, once ? "once" : "on both sides", again_seconds, report.seconds_detection,
-                 report.seconds_planes, report.seconds_forces, report.seconds_motion, planes_here);
+                 report.seconds_planes, report.seconds_forces, report.seconds_motion, planes_here,
+                 again.contacts().n_contacts(), again.contacts().n_subcontacts(),
+                 shared_again.seconds_waiting_for_state(),
+                 shared_again.seconds_waiting_for_layout());
     MPI_Reduce(&planes_here, &planes_again, 1, MPI_UNSIGNED_LONG, MPI_SUM, 0, comm);
     differing = 0;
     if (mine_again.local == mine.local)

@@ -759,17 +759,6 @@ void RigidSolver::contact_forces()
   // state on (RankBlocks::computes_contact); without, every rank holding
   // both blocks computes it, and the owner of its first block counts it.
   const bool exchanged = contacts_from_owners();
-  if (!ghost_.empty())
-  {
-    sc_counted_.resize(n);
-    const RankBlocks* blocks = exchanged ? &subcontact_exchange_->blocks() : nullptr;
-    for (unsigned int i = 0; i < n; ++i)
-    {
-      const unsigned int c = cs.sc_contact[i];
-      sc_counted_[i] = blocks != nullptr ? blocks->computes_contact(cs.block_a[c], cs.block_b[c])
-                                         : !ghost_[cs.block_a[c]];
-    }
-  }
   if (exchanged && subcontacts_stale_)
   {
     subcontact_exchange_->match(cs);
@@ -778,6 +767,18 @@ void RigidSolver::contact_forces()
   if (exchanged && subcontact_exchange_->sent_first().size() != n)
     throw std::logic_error("RigidSolver: the contacts changed without the sub-contact "
                            "exchange's lists made again");
+  // With an exchange, the sub-contacts this rank computes are known since
+  // the layout was matched; without, they follow the ghosts at each step.
+  const unsigned char* counted = nullptr;
+  if (exchanged)
+    counted = subcontact_exchange_->computed().data();
+  else if (!ghost_.empty())
+  {
+    sc_counted_.resize(n);
+    for (unsigned int i = 0; i < n; ++i)
+      sc_counted_[i] = !ghost_[cs.block_a[cs.sc_contact[i]]];
+    counted = sc_counted_.data();
+  }
   const double beta = s_.stiffness_damping(); // Rayleigh, s
   if (beta > 0.0)
     sc_velocity_.resize(3 * n);
@@ -794,7 +795,7 @@ void RigidSolver::contact_forces()
   // Relative displacement increments (eqs. 15, 20-22).
   for (unsigned int i = 0; i < n; ++i)
   {
-    if (exchanged && !sc_counted_[i])
+    if (exchanged && !counted[i])
       continue; // its state comes from its first block's owner
     const unsigned int c = cs.sc_contact[i];
     const unsigned int a = cs.block_a[c], b = cs.block_b[c];
@@ -872,7 +873,7 @@ void RigidSolver::contact_forces()
   batch.state = cs.sc_state.data();
   batch.yield = cs.sc_yield.empty() ? nullptr : cs.sc_yield.data();
   batch.material = cs.sc_material.data();
-  batch.counted = ghost_.empty() ? nullptr : sc_counted_.data();
+  batch.counted = counted;
   if (exchanged)
   {
     // Those sent first, then the rest while the messages travel.

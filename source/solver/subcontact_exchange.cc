@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <array>
+#include <chrono>
 #include <sstream>
 #include <stdexcept>
 #include <string>
@@ -75,12 +76,14 @@ void SubContactExchange::match(const ContactSet& cs)
   n_received_ = 0;
   sent_first_.assign(cs.n_subcontacts(), 0);
   computed_after_.assign(cs.n_subcontacts(), 0);
+  computed_.assign(cs.n_subcontacts(), 0);
   for (unsigned int k = 0; k < cs.n_subcontacts(); ++k)
   {
     const unsigned int c = cs.sc_contact[k];
     const unsigned int a = cs.block_a[c], b = cs.block_b[c];
     computed_after_[k] = !ghost(a) && !ghost(b);
     sent_first_[k] = ghost(a) != ghost(b) && blocks_.computes_contact(a, b);
+    computed_[k] = computed_after_[k] | sent_first_[k];
   }
   // The contacts across ranks in pair order (local order is global order).
   std::vector<std::array<unsigned int, 3>> cut;
@@ -194,6 +197,7 @@ void SubContactExchange::receive_layout(ContactSet& taken, bool dilation, bool y
   const std::vector<unsigned int> owner = owners();
   const auto ghost = [&](unsigned int b) { return blocks_.owned[b] == 0; };
   std::vector<std::vector<char>> got(layout_ranks_.size());
+  const auto waiting = std::chrono::steady_clock::now();
   for (std::size_t k = 0; k < layout_ranks_.size(); ++k)
   {
     MPI_Status status;
@@ -205,6 +209,7 @@ void SubContactExchange::receive_layout(ContactSet& taken, bool dilation, bool y
              MPI_STATUS_IGNORE);
   }
   wait_all(layout_requests_);
+  layout_wait_ += std::chrono::duration<double>(std::chrono::steady_clock::now() - waiting).count();
 
   // What arrived, by local pair, in pair order.
   const auto local_of = [&](unsigned int g)
@@ -313,7 +318,9 @@ void SubContactExchange::start(const ContactSet& cs, const std::vector<double>* 
 void SubContactExchange::finish(ContactSet& cs, std::vector<double>* velocity)
 {
   const bool dilation = !cs.sc_dilation.empty(), yielding = !cs.sc_yield.empty();
+  const auto waiting = std::chrono::steady_clock::now();
   wait_all(requests_);
+  state_wait_ += std::chrono::duration<double>(std::chrono::steady_clock::now() - waiting).count();
   for (Neighbour& n : neighbours_)
   {
     const double* at = n.in.data();

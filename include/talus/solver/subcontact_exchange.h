@@ -61,6 +61,10 @@ public:
   /// (both blocks owned), which go through it while the messages travel.
   const std::vector<unsigned char>& sent_first() const { return sent_first_; }
   const std::vector<unsigned char>& computed_after() const { return computed_after_; }
+  /// Per sub-contact: 1 for all those this rank computes (either of the
+  /// two above), 0 for those it takes from a neighbour or that lie
+  /// between two ghosts.
+  const std::vector<unsigned char>& computed() const { return computed_; }
 
   /// Once the sub-contacts of sent_first() went through the joint model:
   /// posts the receives and sends the state of those sub-contacts
@@ -79,6 +83,11 @@ public:
   std::size_t sent() const { return sent_; }
   /// Sub-contacts this rank takes from its neighbours (matched layout).
   std::size_t received() const { return n_received_; }
+  /// Seconds this rank has waited for its neighbours' messages, in all:
+  /// for the sub-contacts' state (finish) and for their layout
+  /// (receive_layout). A rank that waits is ahead of the other.
+  double seconds_waiting_for_state() const { return state_wait_; }
+  double seconds_waiting_for_layout() const { return layout_wait_; }
 
 private:
   struct Neighbour
@@ -90,9 +99,10 @@ private:
   const RankBlocks& blocks_;
   MPI_Comm comm_;
   std::vector<Neighbour> neighbours_;
-  std::vector<unsigned char> sent_first_, computed_after_;
+  std::vector<unsigned char> sent_first_, computed_after_, computed_;
   std::vector<MPI_Request> requests_;
   std::size_t sent_ = 0, n_received_ = 0, contacts_taken_ = 0;
+  double state_wait_ = 0.0, layout_wait_ = 0.0;
   /// Per block held: the rank that owns it.
   std::vector<unsigned int> owners() const;
   /// The ranks that send ghosts here or take ghosts from here, ascending.
