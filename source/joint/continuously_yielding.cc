@@ -121,8 +121,9 @@ ExactSum continuously_yielding(const std::vector<JointProperties>& joints, SubCo
       rows[k].roughness = joints[k].roughness;
     }
   ExactSum dissipated;
-  for (unsigned int i = 0; i < s.size; ++i)
+  for (unsigned int at = 0; at < s.size; ++at)
   {
+    const unsigned int i = s.indices != nullptr ? s.indices[at] : at;
     if (s.computed != nullptr && !s.computed[i])
       continue;
     const unsigned char material = s.material != nullptr ? s.material[i] : 0;

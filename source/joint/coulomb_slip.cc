@@ -44,8 +44,9 @@ ExactSum coulomb_slip(const std::vector<JointProperties>& joints, SubContactBatc
     mixed |= other_model[k];
   }
   ExactSum dissipated;
-  for (unsigned int i = 0; i < s.size; ++i)
+  for (unsigned int at = 0; at < s.size; ++at)
   {
+    const unsigned int i = s.indices != nullptr ? s.indices[at] : at;
     if (s.computed != nullptr && !s.computed[i])
       continue;
     const unsigned char material = s.material != nullptr ? s.material[i] : 0;

@@ -764,7 +764,7 @@ void RigidSolver::contact_forces()
     subcontact_exchange_->match(cs);
     subcontacts_stale_ = false;
   }
-  if (exchanged && subcontact_exchange_->sent_first().size() != n)
+  if (exchanged && subcontact_exchange_->computed().size() != n)
     throw std::logic_error("RigidSolver: the contacts changed without the sub-contact "
                            "exchange's lists made again");
   // With an exchange, the sub-contacts this rank computes are known since
@@ -878,9 +878,13 @@ void RigidSolver::contact_forces()
   {
     // Those sent first, then the rest while the messages travel.
     std::vector<double>* velocities = beta > 0.0 ? &sc_velocity_ : nullptr;
-    batch.computed = subcontact_exchange_->sent_first().data();
+    const std::vector<unsigned int>& first = subcontact_exchange_->sent_first();
+    batch.indices = first.data();
+    batch.size = static_cast<unsigned int>(first.size());
     step_energy_[step_friction] += apply_joint_model(joints_, batch);
     subcontact_exchange_->start(cs, velocities);
+    batch.indices = nullptr;
+    batch.size = n;
     batch.computed = subcontact_exchange_->computed_after().data();
     step_energy_[step_friction] += apply_joint_model(joints_, batch);
     subcontact_exchange_->finish(cs, velocities);

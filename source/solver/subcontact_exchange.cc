@@ -74,7 +74,7 @@ void SubContactExchange::match(const ContactSet& cs)
   std::vector<unsigned int> begin, end;
   cs.subcontact_ranges(cs.n_slots(), begin, end);
   n_received_ = 0;
-  sent_first_.assign(cs.n_subcontacts(), 0);
+  sent_first_.clear();
   computed_after_.assign(cs.n_subcontacts(), 0);
   computed_.assign(cs.n_subcontacts(), 0);
   for (unsigned int k = 0; k < cs.n_subcontacts(); ++k)
@@ -82,8 +82,10 @@ void SubContactExchange::match(const ContactSet& cs)
     const unsigned int c = cs.sc_contact[k];
     const unsigned int a = cs.block_a[c], b = cs.block_b[c];
     computed_after_[k] = !ghost(a) && !ghost(b);
-    sent_first_[k] = ghost(a) != ghost(b) && blocks_.computes_contact(a, b);
-    computed_[k] = computed_after_[k] | sent_first_[k];
+    const bool sent = ghost(a) != ghost(b) && blocks_.computes_contact(a, b);
+    if (sent)
+      sent_first_.push_back(k);
+    computed_[k] = computed_after_[k] | sent;
   }
   // The contacts across ranks in pair order (local order is global order).
   std::vector<std::array<unsigned int, 3>> cut;

@@ -22,7 +22,10 @@ enum SubContactState : unsigned char
 /// chosen once per batch, not per sub-contact.
 struct SubContactBatch
 {
+  /// Sub-contacts in the batch: indices 0 to size - 1 of the arrays, or
+  /// with `indices` those size that it lists.
   unsigned int size = 0;
+  const unsigned int* indices = nullptr;
   const double* area = nullptr;          ///< A_c, m^2
   const double* du_normal = nullptr;     ///< eq. 21, m (positive = opening)
   const double* du_shear = nullptr;      ///< eq. 22, 3 per sub-contact, m

@@ -55,11 +55,13 @@ public:
   /// Contacts this rank took from its neighbours at the last receive_layout.
   std::size_t contacts_taken() const { return contacts_taken_; }
 
-  /// Per sub-contact of the matched layout: 1 for those this rank computes
-  /// and sends (of a contact across ranks that it computes), which go
-  /// through the joint model first; and 1 for the others it computes
-  /// (both blocks owned), which go through it while the messages travel.
-  const std::vector<unsigned char>& sent_first() const { return sent_first_; }
+  /// Of the matched layout: the sub-contacts this rank computes and sends
+  /// (of a contact across ranks that it computes), ascending, which go
+  /// through the joint model first (a list: they are a few percent, and a
+  /// pass over a mask of all cost more than their model); and per
+  /// sub-contact 1 for the others it computes (both blocks owned), which
+  /// go through it while the messages travel.
+  const std::vector<unsigned int>& sent_first() const { return sent_first_; }
   const std::vector<unsigned char>& computed_after() const { return computed_after_; }
   /// Per sub-contact: 1 for all those this rank computes (either of the
   /// two above), 0 for those it takes from a neighbour or that lie
@@ -99,7 +101,8 @@ private:
   const RankBlocks& blocks_;
   MPI_Comm comm_;
   std::vector<Neighbour> neighbours_;
-  std::vector<unsigned char> sent_first_, computed_after_, computed_;
+  std::vector<unsigned int> sent_first_;
+  std::vector<unsigned char> computed_after_, computed_;
   std::vector<MPI_Request> requests_;
   std::size_t sent_ = 0, n_received_ = 0, contacts_taken_ = 0;
   double state_wait_ = 0.0, layout_wait_ = 0.0;
