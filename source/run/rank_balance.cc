@@ -64,12 +64,14 @@ bool RankBalance::choose(const RigidSolver& solver, const RankBlocks& blocks,
   for (unsigned int c : cs.sc_contact)
     ++subcontacts[c];
   for (unsigned int c = 0; c < cs.n_slots(); ++c)
-    // Counted for the owner of its first block. A contact across ranks is
-    // computed by one of its two ranks by the parity of its blocks' numbers
-    // (RankBlocks::computes_contact), so half of those are counted on the
-    // other side of the cut: a few percent of a boundary rank's work.
-    if (cs.alive[c] && blocks.owned[cs.block_a[c]])
-      work[cs.block_a[c]] += costs_.contact + costs_.subcontact * subcontacts[c];
+  {
+    // Counted where it is computed (RankBlocks::computes_contact: a
+    // contact across ranks by one of its two ranks), on its block owned
+    // there, whose centroid places the work when the regions are cut again.
+    const unsigned int a = cs.block_a[c], b = cs.block_b[c];
+    if (cs.alive[c] && blocks.computes_contact(a, b))
+      work[blocks.owned[a] ? a : b] += costs_.contact + costs_.subcontact * subcontacts[c];
+  }
   double mine = 0.0;
   for (unsigned int i = 0; i < n; ++i)
     mine += work[i];

@@ -32,8 +32,9 @@ struct StepCosts
 /// excavates another, contacts form where blocks settle. After the run's
 /// first step, after a stage's excavation and then every `interval` steps
 /// each rank weighs the work of its own blocks (StepCosts: each
-/// block, the contacts whose first block it is, with their sub-contacts,
-/// which its rank computes, and its zones). One MPI_Allgather brings every
+/// block, its zones, and the contacts its rank computes
+/// (RankBlocks::computes_contact) with their sub-contacts, each on its
+/// block owned here). One MPI_Allgather brings every
 /// rank's total to every rank, added there in rank order, so that all
 /// ranks decide from the same bits; the largest over the mean is the
 /// imbalance. Above `threshold`, the ranks cut the same cell space again
