@@ -986,6 +986,18 @@ void DeformableSolver::zone_forces()
   zone_forces(x.data(), v.data(), f.data(), step_ == 0 ? 0.0 : motion_dt_);
 }
 
+namespace
+{
+/// The material remove_zones (null_zones) gives excavated zones: no
+/// stiffness and no mass, so their stresses stay zero and they add no
+/// force; the zone loops leave their batches out (an excavation then takes
+/// its zones' work away too).
+bool excavated(const ZoneMaterial& m)
+{
+  return m.density == 0.0 && m.bulk_modulus == 0.0 && m.shear_modulus == 0.0;
+}
+} // namespace
+
 void DeformableSolver::zone_forces(const double* x, const double* v, double* f, double strain_dt)
 {
   if (nodal_mixed_)
@@ -1004,6 +1016,8 @@ void DeformableSolver::zone_forces(const double* x, const double* v, double* f, 
     for (std::size_t r = 0; r + 1 < batch_start_.size(); ++r)
     {
       const ZoneMaterial& mat = materials_[material_of_zone_[batch_start_[r]]];
+      if (excavated(mat))
+        continue;
       for (unsigned int first = batch_start_[r]; first < batch_start_[r + 1]; first += batch10)
       {
         const unsigned int n = std::min(batch10, batch_start_[r + 1] - first);
@@ -1050,6 +1064,8 @@ void DeformableSolver::zone_forces(const double* x, const double* v, double* f, 
   for (std::size_t r = 0; r + 1 < batch_start_.size(); ++r)
   {
     const ZoneMaterial& mat = materials_[material_of_zone_[batch_start_[r]]];
+    if (excavated(mat))
+      continue;
     const bool hex = mat.element == ZoneElement::hex_mixed;
     const unsigned int chunk = zone_chunk(mat);
     for (unsigned int first = batch_start_[r]; first < batch_start_[r + 1]; first += chunk)
