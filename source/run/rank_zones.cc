@@ -1,5 +1,6 @@
 #include <talus/base/exceptions.h>
 #include <talus/base/gather.h>
+#include <talus/base/wall_clock.h>
 #include <talus/io/scene_checks.h>
 #include <talus/run/rank_share.h>
 #include <talus/run/rank_zones.h>
@@ -39,8 +40,7 @@ std::unique_ptr<WholeZones> mesh_zones_on_ranks(const Scene& scene, BlockModel& 
   zones->zones_of_block.assign(whole.n_blocks(), 0.0);
   for (unsigned int b : zones->mesh.zone_block)
     zones->zones_of_block[b] += 1.0;
-  zones->meshing_seconds =
-      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  zones->meshing_seconds = seconds_since(start);
   return zones;
 }
 

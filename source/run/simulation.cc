@@ -1,4 +1,5 @@
 #include <talus/base/exceptions.h>
+#include <talus/base/wall_clock.h>
 #include <talus/io/checkpoint.h>
 #include <talus/io/factor_of_safety_run.h>
 #include <talus/io/file_output.h>
@@ -21,11 +22,6 @@ namespace talus
 
 namespace
 {
-double seconds_since(std::chrono::steady_clock::time_point t)
-{
-  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t).count();
-}
-
 /// Whether the scene is one deformable body alone (no contacts to find).
 bool body_alone(const Scene& scene, const BlockModel& model)
 {

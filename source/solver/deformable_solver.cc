@@ -1,6 +1,7 @@
 #include <talus/base/archive.h>
 #include <talus/base/exact_sum.h>
 #include <talus/base/exceptions.h>
+#include <talus/base/wall_clock.h>
 #include <talus/solver/deformable_solver.h>
 #include <talus/solver/ghost_exchange.h>
 #include <talus/solver/water_loads.h>
@@ -1809,7 +1810,7 @@ void DeformableSolver::compute_forces()
 {
   const auto t0 = std::chrono::steady_clock::now();
   zone_forces();
-  seconds_zones_ += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  seconds_zones_ += seconds_since(t0);
 }
 
 void DeformableSolver::move()
@@ -1823,8 +1824,7 @@ void DeformableSolver::move()
                           : std::function<void(std::vector<ExactSum>&)>());
   time_ += dt_;
   ++step_;
-  seconds_gridpoints_ +=
-      std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  seconds_gridpoints_ += seconds_since(t0);
 }
 
 struct DeformableSolver::View::Forms

@@ -1,4 +1,5 @@
 #include <talus/base/exceptions.h>
+#include <talus/base/wall_clock.h>
 #include <talus/contact/contact_origin.h>
 #include <talus/geometry/mass_properties.h>
 #include <talus/joint/joint_model.h>
@@ -38,10 +39,6 @@ double largest_face_area(const BlockModel& m, unsigned int b)
   return area;
 }
 
-double seconds_since(std::chrono::steady_clock::time_point t)
-{
-  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t).count();
-}
 } // namespace
 
 RigidSolver::RigidSolver(BlockModel& blocks, double density, const SolverSettings& settings,
@@ -796,7 +793,7 @@ void RigidSolver::contact_forces()
   for (unsigned int i = 0; i < n; ++i)
   {
     if (exchanged && !counted[i])
-      continue; // its state comes from its first block's owner
+      continue; // another rank computes it and sends its state
     const unsigned int c = cs.sc_contact[i];
     const unsigned int a = cs.block_a[c], b = cs.block_b[c];
     const int* node = gp_x_ != nullptr ? &cs.sc_node[6 * i] : nullptr;

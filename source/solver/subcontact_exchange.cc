@@ -1,3 +1,4 @@
+#include <talus/base/wall_clock.h>
 #include <talus/contact/contact_set.h>
 #include <talus/joint/continuously_yielding.h>
 #include <talus/solver/subcontact_exchange.h>
@@ -211,7 +212,7 @@ void SubContactExchange::receive_layout(ContactSet& taken, bool dilation, bool y
              MPI_STATUS_IGNORE);
   }
   wait_all(layout_requests_);
-  layout_wait_ += std::chrono::duration<double>(std::chrono::steady_clock::now() - waiting).count();
+  layout_wait_ += seconds_since(waiting);
 
   // What arrived, by local pair, in pair order.
   const auto local_of = [&](unsigned int g)
@@ -322,7 +323,7 @@ void SubContactExchange::finish(ContactSet& cs, std::vector<double>* velocity)
   const bool dilation = !cs.sc_dilation.empty(), yielding = !cs.sc_yield.empty();
   const auto waiting = std::chrono::steady_clock::now();
   wait_all(requests_);
-  state_wait_ += std::chrono::duration<double>(std::chrono::steady_clock::now() - waiting).count();
+  state_wait_ += seconds_since(waiting);
   for (Neighbour& n : neighbours_)
   {
     const double* at = n.in.data();

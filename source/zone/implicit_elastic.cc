@@ -1,4 +1,5 @@
 #include <talus/base/exceptions.h>
+#include <talus/base/wall_clock.h>
 #include <talus/zone/implicit_elastic.h>
 
 #include <deal.II/base/index_set.h>
@@ -486,7 +487,7 @@ ImplicitElasticResult solve_implicit_elastic(const ImplicitElasticProblem& p)
       if (is_fixed(i))
         result.displacement[i] = prescribed(i);
   }
-  result.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  result.seconds = seconds_since(start);
   return result;
 }
 
