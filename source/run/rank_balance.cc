@@ -1,10 +1,13 @@
+#include <talus/base/exceptions.h>
 #include <talus/run/rank_balance.h>
 #include <talus/solver/rigid_solver.h>
 
 #include <algorithm>
 #include <cmath>
+#include <cstdlib>
 #include <limits>
 #include <stdexcept>
+#include <string>
 
 namespace talus
 {
@@ -31,6 +34,20 @@ void sum_exactly_over_ranks(std::vector<double>& numbers, MPI_Comm comm)
                   MPI_SUM, comm);
   for (std::size_t i = 0; i < numbers.size(); ++i)
     numbers[i] = static_cast<double>(units[i]) / unit;
+}
+
+double rebalance_threshold()
+{
+  const char* text = std::getenv("TALUS_REBALANCE_THRESHOLD");
+  if (text == nullptr)
+    return 1.15;
+  char* end = nullptr;
+  const double value = std::strtod(text, &end);
+  if (end == text || *end != '\0' || !(value > 1.0 || value == 0.0) || !std::isfinite(value))
+    throw InputError(std::string("environment variable TALUS_REBALANCE_THRESHOLD: '") + text +
+                     "' is not allowed; allowed: a number above 1 (the ranks' largest work over "
+                     "the mean above which their regions are cut again), or 0 (never)");
+  return value;
 }
 
 RankBalance::RankBalance(const Box& domain, const Vec3& cell_size, double threshold,

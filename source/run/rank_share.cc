@@ -63,28 +63,6 @@ void agree_on_input_errors(const std::function<void()>& build)
   throw InputError(message);
 }
 
-namespace
-{
-
-/// The imbalance above which the regions are cut again (RankBalance):
-/// 1.15, or the environment's TALUS_REBALANCE_THRESHOLD (a number above 1,
-/// or 0 for never: a benchmark compares the two).
-double rebalance_threshold()
-{
-  const char* text = std::getenv("TALUS_REBALANCE_THRESHOLD");
-  if (text == nullptr)
-    return 1.15;
-  char* end = nullptr;
-  const double value = std::strtod(text, &end);
-  if (end == text || *end != '\0' || !(value > 1.0 || value == 0.0) || !std::isfinite(value))
-    throw InputError(std::string("environment variable TALUS_REBALANCE_THRESHOLD: '") + text +
-                     "' is not allowed; allowed: a number above 1 (the ranks' largest work over "
-                     "the mean above which their regions are cut again), or 0 (never)");
-  return value;
-}
-
-} // namespace
-
 void check_runs_on_ranks(const Scene& scene, int ranks)
 {
   (void)scene;
@@ -94,7 +72,7 @@ void check_runs_on_ranks(const Scene& scene, int ranks)
 
 RankShare::RankShare(const BlockModel& model, double reach, MPI_Comm comm, const RankBlocks* saved,
                      const std::vector<double>* zones_of_block)
-    : comm_(comm), reach_(reach)
+    : comm_(comm), reach_(reach), n_blocks_(model.n_blocks())
 {
   MPI_Comm_rank(comm, &rank_);
   MPI_Comm_size(comm, &ranks_);
@@ -124,6 +102,11 @@ RankShare::RankShare(const BlockModel& model, double reach, MPI_Comm comm, const
                   : decompose_blocks(model, *partition_, static_cast<unsigned int>(rank_), reach,
                                      ghost_layers);
   local_ = model.subset(blocks_.local);
+  start_exchanges();
+}
+
+void RankShare::start_exchanges()
+{
   exchange_ = std::make_unique<GhostExchange>(blocks_, comm_);
   subcontacts_ = std::make_unique<SubContactExchange>(blocks_, comm_);
 }

@@ -3,6 +3,7 @@
 #include <talus/geometry/convex_polyhedron.h>
 #include <talus/geometry/region.h>
 
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -50,6 +51,43 @@ struct CuttingReport
   Vec3 smallest_refused_at = Vec3::Zero();
 };
 
+/// One cutting operation as data: a joint set, a single plane (limited to
+/// the blocks whose centroids lie in `extent` when `limited`), an
+/// excavation, or a cut along a region kept for a later stage. Each acts
+/// on every block alone, so a piece can be taken through all of them in
+/// turn (BlockGenerator::cut_depth_first).
+struct CutOperation
+{
+  enum class Kind
+  {
+    joint_set,
+    plane,
+    excavate,
+    cut_along
+  };
+  Kind kind = Kind::plane;
+  JointSetSpec set;     ///< joint_set
+  Plane plane;          ///< plane
+  bool limited = false; ///< plane: only blocks whose centroid lies in `extent`
+  Box extent;
+  ConvexRegion region; ///< excavate, cut_along
+  int origin = 0;      ///< carried by the faces the cuts make
+
+  static CutOperation joint_set(const JointSetSpec& set, int origin = 0);
+  static CutOperation single_plane(const Plane& plane, const Box* extent = nullptr, int origin = 0);
+  static CutOperation excavation(const ConvexRegion& region);
+  static CutOperation along(const ConvexRegion& region);
+};
+
+/// What one operation did: its cuts and refused cuts (as CuttingReport), and
+/// for an excavation the volume removed, for a cut along a region the
+/// volume inside it (m^3).
+struct OperationTally
+{
+  CuttingReport cutting;
+  double volume = 0.0;
+};
+
 /// Builds a block model: a starting brick (or polyhedron) cut by joint sets
 /// and single joints, with regions excavated. Only blocks that straddle a
 /// plane are cut, so each operation costs time linear in the number of blocks.
@@ -75,23 +113,53 @@ public:
   /// (a stage's excavation). Returns the volume of the pieces inside (m^3).
   double cut_along(const ConvexRegion& region);
 
+  /// Applies one operation to every block; returns its volume (excavate()
+  /// and cut_along(); 0 for the others).
+  double apply(const CutOperation& op);
+
+  /// Takes the generator's blocks (the starting polyhedron, or what earlier
+  /// operations made of it) through `ops` one piece at a time, depth first,
+  /// and hands each final block to `visit` with its number, holding no more
+  /// than one branch of pieces: a rank that keeps only the blocks near its
+  /// region needs memory for those alone (issue 24). Every operation acts
+  /// on each piece alone and keeps its pieces in order, so the blocks,
+  /// their numbers and each operation's tally (`tally`, one per operation)
+  /// are those that apply() in turn gives, bit for bit: the pieces reach
+  /// each operation in the same order, so its volumes are summed in the
+  /// same order. The generator itself is left as it was.
+  void cut_depth_first(const std::vector<CutOperation>& ops,
+                       const std::function<void(unsigned long, ConvexPolyhedron&)>& visit,
+                       std::vector<OperationTally>& tally) const;
+
   const std::vector<ConvexPolyhedron>& blocks() const { return blocks_; }
   std::vector<ConvexPolyhedron> take_blocks() { return std::move(blocks_); }
   const CuttingReport& report() const { return report_; }
 
 private:
   double tolerance_for(const ConvexPolyhedron& block) const;
+  /// The pieces `op` makes of `block`, appended to `out` in order; the cuts
+  /// are counted in `report`, an excavation's or cut's volume added to
+  /// `volume`.
+  void cut_piece(const CutOperation& op, ConvexPolyhedron&& block,
+                 std::vector<ConvexPolyhedron>& out, CuttingReport& report, double& volume) const;
+  void cut_by_set(const JointSetSpec& set, int origin, ConvexPolyhedron&& block,
+                  std::vector<ConvexPolyhedron>& out, CuttingReport& report) const;
   /// excavate() and cut_along(): the pieces inside are kept with `keep`.
-  double split_by(const ConvexRegion& region, bool keep);
+  void split_by(const ConvexRegion& region, bool keep, ConvexPolyhedron&& block,
+                std::vector<ConvexPolyhedron>& out, CuttingReport& report, double& volume) const;
   /// Cuts `block` by `plane`; false (block untouched) when the plane misses
   /// it or a piece would be below the minimum volume.
   /// The cap faces made carry `origin`.
   bool try_cut(const ConvexPolyhedron& block, const Plane& plane, ConvexPolyhedron& above,
-               ConvexPolyhedron& below, int origin = 0);
+               ConvexPolyhedron& below, int origin, CuttingReport& report) const;
 
   std::vector<ConvexPolyhedron> blocks_;
   CuttingSettings settings_;
   CuttingReport report_;
 };
+
+/// The operations' reports summed as applying them in turn sums them
+/// (BlockGenerator::report() after those operations, from a new generator).
+CuttingReport total_report(const std::vector<OperationTally>& tally);
 
 } // namespace talus

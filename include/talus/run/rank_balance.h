@@ -54,6 +54,12 @@ struct StepCosts
 /// added (MPI_Allreduce), which no order of the ranks can change. Collective.
 void sum_exactly_over_ranks(std::vector<double>& numbers, MPI_Comm comm);
 
+/// The imbalance above which the regions are cut again (RankBalance):
+/// 1.15, or the environment's TALUS_REBALANCE_THRESHOLD (a number above 1,
+/// or 0 for never: a benchmark compares the two); another value is an
+/// InputError naming the variable.
+double rebalance_threshold();
+
 class RankBalance
 {
 public:

@@ -4,6 +4,7 @@
 #include <talus/contact/cell_partition.h>
 #include <talus/model/block_model.h>
 #include <talus/run/rank_balance.h>
+#include <talus/scene/build_blocks.h>
 #include <talus/scene/scene.h>
 #include <talus/solver/block_migration.h>
 #include <talus/solver/ghost_exchange.h>
@@ -64,6 +65,25 @@ public:
   /// regions balance besides the blocks.
   RankShare(const BlockModel& model, double reach, MPI_Comm comm, const RankBlocks* saved = nullptr,
             const std::vector<double>* zones_of_block = nullptr);
+
+  /// The same share of the rigid blocks a scene describes, without any
+  /// rank building the whole model (issue 24): every rank cuts the brick
+  /// twice, one piece at a time (build_blocks_where). The first pass keeps
+  /// no block: it finds the model's bounds and its largest block, and each
+  /// rank takes the centroids of every ranks-th block, from which the
+  /// ranks cut the cell space together, adding their counts exactly
+  /// (CellPartition's sum over processes). The second keeps the blocks
+  /// whose centroids lie in this rank's region and those that could touch
+  /// them (within reach of the region grown by the largest block), and
+  /// those are split into owned blocks and ghosts as above. The blocks,
+  /// their numbers, the regions and the exchanges' lists are those the
+  /// constructor above gives from the whole model, bit for bit; the memory
+  /// is that of the blocks kept. `report`: the whole model's cutting.
+  /// Defined in rank_region_setup.cc.
+  RankShare(const Scene& scene, BuildReport& report, double reach, MPI_Comm comm);
+
+  /// The number of blocks in the whole model.
+  unsigned int n_blocks() const { return n_blocks_; }
 
   int rank() const { return rank_; }
   /// m: the contact tolerance plus the motion allowed between choices of the ghosts.
@@ -148,7 +168,10 @@ private:
   unsigned long event_steps_ = 0;
   BlockMigration::ZoneRebuild zone_rebuild_;
   std::vector<unsigned int> zone_surfaces_;
+  unsigned int n_blocks_ = 0;
   void make_migration(const RigidSolver& solver);
+  /// The ghosts' and the sub-contacts' exchanges of blocks_.
+  void start_exchanges();
 };
 
 } // namespace talus

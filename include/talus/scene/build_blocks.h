@@ -1,8 +1,9 @@
 #pragma once
 
-#include <talus/scene/scene.h>
 #include <talus/model/block_model.h>
+#include <talus/scene/scene.h>
 
+#include <functional>
 #include <string>
 #include <utility>
 #include <vector>
@@ -27,6 +28,21 @@ struct BuildReport
 /// into groups by centroid and every block is checked to be a closed convex
 /// polyhedron.
 BlockModel build_blocks(const Scene& scene, BuildReport& report);
+
+/// Whether a rank keeps a block: its number in the whole model and its
+/// shape.
+using KeepBlock = std::function<bool(unsigned int number, const ConvexPolyhedron& block)>;
+
+/// The blocks of build_blocks() that `keep` takes, and only those: the
+/// brick is cut one piece at a time (BlockGenerator::cut_depth_first), so
+/// the memory held is that of the blocks kept (issue 24: each rank builds
+/// its region). Each kept block is as build_blocks() makes it, bit for
+/// bit, in its group; `global` gets their numbers in the whole model,
+/// ascending, and `n_blocks` the whole model's count. The report is the
+/// whole model's. Only kept blocks are checked to be closed convex
+/// polyhedra.
+BlockModel build_blocks_where(const Scene& scene, BuildReport& report, const KeepBlock& keep,
+                              std::vector<unsigned int>& global, unsigned int& n_blocks);
 
 /// Turns the group names the scene's solver settings refer to (fixed
 /// groups, loads) into the model's group numbers.
