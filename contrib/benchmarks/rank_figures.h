@@ -14,6 +14,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
+#include <ctime>
 #include <fstream>
 #include <string>
 #include <thread>
@@ -21,6 +22,15 @@
 
 namespace rank_figures
 {
+
+/// Now, as "YYYY-MM-DD HH:MM UTC", for the benchmarks' tables.
+inline std::string date_utc()
+{
+  const std::time_t now = std::time(nullptr);
+  char date[32];
+  std::strftime(date, sizeof date, "%Y-%m-%d %H:%M UTC", std::gmtime(&now));
+  return date;
+}
 
 inline std::string cpu_model()
 {

@@ -327,10 +327,7 @@ int main(int argc, char** argv)
   MPI_Reduce(&exchange_seconds, &exchange_all, 1, MPI_DOUBLE, MPI_MAX, 0, comm);
   if (rank == 0)
   {
-    const std::time_t now = std::time(nullptr);
-    char date[32];
-    std::strftime(date, sizeof date, "%Y-%m-%d %H:%M UTC", std::gmtime(&now));
-    std::printf("%s, %s; %d ranks\n", cpu_model().c_str(), date, ranks);
+    std::printf("%s, %s; %d ranks\n", cpu_model().c_str(), rank_figures::date_utc().c_str(), ranks);
     std::printf("n = %u: %u blocks, %lu steps\n", n, model.n_blocks(), steps);
     std::printf("split run against the whole run: %lu of %lu blocks (%s) differ in centroid, "
                 "velocity or spin, bit for bit\n",

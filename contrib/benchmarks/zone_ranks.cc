@@ -188,10 +188,8 @@ int main(int argc, char** argv)
   for (std::size_t k = 0; k < all_state.size(); k += 4, ++compared)
     differ += std::memcmp(&whole_x[3 * std::size_t(all_state[k])], &all_state[k + 1],
                           3 * sizeof(double)) != 0;
-  const std::time_t now = std::time(nullptr);
-  char date[32];
-  std::strftime(date, sizeof date, "%Y-%m-%d %H:%M UTC", std::gmtime(&now));
-  std::printf("%s, %s; %d ranks\n", rank_figures::cpu_model().c_str(), date, ranks);
+  std::printf("%s, %s; %d ranks\n", rank_figures::cpu_model().c_str(),
+              rank_figures::date_utc().c_str(), ranks);
   std::printf("n = %u: %u zones, %u gridpoints, %lu steps\n", n, nz, ng, steps);
   std::printf("split run against the whole run: %lu of %lu gridpoints (%s) differ in position, "
               "bit for bit\n",
