@@ -1141,6 +1141,10 @@ void DeformableSolver::plan_nodal_mixed()
   for (std::size_t r = 0; r + 1 < batch_start_.size(); ++r)
   {
     const ZoneMaterial& mat = materials_[material_of_zone_[batch_start_[r]]];
+    // Excavated zones are in no batch: not mixed, they add nothing to the
+    // sums, and with no stress they add no force.
+    if (excavated(mat))
+      continue;
     const unsigned int chunk = zone_chunk(mat);
     for (unsigned int first = batch_start_[r]; first < batch_start_[r + 1]; first += chunk)
       nmd_batches_.push_back(
