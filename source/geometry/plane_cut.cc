@@ -84,7 +84,8 @@ PlaneCut cut_by_plane(const ConvexPolyhedron& p, const Plane& plane, double tole
   // Intersection vertex of each crossing edge, found again from the face on
   // the other side of the edge (few edges per block: a linear search is fastest).
   std::vector<std::pair<std::pair<unsigned int, unsigned int>, unsigned int>> crossing;
-  const auto intersection = [&](unsigned int a, unsigned int b) {
+  const auto intersection = [&](unsigned int a, unsigned int b)
+  {
     const auto key = std::make_pair(std::min(a, b), std::max(a, b));
     for (const auto& c : crossing)
       if (c.first == key)

@@ -16,11 +16,11 @@
 // and in y likewise. (Once the cubes settle, their positions carry the
 // rounding of the forces, which is not mirror-symmetric.)
 
-#include <talus/geometry/block_generator.h>
 #include <talus/solver/rigid_solver.h>
 
 #include <cmath>
 
+#include "../../contrib/benchmarks/settling_cubes.h"
 #include "../tests.h"
 
 using namespace talus;
@@ -28,8 +28,8 @@ using namespace talus;
 int main()
 {
   bool axes = true;
-  const std::pair<double, double> dips[] = {{0, 0}, {0, 137}, {90, 0}, {90, 90}, {90, 180},
-                                            {90, 270}};
+  const std::pair<double, double> dips[] = {{0, 0},   {0, 137},  {90, 0},
+                                            {90, 90}, {90, 180}, {90, 270}};
   const Vec3 expected[] = {Vec3(0, 0, 1), Vec3(0, 0, 1),  Vec3(0, 1, 0),
                            Vec3(1, 0, 0), Vec3(0, -1, 0), Vec3(-1, 0, 0)};
   for (int k = 0; k < 6; ++k)
@@ -45,31 +45,16 @@ int main()
               talus_test::verdict(std::abs(oblique.norm() - 1.0) < 1e-15 &&
                                   std::abs(oblique[2] - std::sqrt(3.0) / 2.0) < 1e-15));
 
+  // The settling cubes of the rigid benchmarks, at n = 10.
   const unsigned int n = 10;
-  BlockGenerator g(ConvexPolyhedron::box(Vec3::Zero(), Vec3(n, n, n + 1)), {});
-  g.cut_joint_set({0.0, 0.0, 1.0, Vec3::Zero(), 0, false, {}});
-  g.cut_joint_set({90.0, 0.0, 1.0, Vec3::Zero(), 0, false, {}});
-  g.cut_joint_set({90.0, 90.0, 1.0, Vec3::Zero(), 0, false, {}});
-  BlockModel model;
-  const unsigned int cubes = model.group_index("cubes"), floor = model.group_index("floor");
-  unsigned long off = 0, vertices = 0;
-  for (const ConvexPolyhedron& b : g.blocks())
-  {
-    model.add_block(b, b.vertex_mean()[2] < 1.0 ? floor : cubes);
-    for (const Vec3& v : b.vertices())
-    {
-      ++vertices;
-      off += (v.array() != v.array().round()).any();
-    }
-  }
-  std::printf("%u cubes, %lu vertices, %lu off integer coordinates\n", model.n_blocks(), vertices,
-              off);
-
   SolverSettings s;
-  s.dynamic = false;
-  s.contact.tolerance = 0.01;
-  s.joint.normal_stiffness = s.joint.shear_stiffness = 1e9;
-  s.fixed_groups = {floor};
+  BlockModel model = settling_cubes(n, 1, s);
+  unsigned long off = 0;
+  for (const Vec3& v : model.vertex)
+    off += (v.array() != v.array().round()).any();
+  std::printf("%u cubes, %u vertices, %lu off integer coordinates\n", model.n_blocks(),
+              model.n_vertices(), off);
+
   RigidSolver solver(model, 2650.0, s);
   {
     solver.step();

@@ -21,30 +21,13 @@
 
 #include <cstring>
 
+#include "../block_model_checks.h"
 #include "../tests.h"
 
 using namespace talus;
 
 namespace
 {
-
-template <typename T>
-bool same_bits(const std::vector<T>& a, const std::vector<T>& b)
-{
-  return a.size() == b.size() &&
-         (a.empty() || std::memcmp(a.data(), b.data(), a.size() * sizeof(T)) == 0);
-}
-
-bool same_model(const BlockModel& a, const BlockModel& b)
-{
-  return same_bits(a.vertex, b.vertex) && same_bits(a.vertex_start, b.vertex_start) &&
-         same_bits(a.face_vertex, b.face_vertex) &&
-         same_bits(a.face_loop_start, b.face_loop_start) &&
-         same_bits(a.face_normal, b.face_normal) && same_bits(a.face_origin, b.face_origin) &&
-         same_bits(a.face_start, b.face_start) && same_bits(a.volume, b.volume) &&
-         same_bits(a.centroid, b.centroid) && same_bits(a.inertia, b.inertia) &&
-         same_bits(a.group, b.group) && a.group_names == b.group_names;
-}
 
 bool same_lists(const std::vector<std::pair<unsigned int, std::vector<unsigned int>>>& a,
                 const std::vector<std::pair<unsigned int, std::vector<unsigned int>>>& b)
@@ -84,11 +67,13 @@ int main(int argc, char** argv)
     const bool count = from_scene.n_blocks() == whole.n_blocks();
     const bool held = a.local == b.local && a.owned == b.owned;
     const bool lists = same_lists(a.send, b.send) && same_lists(a.receive, b.receive);
-    const bool blocks = held && same_model(from_model.local(), from_scene.local());
-    const bool cuts = report.cutting.cuts == whole_report.cutting.cuts &&
-                      report.cutting.skipped_slivers == whole_report.cutting.skipped_slivers &&
-                      same_bits(report.excavated_volume, whole_report.excavated_volume) &&
-                      same_bits(report.stage_excavated_volume, whole_report.stage_excavated_volume);
+    const bool blocks = held && talus_test::same_model(from_model.local(), from_scene.local());
+    const bool cuts =
+        report.cutting.cuts == whole_report.cutting.cuts &&
+        report.cutting.skipped_slivers == whole_report.cutting.skipped_slivers &&
+        talus_test::same_array_bits(report.excavated_volume, whole_report.excavated_volume) &&
+        talus_test::same_array_bits(report.stage_excavated_volume,
+                                    whole_report.stage_excavated_volume);
     unsigned long owned = a.n_owned(), total_owned = 0;
     MPI_Reduce(&owned, &total_owned, 1, MPI_UNSIGNED_LONG, MPI_SUM, 0, MPI_COMM_WORLD);
     const bool all_owned = on_every_rank(rank != 0 || total_owned == whole.n_blocks());

@@ -11,31 +11,13 @@
 
 #include <cstring>
 
+#include "../block_model_checks.h"
 #include "../tests.h"
 
 using namespace talus;
 
 namespace
 {
-
-template <typename T>
-bool same_bits(const std::vector<T>& a, const std::vector<T>& b)
-{
-  return a.size() == b.size() &&
-         (a.empty() || std::memcmp(a.data(), b.data(), a.size() * sizeof(T)) == 0);
-}
-
-/// Every array of two models equal, bit for bit.
-bool same_model(const BlockModel& a, const BlockModel& b)
-{
-  return same_bits(a.vertex, b.vertex) && same_bits(a.vertex_start, b.vertex_start) &&
-         same_bits(a.face_vertex, b.face_vertex) &&
-         same_bits(a.face_loop_start, b.face_loop_start) &&
-         same_bits(a.face_normal, b.face_normal) && same_bits(a.face_origin, b.face_origin) &&
-         same_bits(a.face_start, b.face_start) && same_bits(a.volume, b.volume) &&
-         same_bits(a.centroid, b.centroid) && same_bits(a.inertia, b.inertia) &&
-         same_bits(a.group, b.group) && a.group_names == b.group_names;
-}
 
 bool same_report(const BuildReport& a, const BuildReport& b)
 {
@@ -44,8 +26,8 @@ bool same_report(const BuildReport& a, const BuildReport& b)
          std::memcmp(&a.cutting.smallest_refused, &b.cutting.smallest_refused, sizeof(double)) ==
              0 &&
          a.cutting.smallest_refused_at == b.cutting.smallest_refused_at &&
-         same_bits(a.excavated_volume, b.excavated_volume) &&
-         same_bits(a.stage_excavated_volume, b.stage_excavated_volume) &&
+         talus_test::same_array_bits(a.excavated_volume, b.excavated_volume) &&
+         talus_test::same_array_bits(a.stage_excavated_volume, b.stage_excavated_volume) &&
          a.joint_set_cuts == b.joint_set_cuts && a.joint_cuts == b.joint_cuts;
 }
 
@@ -83,7 +65,7 @@ int main()
         if (keep(b, whole.polyhedron(b)))
           expected.push_back(b);
       const bool numbers = n_blocks == whole.n_blocks() && global == expected;
-      const bool blocks = numbers && same_model(part, whole.subset(global));
+      const bool blocks = numbers && talus_test::same_model(part, whole.subset(global));
       std::printf("%s, %s: %u blocks of %u kept; numbers %s, blocks %s, report %s\n", file, name,
                   static_cast<unsigned int>(global.size()), n_blocks, talus_test::verdict(numbers),
                   talus_test::verdict(blocks),
