@@ -76,11 +76,6 @@ PlaneCut cut_by_plane(const ConvexPolyhedron& p, const Plane& plane, double tole
   result.intersects = true;
 
   std::vector<Vec3> vertices = p.vertices();
-  // The axis the plane lies across (its normal is +-1 along it), or -1.
-  int axis = -1;
-  for (int k = 0; k < 3; ++k)
-    if (std::abs(plane.normal[k]) == 1.0)
-      axis = k;
   // Intersection vertex of each crossing edge, found again from the face on
   // the other side of the edge (few edges per block: a linear search is fastest).
   std::vector<std::pair<std::pair<unsigned int, unsigned int>, unsigned int>> crossing;
@@ -91,13 +86,7 @@ PlaneCut cut_by_plane(const ConvexPolyhedron& p, const Plane& plane, double tole
       if (c.first == key)
         return c.second;
     const double t = distance[a] / (distance[a] - distance[b]);
-    Vec3 x = p.vertex(a) + t * (p.vertex(b) - p.vertex(a));
-    // On a plane across an axis the point lies on the plane's coordinate
-    // exactly (the interpolation is off by a rounding): blocks cut along
-    // the axes then meet exactly, wherever they lie.
-    if (axis >= 0)
-      x[axis] = plane.normal[axis] * plane.offset;
-    vertices.push_back(x);
+    vertices.push_back(p.vertex(a) + t * (p.vertex(b) - p.vertex(a)));
     const unsigned int index = static_cast<unsigned int>(vertices.size()) - 1;
     crossing.emplace_back(key, index);
     return index;
