@@ -1,10 +1,12 @@
 // Memory and time of the set-up of a rigid model split among ranks (issue
 // 24): the settling cubes of benchmark_rigid_ranks (n x n x (n + 1) unit
 // cubes, n^2 of them the fixed floor) as a scene, each rank's share made
-// either from the whole model every rank builds (build_blocks, then
-// RankShare from the model: what `talus` does today) or from the scene
-// alone (RankShare from the scene: each rank cuts the brick piece by piece,
-// twice, and keeps its region and the blocks near it).
+// either from the whole model every rank builds (build_blocks, its digest,
+// then RankShare from the model: what `talus` does on a restart, or for a
+// scene with deformable blocks) or from the scene alone (RankShare from the
+// scene: each rank cuts the brick piece by piece, twice, takes the whole
+// model's digest on the first pass, and keeps its region and the blocks
+// near it: what `talus` does for a new run of rigid blocks).
 //
 //   mpirun -np P benchmark_region_setup n whole|region
 //
@@ -62,11 +64,16 @@ int main(int argc, char** argv)
   const auto start = std::chrono::steady_clock::now();
   BuildReport report;
   std::unique_ptr<RankShare> share;
+  ModelDigest digest;
   if (by_region)
-    share = std::make_unique<RankShare>(scene, report, reach, MPI_COMM_WORLD);
+  {
+    digest = ModelDigest(scene, true);
+    share = std::make_unique<RankShare>(scene, report, reach, MPI_COMM_WORLD, &digest);
+  }
   else
   {
     const BlockModel whole = build_blocks(scene, report);
+    digest = ModelDigest::of(scene, whole);
     share = std::make_unique<RankShare>(whole, reach, MPI_COMM_WORLD);
   }
   const double seconds = seconds_since(start);
@@ -84,6 +91,10 @@ int main(int argc, char** argv)
               date_utc().c_str(), ranks, n, blocks,
               by_region ? "by region (RankShare from the scene)"
                         : "whole (build_blocks, RankShare from the model)");
+  std::printf("digest of the whole model: %u blocks, %lu faces, volume %.9g m^3, fingerprint "
+              "%016llx\n",
+              digest.n_blocks(), digest.n_faces(), digest.total_volume(),
+              static_cast<unsigned long long>(digest.geometry_fingerprint()));
   double slowest = 0.0, largest_peak = 0.0;
   for (int r = 0; r < ranks; ++r)
   {

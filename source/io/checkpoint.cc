@@ -110,11 +110,11 @@ CheckpointReader read_checkpoint(const std::string& file, unsigned int* rank, un
 namespace
 {
 
-/// Fingerprint of the model's initial geometry and of the zones' gridpoints.
-std::uint64_t geometry_fingerprint(const BlockModel& model, const DeformableSolver* zones)
+/// Fingerprint of the model's initial geometry (`blocks`:
+/// ModelDigest::geometry_fingerprint) and of the zones' gridpoints.
+std::uint64_t geometry_fingerprint(std::uint64_t blocks, const DeformableSolver* zones)
 {
-  std::uint64_t h = fnv1a(model.vertex.data(), model.vertex.size() * sizeof(Vec3));
-  h = fnv1a(model.face_vertex.data(), model.face_vertex.size() * sizeof(unsigned int), h);
+  std::uint64_t h = blocks;
   if (zones != nullptr && zones->share() != nullptr)
   {
     // Split among ranks: each gridpoint's number in the whole mesh and its
@@ -139,15 +139,6 @@ std::uint64_t geometry_fingerprint(const BlockModel& model, const DeformableSolv
 }
 
 } // namespace
-
-std::uint64_t fnv1a(const void* data, std::size_t size, std::uint64_t seed)
-{
-  std::uint64_t h = seed;
-  const unsigned char* p = static_cast<const unsigned char*>(data);
-  for (std::size_t i = 0; i < size; ++i)
-    h = (h ^ p[i]) * 1099511628211ull;
-  return h;
-}
 
 // ---- Signals -----------------------------------------------------------------
 
@@ -347,10 +338,10 @@ void continue_in_checkpoint_folder(const std::string& checkpoint, Scene& scene)
 
 // ---- Checkpoint ----------------------------------------------------------------
 
-Checkpoint::Checkpoint(const Scene& scene, const BlockModel& model, RigidSolver* rigid,
+Checkpoint::Checkpoint(const Scene& scene, std::uint64_t blocks_fingerprint, RigidSolver* rigid,
                        DeformableSolver* zones, const std::string& restart_from)
     : scene_(scene), rigid_(rigid), zones_(zones), scene_hash_(scene_fingerprint(scene)),
-      geometry_hash_(geometry_fingerprint(model, zones)),
+      geometry_hash_(geometry_fingerprint(blocks_fingerprint, zones)),
       interval_(scene.output.checkpoint_interval), rank_(static_cast<unsigned int>(world_rank())),
       ranks_(static_cast<unsigned int>(world_ranks())),
       set_(scene.output.directory + "/" + scene.output.base_name + "_checkpoint.bin"),

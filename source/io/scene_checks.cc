@@ -7,6 +7,7 @@
 #include <array>
 #include <cmath>
 #include <cstdio>
+#include <functional>
 
 namespace talus
 {
@@ -118,7 +119,7 @@ namespace
 /// body alone (which has no blocks to remove or hold) is only excavated by
 /// regions.
 template <typename HasBlocks>
-void check_stages(const Scene& scene, const BlockModel& model, const BuildReport& report,
+void check_stages(const Scene& scene, const ModelDigest& model, const BuildReport& report,
                   const HasBlocks& check_has_blocks)
 {
   const bool body = !scene.deformable.groups.empty() && model.n_blocks() == 1;
@@ -138,8 +139,8 @@ void check_stages(const Scene& scene, const BlockModel& model, const BuildReport
                         "static or dynamic for a body alone ('Solver / Mode = factor of "
                         "safety' searches it without stages)");
     if (stage.factor_of_safety && !scene.deformable.mesh_file.empty())
-      throw scene_error(scene, stage.section, "Mode", "factor of safety does not take a 'Mesh file'",
-                        "static or dynamic");
+      throw scene_error(scene, stage.section, "Mode",
+                        "factor of safety does not take a 'Mesh file'", "static or dynamic");
     const std::pair<const char*, const std::vector<std::string>*> lists[] = {
         {"Excavate groups", &stage.excavate_groups},
         {"Fix groups", &stage.fix_groups},
@@ -160,8 +161,9 @@ void check_stages(const Scene& scene, const BlockModel& model, const BuildReport
             scene.deformable.groups.end();
         if (deformable && std::string(entry) != "Excavate groups")
           throw scene_error(scene, stage.section, entry,
-                            "names group '" + g + "', whose blocks are deformable: a stage holds "
-                            "or lets go rigid blocks only",
+                            "names group '" + g +
+                                "', whose blocks are deformable: a stage holds "
+                                "or lets go rigid blocks only",
                             "groups of rigid blocks; 'Boundary N' holds gridpoints of deformable "
                             "ones");
       }
@@ -192,7 +194,8 @@ void check_stages(const Scene& scene, const BlockModel& model, const BuildReport
 }
 } // namespace
 
-void check_built_model(const Scene& scene, const BlockModel& model, const BuildReport& report)
+void check_built_model(const Scene& scene, const ModelDigest& model, const BuildReport& report,
+                       const BlockModel* whole)
 {
   const auto cuts_nothing =
       [&](const std::string& section, const std::pair<unsigned long, unsigned long>& cuts)
@@ -255,9 +258,8 @@ void check_built_model(const Scene& scene, const BlockModel& model, const BuildR
   const auto check_has_blocks =
       [&](const std::string& section, const std::string& entry, const std::string& group)
   {
-    for (unsigned int b = 0; b < model.n_blocks(); ++b)
-      if (model.group_names[model.group[b]] == group)
-        return;
+    if (model.blocks_in(group) > 0)
+      return;
     throw scene_error(scene, section, entry,
                       "the group '" + group +
                           "' holds no block (its region selects none, or "
@@ -289,7 +291,11 @@ void check_built_model(const Scene& scene, const BlockModel& model, const BuildR
                        stage.boundaries.load_groups[l]);
 
   if (!scene.deformable.groups.empty())
-    check_deformable_blocks(scene, model);
+  {
+    if (whole == nullptr)
+      throw std::logic_error("check_built_model: deformable blocks are checked on the whole model");
+    check_deformable_blocks(scene, *whole);
+  }
   // Every check passed: what is legal but surely not meant.
   for (const std::string& w : scene.warnings)
     std::printf("Warning: %s\n", w.c_str());
@@ -340,8 +346,8 @@ void check_deformable_blocks(const Scene& scene, const BlockModel& model)
                               std::to_string(b) + " (" +
                               std::to_string(model.face_start[b + 1] - model.face_start[b]) +
                               " faces, centroid " + number(model.centroid[b].x()) + ", " +
-                              number(model.centroid[b].y()) + ", " +
-                              number(model.centroid[b].z()) + " m) is not one",
+                              number(model.centroid[b].y()) + ", " + number(model.centroid[b].z()) +
+                              " m) is not one",
                           "tet4 or tet10 for blocks of other shapes");
     }
   {
@@ -401,8 +407,7 @@ void check_deformable_blocks(const Scene& scene, const BlockModel& model)
     throw scene_error(scene, "Deformable", entry,
                       number(edge) + " m would make about " + number(zones) +
                           " zones, which need about " + memory_text(bytes) +
-                          " of memory to mesh, and this machine has " + memory_text(room) +
-                          " left",
+                          " of memory to mesh, and this machine has " + memory_text(room) + " left",
                       "a larger edge length, fewer deformable groups, or a machine with more "
                       "memory");
 }
@@ -424,53 +429,36 @@ ZoneEstimate estimate_zones(const Scene& scene, const BlockModel& model)
   return e;
 }
 
-void resolve_history_blocks(Scene& scene, const BlockModel& model)
+namespace
 {
-  std::vector<unsigned int>& blocks = scene.solver.history_blocks;
-  for (const Vec3& p : scene.history_block_points)
-  {
-    unsigned int found = model.n_blocks(), nearest = 0;
-    double nearest_distance = 1e300;
-    for (unsigned int b = 0; b < model.n_blocks() && found == model.n_blocks(); ++b)
-    {
-      // Inside every face plane (within a relative 1e-9 of the block's
-      // size): inside the convex block.
-      bool inside = true;
-      for (unsigned int f = model.face_start[b]; inside && f < model.face_start[b + 1]; ++f)
-      {
-        const Vec3& on_face = model.vertex[model.face_vertex[model.face_loop_start[f]]];
-        inside = model.face_normal[f].dot(p - on_face) <= 1e-9 * std::cbrt(model.volume[b]);
-      }
-      if (inside)
-        found = b;
-      const double d = (model.centroid[b] - p).norm();
-      if (d < nearest_distance)
-      {
-        nearest_distance = d;
-        nearest = b;
-      }
-    }
-    const unsigned int b = found < model.n_blocks() ? found : nearest;
-    if (std::find(blocks.begin(), blocks.end(), b) == blocks.end())
-      blocks.push_back(b);
-  }
-}
+/// Whether part of a rigid block's face lies in a face load's region;
+/// `k`: the load's place among the scene's own and then those of each
+/// stage that changes boundaries (ModelDigest::rigid_face_in).
+using RigidFaceIn = std::function<bool(std::size_t k, const ConvexRegion& region)>;
 
-void check_boundary_selections(const Scene& scene, const BlockModel& model, const TetMesh& mesh)
+/// `first`: the place of the set's first face load among the scene's.
+void check_selections(const Scene& scene, const RigidFaceIn& rigid_face_in, const TetMesh& mesh,
+                      const BoundarySet& set, std::size_t first);
+
+void check_all_selections(const Scene& scene, const RigidFaceIn& rigid_face_in, const TetMesh& mesh)
 {
   BoundarySet file;
   file.gridpoint_conditions = scene.gridpoint_conditions;
   file.gridpoint_condition_sections = scene.gridpoint_condition_sections;
   file.face_pressures = scene.face_pressures;
   file.face_pressure_sections = scene.face_pressure_sections;
-  check_boundary_selections(scene, model, mesh, file);
+  check_selections(scene, rigid_face_in, mesh, file, 0);
+  std::size_t first = file.face_pressures.size();
   for (const StageSpec& stage : scene.stages)
     if (stage.changes_boundaries)
-      check_boundary_selections(scene, model, mesh, stage.boundaries);
+    {
+      check_selections(scene, rigid_face_in, mesh, stage.boundaries, first);
+      first += stage.boundaries.face_pressures.size();
+    }
 }
 
-void check_boundary_selections(const Scene& scene, const BlockModel& model, const TetMesh& mesh,
-                               const BoundarySet& set)
+void check_selections(const Scene& scene, const RigidFaceIn& rigid_face_in, const TetMesh& mesh,
+                      const BoundarySet& set, std::size_t first)
 {
   // As the solvers select: gridpoints and zone face centroids by their
   // initial positions, the parts of rigid blocks' faces in the box.
@@ -495,11 +483,6 @@ void check_boundary_selections(const Scene& scene, const BlockModel& model, cons
           "a box around gridpoints of deformable blocks (rigid blocks are held with 'Fixed "
           "groups' of subsection 'Solver', or moved and loaded with 'Load N')");
   }
-  std::vector<char> rigid(model.n_blocks(), 1);
-  for (unsigned int b = 0; b < model.n_blocks(); ++b)
-    for (const std::string& g : scene.deformable.groups)
-      if (model.group_names[model.group[b]] == g)
-        rigid[b] = 0;
   const auto face_in = [&](const ConvexRegion& box, const std::array<unsigned int, 3>& face)
   {
     double c[3] = {0, 0, 0};
@@ -512,7 +495,7 @@ void check_boundary_selections(const Scene& scene, const BlockModel& model, cons
   {
     const ConvexRegion& box = set.face_pressures[i].region;
     const bool quiet = set.face_pressures[i].quiet; // zone faces only
-    bool any = !quiet && !face_patches_in(model, rigid, box).empty();
+    bool any = !quiet && rigid_face_in(first + i, box);
     for (const auto& face : mesh.face_gridpoint)
       any = any || face_in(box, face);
     for (const auto& face : mesh.second_overlay_face_gridpoint)
@@ -534,6 +517,46 @@ void check_boundary_selections(const Scene& scene, const BlockModel& model, cons
                         "a box around the faces to load (it may be thin, around a plane face), "
                         "or a region of another shape that holds whole faces");
   }
+}
+
+} // namespace
+
+/// The rigid blocks of `model`: those not in a deformable group.
+std::vector<char> rigid_blocks(const Scene& scene, const BlockModel& model)
+{
+  std::vector<char> rigid(model.n_blocks(), 1);
+  for (unsigned int b = 0; b < model.n_blocks(); ++b)
+    for (const std::string& g : scene.deformable.groups)
+      if (model.group_names[model.group[b]] == g)
+        rigid[b] = 0;
+  return rigid;
+}
+
+void check_boundary_selections(const Scene& scene, const BlockModel& model, const TetMesh& mesh)
+{
+  const std::vector<char> rigid = rigid_blocks(scene, model);
+  check_all_selections(
+      scene,
+      [&](std::size_t, const ConvexRegion& box)
+      { return !face_patches_in(model, rigid, box).empty(); },
+      mesh);
+}
+
+void check_boundary_selections(const Scene& scene, const BlockModel& model, const TetMesh& mesh,
+                               const BoundarySet& set)
+{
+  const std::vector<char> rigid = rigid_blocks(scene, model);
+  check_selections(
+      scene,
+      [&](std::size_t, const ConvexRegion& box)
+      { return !face_patches_in(model, rigid, box).empty(); },
+      mesh, set, 0);
+}
+
+void check_boundary_selections(const Scene& scene, const ModelDigest& model, const TetMesh& mesh)
+{
+  check_all_selections(
+      scene, [&](std::size_t k, const ConvexRegion&) { return model.rigid_face_in(k); }, mesh);
 }
 
 } // namespace talus

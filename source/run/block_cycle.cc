@@ -43,11 +43,14 @@ std::unique_ptr<ParallelEnvironment> prepare(Scene& scene, BlockModel& model, bo
 /// motion; on a restart, the blocks the rank held at its checkpoint.
 std::unique_ptr<RankShare> share_of(const Scene& scene, const BlockModel& model,
                                     const std::string& restart_from, const WholeZones* zones,
-                                    std::vector<unsigned int>& surfaces)
+                                    std::vector<unsigned int>& surfaces,
+                                    std::unique_ptr<RankShare> built)
 {
+  if (built)
+    return built;
   if (world_ranks() < 2)
     return nullptr;
-  const double reach = 4.0 * scene.solver.contact.tolerance;
+  const double reach = contact_reach(scene);
   const std::vector<double>* work = zones ? &zones->zones_of_block : nullptr;
   if (!restart_from.empty())
   {
@@ -81,10 +84,30 @@ std::unique_ptr<WholeZones> zones_before_split(Scene& scene, BlockModel& model)
 
 } // namespace
 
+double contact_reach(const Scene& scene)
+{
+  return 4.0 * scene.solver.contact.tolerance;
+}
+
+bool builds_by_region(const Scene& scene)
+{
+  unsigned long steps = scene.solver.steps;
+  if (!scene.stages.empty())
+  {
+    steps = 0;
+    for (const StageSpec& stage : scene.stages)
+      steps += stage.steps;
+  }
+  return scene.deformable.groups.empty() && !scene.strength_reduction.enabled &&
+         !needs_built_model(scene) && steps > 0;
+}
+
 BlockCycle::BlockCycle(Scene& scene, BlockModel& model, const std::string& prefix,
-                       const std::string& restart_from)
-    : whole_zones_(zones_before_split(scene, model)),
-      share_(share_of(scene, model, restart_from, whole_zones_.get(), saved_surfaces_)),
+                       const std::string& restart_from, std::unique_ptr<RankShare> share,
+                       const ModelDigest* region_digest)
+    : whole_zones_(region_digest ? nullptr : zones_before_split(scene, model)),
+      share_(share_of(scene, model, restart_from, whole_zones_.get(), saved_surfaces_,
+                      std::move(share))),
       scene_(scene), model_(share_ ? share_->local() : model), prefix_(prefix),
       parallel_(prepare(scene, model, whole_zones_ != nullptr)),
       // (model: the whole model, on ranks too)
@@ -100,14 +123,18 @@ BlockCycle::BlockCycle(Scene& scene, BlockModel& model, const std::string& prefi
                            : build_block_system(scene, model_)),
       block_series_(prefix + "_blocks.pvd"), contact_series_(prefix + "_contacts.pvd"),
       zone_series_(prefix + "_zones.pvd"),
-      built_centroid_(model.centroid) // the whole model's, by global number
+      // the whole model's, by global number
+      built_centroid_(region_digest ? region_digest->centroid() : model.centroid)
 {
   // (on ranks the meshing came first, before the model was split)
   const double meshing_seconds =
       now() - meshing_start_ + (whole_zones_ ? whole_zones_->meshing_seconds : 0.0);
   // On ranks, on the whole model: every rank finds what one rank would.
-  check_boundary_selections(scene, share_ ? model : model_,
-                            whole_zones_ ? whole_zones_->mesh : system_.mesh);
+  if (region_digest)
+    check_boundary_selections(scene, *region_digest, system_.mesh);
+  else
+    check_boundary_selections(scene, share_ ? model : model_,
+                              whole_zones_ ? whole_zones_->mesh : system_.mesh);
   if (share_)
   {
     system_.solver->split_among_ranks(share_->ghost_flags(), reductions_over(share_->comm()));
@@ -116,8 +143,10 @@ BlockCycle::BlockCycle(Scene& scene, BlockModel& model, const std::string& prefi
     // 'Boundary N' face loads selected on the whole model, as on one rank.
     if (!scene.face_pressures.empty())
       system_.solver->set_face_load_table(
-          RigidFaceLoads(model, std::vector<char>(model.n_blocks(), 1), scene.face_pressures)
-              .relative_to(model),
+          region_digest
+              ? region_digest->face_load_table(scene)
+              : RigidFaceLoads(model, std::vector<char>(model.n_blocks(), 1), scene.face_pressures)
+                    .relative_to(model),
           share_->blocks().local);
   }
   const RigidSolver& solver = *system_.solver;

@@ -8,13 +8,13 @@
 #include <talus/run/rank_share.h>
 
 #include <algorithm>
-#include <limits>
 #include <vector>
 
 namespace talus
 {
 
-RankShare::RankShare(const Scene& scene, BuildReport& report, double reach, MPI_Comm comm)
+RankShare::RankShare(const Scene& scene, BuildReport& report, double reach, MPI_Comm comm,
+                     ModelDigest* digest, const std::function<void()>& check)
     : comm_(comm), reach_(reach)
 {
   MPI_Comm_rank(comm, &rank_);
@@ -42,9 +42,13 @@ RankShare::RankShare(const Scene& scene, BuildReport& report, double reach, MPI_
         largest = std::max(largest, (box.hi - box.lo).maxCoeff());
         if (b % ranks == rank)
           point.push_back(compute_mass_properties(block).centroid);
+        if (digest != nullptr)
+          digest->add(scene_block(scene, block, b), 0);
         return false;
       },
       none, n_blocks_);
+  if (check)
+    check();
 
   // 2. The regions, as the constructor from the whole model cuts them: a
   // block's work is 1, so the ranks' sums of cell slabs are exact.

@@ -222,12 +222,12 @@ void print_nodal_mixed(const DeformableSolver& solver)
 /// The summary's lines on the history blocks: which block each is (so that
 /// an id can be checked, and a point's block known), and a warning for a
 /// fixed one, whose history holds only zeros.
-void print_history_blocks(const Scene& scene, const BlockModel& model)
+void print_history_blocks(const Scene& scene, const ModelDigest& model)
 {
   for (unsigned int b : scene.solver.history_blocks)
   {
-    const std::string& group = model.group_names[model.group[b]];
-    const Vec3& c = model.centroid[b];
+    const std::string& group = model.group_name(b);
+    const Vec3& c = model.centroid()[b];
     std::printf("History block %u: group %s, centroid %.6g, %.6g, %.6g m\n", b, group.c_str(), c[0],
                 c[1], c[2]);
     if (std::find(scene.fixed_groups.begin(), scene.fixed_groups.end(), group) !=

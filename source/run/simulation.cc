@@ -15,7 +15,6 @@
 #include <cstdio>
 #include <filesystem>
 #include <iostream>
-#include <map>
 
 namespace talus
 {
@@ -79,9 +78,22 @@ Simulation::Simulation(const std::string& parameter_file, std::string restart_fr
   }
   // read_scene has checked every value and prepared the output folder;
   // what needs the blocks is checked before anything is written.
-  model_ = build_blocks(scene_, report_);
-  check_built_model(scene_, model_, report_);
-  resolve_history_blocks(scene_, model_);
+  if (ranks > 1 && restart_from_.empty() && !check_only_ && builds_by_region(scene_))
+  {
+    by_region_ = true;
+    digest_ = ModelDigest(scene_, true);
+    model_ = scene_groups(scene_);
+    share_ = std::make_unique<RankShare>(
+        scene_, report_, contact_reach(scene_), MPI_COMM_WORLD, &digest_,
+        [&]() { check_built_model(scene_, digest_, report_, nullptr); });
+  }
+  else
+  {
+    model_ = build_blocks(scene_, report_);
+    digest_ = ModelDigest::of(scene_, model_);
+    check_built_model(scene_, digest_, report_, &model_);
+  }
+  digest_.resolve_history_blocks(scene_);
   prefix_ = scene_.output.directory + "/" + scene_.output.base_name;
 }
 
@@ -89,8 +101,9 @@ Simulation::Simulation(Scene scene)
     : parameter_file_(scene.parameter_file), check_only_(false), scene_(std::move(scene))
 {
   model_ = build_blocks(scene_, report_);
-  check_built_model(scene_, model_, report_);
-  resolve_history_blocks(scene_, model_);
+  digest_ = ModelDigest::of(scene_, model_);
+  check_built_model(scene_, digest_, report_, &model_);
+  digest_.resolve_history_blocks(scene_);
   prefix_ = scene_.output.directory + "/" + scene_.output.base_name;
 }
 
@@ -112,11 +125,11 @@ std::vector<StageSpec> Simulation::stages() const
 void Simulation::print_model() const
 {
   const Scene& scene = scene_;
-  const BlockModel& model = model_;
+  const ModelDigest& model = digest_;
   std::printf("talus: scene %s\n", std::filesystem::path(parameter_file_).filename().c_str());
   std::printf("Blocks:       %u\n", model.n_blocks());
-  std::printf("Faces:        %u\n", model.n_faces());
-  std::printf("Vertices:     %u\n", model.n_vertices());
+  std::printf("Faces:        %lu\n", model.n_faces());
+  std::printf("Vertices:     %lu\n", model.n_vertices());
   std::printf("Total volume: %.9g m^3 (brick %.9g m^3)\n", model.total_volume(),
               scene.brick.volume());
   for (std::size_t e = 0; e < scene.excavations.size(); ++e)
@@ -134,19 +147,16 @@ void Simulation::print_model() const
                 scene.density);
   else
   {
-    double mass = 0.0;
-    for (unsigned int b = 0; b < model.n_blocks(); ++b)
-      mass += scene.density_of(model.group_names[model.group[b]]) * model.volume[b];
-    std::printf("Mass:         %.9g kg (density %g kg/m^3; rock materials:", mass, scene.density);
+    std::printf("Mass:         %.9g kg (density %g kg/m^3; rock materials:", model.mass(),
+                scene.density);
     for (const RockMaterialSpec& r : scene.rock_materials)
       std::printf(" %s %g", r.name.c_str(), r.density);
     std::printf(")\n");
   }
-  std::map<unsigned int, unsigned int> per_group;
-  for (unsigned int g : model.group)
-    ++per_group[g];
-  for (const auto& [g, count] : per_group)
-    std::printf("Group %-8s %u blocks\n", model.group_names[g].c_str(), count);
+  // In the order the model numbers its groups.
+  for (const std::string& group : model_.group_names)
+    if (const unsigned int count = model.blocks_in(group); count > 0)
+      std::printf("Group %-8s %u blocks\n", group.c_str(), count);
   std::printf("Cuts:         %lu\n", report_.cutting.cuts);
   if (report_.cutting.skipped_slivers > 0)
     std::printf("Warning: %lu cuts were not made because a piece would have been smaller than "
@@ -246,7 +256,11 @@ int Simulation::run()
         if (body_alone(scene_, model_))
           cycle = std::make_unique<BodyCycle>(scene_, model_, prefix_);
         else
-          cycle = std::make_unique<BlockCycle>(scene_, model_, prefix_, restart_from_);
+        {
+          const ModelDigest* by_region = share_ ? &digest_ : nullptr;
+          cycle = std::make_unique<BlockCycle>(scene_, model_, prefix_, restart_from_,
+                                               std::move(share_), by_region);
+        }
       });
   stages = this->stages();
   const bool staged = !scene_.stages.empty();
@@ -276,8 +290,8 @@ int Simulation::run()
     columns.push_back("stage");
   // Checkpoints (on ranks, one file per rank: io/rank_checkpoint.h);
   // rank 0: the history and the progress line.
-  std::unique_ptr<Checkpoint> checkpoints =
-      std::make_unique<Checkpoint>(scene_, model_, cycle->rigid(), cycle->zones(), restart_from_);
+  std::unique_ptr<Checkpoint> checkpoints = std::make_unique<Checkpoint>(
+      scene_, digest_.geometry_fingerprint(), cycle->rigid(), cycle->zones(), restart_from_);
   std::unique_ptr<HistoryFile> history;
   if (writes)
     history = std::make_unique<HistoryFile>(prefix_ + "_history.csv", columns, 100,
@@ -425,8 +439,9 @@ int Simulation::run()
   if (staged)
     cycle->print_end();
   // Indented "Time =" lines are ignored when test output is compared.
-  std::printf("   Time = %.3f s (blocks %.3f s, then the calculation and output %.3f s)\n",
-              seconds_since(start), built_seconds, seconds_since(start) - built_seconds);
+  std::printf("   Time = %.3f s (blocks %.3f s, then the calculation and output %.3f s)%s\n",
+              seconds_since(start), built_seconds, seconds_since(start) - built_seconds,
+              by_region_ ? "; each rank built the blocks of its region only" : "");
   return exit_code;
 }
 

@@ -167,6 +167,18 @@ BlockModel with_scene_groups(const Scene& scene)
 
 } // namespace
 
+BlockModel scene_groups(const Scene& scene)
+{
+  return with_scene_groups(scene);
+}
+
+BlockModel scene_block(const Scene& scene, const ConvexPolyhedron& block, unsigned int number)
+{
+  BlockModel model = with_scene_groups(scene);
+  add_scene_block(scene, block, number, model);
+  return model;
+}
+
 BlockModel build_blocks(const Scene& scene, BuildReport& report)
 {
   BlockGenerator generator(ConvexPolyhedron::box(scene.brick.lo, scene.brick.hi), scene.cutting);

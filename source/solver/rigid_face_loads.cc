@@ -111,18 +111,42 @@ std::vector<FacePatch> face_patches_in(const BlockModel& m, const std::vector<ch
   return patches;
 }
 
+namespace
+{
+std::vector<std::vector<FacePatch>> patches_of(const BlockModel& blocks,
+                                               const std::vector<char>& rigid,
+                                               const std::vector<FacePressure>& loads)
+{
+  std::vector<std::vector<FacePatch>> patches;
+  for (const FacePressure& load : loads)
+    patches.push_back(load.quiet ? std::vector<FacePatch>{}
+                                 : face_patches_in(blocks, rigid, load.region));
+  return patches;
+}
+} // namespace
+
 RigidFaceLoads::RigidFaceLoads(const BlockModel& blocks, const std::vector<char>& rigid,
                                const std::vector<FacePressure>& loads)
+    : RigidFaceLoads(patches_of(blocks, rigid, loads), loads)
 {
-  std::vector<unsigned int> slot_of_block(blocks.n_blocks(), ~0u);
-  for (const FacePressure& load : loads)
+}
+
+RigidFaceLoads::RigidFaceLoads(const std::vector<std::vector<FacePatch>>& patches,
+                               const std::vector<FacePressure>& loads)
+{
+  std::vector<unsigned int> slot_of_block;
+  for (std::size_t l = 0; l < loads.size(); ++l)
   {
+    const FacePressure& load = loads[l];
     const int function = load.motion.varies() ? static_cast<int>(functions_.size()) : -1;
     if (load.motion.varies())
       functions_.push_back(load.motion);
-    for (const FacePatch& patch :
-         load.quiet ? std::vector<FacePatch>{} : face_patches_in(blocks, rigid, load.region))
+    if (load.quiet) // zone faces only
+      continue;
+    for (const FacePatch& patch : patches[l])
     {
+      if (patch.block >= slot_of_block.size())
+        slot_of_block.resize(patch.block + 1, ~0u);
       unsigned int& slot = slot_of_block[patch.block];
       if (slot == ~0u)
       {

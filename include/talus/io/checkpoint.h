@@ -1,5 +1,7 @@
 #pragma once
 
+#include <talus/base/fnv1a.h>
+
 // Checkpoints: the whole state of a run in one binary file, so that a run
 // stopped by a signal (or by the machine) can be continued with
 // `talus --restart FILE` and give the same histories, bit for bit, as a run
@@ -48,12 +50,10 @@ struct Scene;
 /// cut them and the rebalance's counters; 12: whether the rebalance checks
 /// at the next step (after a stage's excavation); 13: the deformable blocks
 /// whose surfaces a rank holds, and the migration's count of the zones'
-/// new splits (deformable blocks change rank).
-constexpr std::uint32_t checkpoint_format_version = 13;
-
-/// FNV-1a, 64 bits: a fingerprint, not a cryptographic hash.
-std::uint64_t fnv1a(const void* data, std::size_t size,
-                    std::uint64_t seed = 14695981039346656037ull);
+/// new splits (deformable blocks change rank); 14: the blocks' geometry
+/// fingerprint taken one block at a time (ModelDigest), so that a rank
+/// that builds only its region takes it too.
+constexpr std::uint32_t checkpoint_format_version = 14;
 
 /// Thrown after a checkpoint was written because a signal asked the run to
 /// stop; main() turns it into a message and exit code 128 + signal (130 for
@@ -122,12 +122,13 @@ void continue_in_checkpoint_folder(const std::string& checkpoint, Scene& scene);
 class Checkpoint
 {
 public:
-  /// `model` must still be in its initial state: its geometry (and that of
-  /// the zones) is fingerprinted so that a restart rebuilds the same model.
-  /// With `restart_from`, checks at once that that checkpoint belongs to
-  /// this scene and model (before any output file is opened, so that a
-  /// refused restart leaves the old run's files as they were).
-  Checkpoint(const Scene& scene, const BlockModel& model, RigidSolver* rigid,
+  /// `blocks_fingerprint`: that of the blocks as built
+  /// (ModelDigest::geometry_fingerprint); it and the zones' gridpoints as
+  /// built are kept so that a restart rebuilds the same model. With
+  /// `restart_from`, checks at once that that checkpoint belongs to this
+  /// scene and model (before any output file is opened, so that a refused
+  /// restart leaves the old run's files as they were).
+  Checkpoint(const Scene& scene, std::uint64_t blocks_fingerprint, RigidSolver* rigid,
              DeformableSolver* zones, const std::string& restart_from = "");
 
   /// Restores the default handling of SIGINT and SIGTERM.

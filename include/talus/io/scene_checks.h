@@ -1,8 +1,9 @@
 #pragma once
 
 #include <talus/base/exceptions.h>
-#include <talus/scene/scene.h>
 #include <talus/scene/build_blocks.h>
+#include <talus/scene/model_digest.h>
+#include <talus/scene/scene.h>
 #include <talus/zone/tet_mesh.h>
 
 #include <string>
@@ -45,7 +46,10 @@ void check_model_size(const Scene& scene);
 /// deformable block, or more zones than max_zones or than the memory left
 /// holds; fixed or loaded groups with no block. Then prints the scene's
 /// warnings ("Warning: ...").
-void check_built_model(const Scene& scene, const BlockModel& model, const BuildReport& report);
+/// `model`: the digest of the whole model; `whole`: the whole model, needed
+/// (and only read) when the scene has deformable blocks.
+void check_built_model(const Scene& scene, const ModelDigest& model, const BuildReport& report,
+                       const BlockModel* whole);
 
 /// The zones meshing the deformable blocks will make, and the memory that
 /// takes, estimated from each block's volume and the edge length before
@@ -59,11 +63,6 @@ struct ZoneEstimate
 };
 ZoneEstimate estimate_zones(const Scene& scene, const BlockModel& model);
 
-/// Adds to `scene.solver.history_blocks` the block containing each of
-/// `scene.history_block_points` (the block with the nearest centroid when
-/// no block contains it), once each, after the numbered ones.
-void resolve_history_blocks(Scene& scene, const BlockModel& model);
-
 /// Once the deformable blocks are meshed (`mesh`: their zones, empty when
 /// every block is rigid), before the run: refuses a 'Boundary N' that
 /// selects nothing - a fixed, velocity or load boundary whose box holds no
@@ -74,5 +73,8 @@ void check_boundary_selections(const Scene& scene, const BlockModel& model, cons
 /// The same for one set of boundaries (the file's, or a stage's).
 void check_boundary_selections(const Scene& scene, const BlockModel& model, const TetMesh& mesh,
                                const BoundarySet& set);
+/// The same on a model's digest (ModelDigest with face loads): a rank that
+/// holds only its region checks the whole model's faces.
+void check_boundary_selections(const Scene& scene, const ModelDigest& model, const TetMesh& mesh);
 
 } // namespace talus

@@ -19,6 +19,17 @@
 namespace talus
 {
 
+/// m: how far beyond a rank's blocks its ghosts reach: the contact
+/// tolerance plus three more of motion until they are chosen again.
+double contact_reach(const Scene& scene);
+
+/// Whether a new run on ranks builds only each rank's region of the blocks
+/// (RankShare from the scene): a scene of rigid blocks with steps to run,
+/// without a factor of safety, and whose stages neither change boundaries
+/// nor search a factor of safety (those select on the whole model as
+/// built).
+bool builds_by_region(const Scene& scene);
+
 /// The distinct element cycle of a model of blocks: rigid ones, and
 /// deformable ones with their zones (BlockSystem); contacts between all.
 class BlockCycle : public Cycle
@@ -30,8 +41,12 @@ public:
   /// share of the model (RankShare) and the summary, the history and the
   /// output are those of the whole model; `restart_from`: this rank's
   /// checkpoint file, whose blocks the rank holds (on ranks).
+  /// `share` and `region_digest`: this rank's share built from the scene
+  /// (builds_by_region), when `model` holds no block, and the whole
+  /// model's digest.
   BlockCycle(Scene& scene, BlockModel& model, const std::string& prefix,
-             const std::string& restart_from = "");
+             const std::string& restart_from = "", std::unique_ptr<RankShare> share = nullptr,
+             const ModelDigest* region_digest = nullptr);
   ~BlockCycle() override;
 
   void step() override;

@@ -5,6 +5,7 @@
 #include <talus/model/block_model.h>
 #include <talus/run/rank_balance.h>
 #include <talus/scene/build_blocks.h>
+#include <talus/scene/model_digest.h>
 #include <talus/scene/scene.h>
 #include <talus/solver/block_migration.h>
 #include <talus/solver/ghost_exchange.h>
@@ -79,8 +80,12 @@ public:
   /// their numbers, the regions and the exchanges' lists are those the
   /// constructor above gives from the whole model, bit for bit; the memory
   /// is that of the blocks kept. `report`: the whole model's cutting.
-  /// Defined in rank_region_setup.cc.
-  RankShare(const Scene& scene, BuildReport& report, double reach, MPI_Comm comm);
+  /// `digest` (optional) takes every block of the first pass in order, and
+  /// `check` is called after it, before the ranks cut the cell space: a
+  /// model it refuses stops every rank alike. Defined in
+  /// rank_region_setup.cc.
+  RankShare(const Scene& scene, BuildReport& report, double reach, MPI_Comm comm,
+            ModelDigest* digest = nullptr, const std::function<void()>& check = {});
 
   /// The number of blocks in the whole model.
   unsigned int n_blocks() const { return n_blocks_; }

@@ -6,6 +6,7 @@
 #include <talus/io/block_vtu_writer.h>
 #include <talus/io/zone_vtu_writer.h>
 #include <talus/model/block_model.h>
+#include <talus/scene/model_digest.h>
 #include <talus/scene/scene.h>
 #include <talus/solver/deformable_solver.h>
 #include <talus/zone/block_mesher.h>
@@ -34,7 +35,7 @@ void print_zone_estimate(const Scene& scene, const BlockModel& model);
 void print_nodal_mixed(const DeformableSolver& solver);
 
 /// The summary's lines on the history blocks, with a warning for a fixed one.
-void print_history_blocks(const Scene& scene, const BlockModel& model);
+void print_history_blocks(const Scene& scene, const ModelDigest& model);
 
 /// The summary's line on partial density scaling (eq. 89) in a dynamic run
 /// with it: gridpoints and blocks given mass, the mass added as a fraction

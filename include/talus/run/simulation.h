@@ -1,15 +1,18 @@
 #pragma once
 
-#include <talus/scene/scene.h>
 #include <talus/model/block_model.h>
-#include <talus/scene/build_blocks.h>
 #include <talus/run/cycle.h>
+#include <talus/scene/build_blocks.h>
+#include <talus/scene/model_digest.h>
+#include <talus/scene/scene.h>
 
 #include <memory>
 #include <string>
 
 namespace talus
 {
+
+class RankShare;
 
 /// One run of a scene (ASPECT's Simulator is the model): reads the
 /// parameter file, builds the blocks, then the cycle the scene needs (a
@@ -45,7 +48,15 @@ private:
   bool check_only_;
   Scene scene_;
   BuildReport report_;
+  /// The whole model; on ranks, when each rank builds only its region
+  /// (share_), none of its blocks, only the groups.
   BlockModel model_;
+  /// What the summary, checks and checkpoints need of the whole model.
+  ModelDigest digest_;
+  /// On ranks, for a new run of rigid blocks: this rank's share, built
+  /// from the scene without the whole model (issue 24).
+  std::unique_ptr<RankShare> share_;
+  bool by_region_ = false;
   std::string prefix_; ///< output folder and base name
 };
 

@@ -44,6 +44,14 @@ using KeepBlock = std::function<bool(unsigned int number, const ConvexPolyhedron
 BlockModel build_blocks_where(const Scene& scene, BuildReport& report, const KeepBlock& keep,
                               std::vector<unsigned int>& global, unsigned int& n_blocks);
 
+/// A model of no blocks with the scene's groups, numbered as build_blocks
+/// numbers them.
+BlockModel scene_groups(const Scene& scene);
+
+/// Block `number` of the whole model alone, checked and in its group, as
+/// build_blocks makes it from the cut piece `block`.
+BlockModel scene_block(const Scene& scene, const ConvexPolyhedron& block, unsigned int number);
+
 /// Turns the group names the scene's solver settings refer to (fixed
 /// groups, loads) into the model's group numbers.
 void resolve_group_names(Scene& scene, BlockModel& model);

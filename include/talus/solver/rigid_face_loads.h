@@ -73,6 +73,10 @@ public:
   RigidFaceLoads() = default;
   RigidFaceLoads(const BlockModel& blocks, const std::vector<char>& rigid,
                  const std::vector<FacePressure>& loads);
+  /// The same from the parts each load selects (`patches`, one list per
+  /// load; a quiet load's is not used).
+  RigidFaceLoads(const std::vector<std::vector<FacePatch>>& patches,
+                 const std::vector<FacePressure>& loads);
 
   bool empty() const { return patch_.empty(); }
 
