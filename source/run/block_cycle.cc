@@ -11,6 +11,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
+#include <cstdlib>
 #include <cstring>
 #include <limits>
 #include <optional>
@@ -91,6 +92,17 @@ double contact_reach(const Scene& scene)
 
 bool builds_by_region(const Scene& scene)
 {
+  // TALUS_SETUP=whole: the whole model on every rank, to compare (benchmarks).
+  if (const char* text = std::getenv("TALUS_SETUP"); text != nullptr && *text != '\0')
+  {
+    if (std::strcmp(text, "whole") == 0)
+      return false;
+    if (std::strcmp(text, "region") != 0)
+      throw InputError(std::string("environment variable TALUS_SETUP: '") + text +
+                       "' is not allowed; allowed: region (the default: each rank builds the "
+                       "blocks of its region, where the scene allows it) or whole (every rank "
+                       "builds the whole model)");
+  }
   unsigned long steps = scene.solver.steps;
   if (!scene.stages.empty())
   {
@@ -98,8 +110,10 @@ bool builds_by_region(const Scene& scene)
     for (const StageSpec& stage : scene.stages)
       steps += stage.steps;
   }
-  return scene.deformable.groups.empty() && !scene.strength_reduction.enabled &&
-         !needs_built_model(scene) && steps > 0;
+  bool factor_of_safety = scene.strength_reduction.enabled;
+  for (const StageSpec& stage : scene.stages)
+    factor_of_safety = factor_of_safety || stage.factor_of_safety;
+  return scene.deformable.groups.empty() && !factor_of_safety && steps > 0;
 }
 
 BlockCycle::BlockCycle(Scene& scene, BlockModel& model, const std::string& prefix,
@@ -108,10 +122,10 @@ BlockCycle::BlockCycle(Scene& scene, BlockModel& model, const std::string& prefi
     : whole_zones_(region_digest ? nullptr : zones_before_split(scene, model)),
       share_(share_of(scene, model, restart_from, whole_zones_.get(), saved_surfaces_,
                       std::move(share))),
-      scene_(scene), model_(share_ ? share_->local() : model), prefix_(prefix),
-      parallel_(prepare(scene, model, whole_zones_ != nullptr)),
+      region_digest_(region_digest), scene_(scene), model_(share_ ? share_->local() : model),
+      prefix_(prefix), parallel_(prepare(scene, model, whole_zones_ != nullptr)),
       // (model: the whole model, on ranks too)
-      built_model_(needs_built_model(scene)
+      built_model_(!region_digest && needs_built_model(scene)
                        ? std::make_unique<BlockModel>(whole_zones_ ? whole_zones_->as_built : model)
                        : nullptr),
       meshing_start_(now()),
@@ -144,7 +158,7 @@ BlockCycle::BlockCycle(Scene& scene, BlockModel& model, const std::string& prefi
     if (!scene.face_pressures.empty())
       system_.solver->set_face_load_table(
           region_digest
-              ? region_digest->face_load_table(scene)
+              ? region_digest->face_load_table(scene.face_pressures, 0)
               : RigidFaceLoads(model, std::vector<char>(model.n_blocks(), 1), scene.face_pressures)
                     .relative_to(model),
           share_->blocks().local);
@@ -234,25 +248,28 @@ BlockCycle::BlockCycle(Scene& scene, BlockModel& model, const std::string& prefi
 namespace
 {
 /// A stage's boundaries and loads ('Boundary N' face loads selected on the
-/// blocks as built, `built`: on ranks (`share`) the whole model, and each
-/// rank takes those of its blocks) into `system`.
-void apply_boundaries(BlockSystem& system, const BlockModel& built, const BoundarySet& set,
-                      const RankShare* share = nullptr)
+/// blocks as built, `built`: on ranks (`share`) the whole model, or the
+/// `table` of the whole model's digest when the rank built only its
+/// region, and each rank takes those of its blocks) into `system`.
+void apply_boundaries(BlockSystem& system, const BlockModel* built, const BoundarySet& set,
+                      const RankShare* share = nullptr, const RigidFaceLoads* table = nullptr)
 {
   RigidSolver& solver = *system.solver;
   if (set.face_pressures.empty())
     solver.set_face_loads(RigidFaceLoads());
+  else if (share && table)
+    solver.set_face_load_table(*table, share->blocks().local);
   else if (share)
     solver.set_face_load_table(
-        RigidFaceLoads(built, std::vector<char>(built.n_blocks(), 1), set.face_pressures)
-            .relative_to(built),
+        RigidFaceLoads(*built, std::vector<char>(built->n_blocks(), 1), set.face_pressures)
+            .relative_to(*built),
         share->blocks().local);
   else
   {
-    std::vector<char> rigid(built.n_blocks(), 1);
-    for (unsigned int b = 0; b < built.n_blocks(); ++b)
+    std::vector<char> rigid(built->n_blocks(), 1);
+    for (unsigned int b = 0; b < built->n_blocks(); ++b)
       rigid[b] = !solver.is_deformable(b);
-    solver.set_face_loads(RigidFaceLoads(built, rigid, set.face_pressures));
+    solver.set_face_loads(RigidFaceLoads(*built, rigid, set.face_pressures));
   }
   if (system.zones)
     system.zones->set_boundaries(set.gridpoint_conditions, set.face_pressures);
@@ -306,16 +323,34 @@ void change_rock_materials(const Scene& scene, const BlockModel& model, BlockSys
 } // namespace
 
 void restore_changes(const Scene& scene, const BlockModel& model, const BlockModel* built,
-                     BlockSystem& system, const StageSpec& stage)
+                     BlockSystem& system, const StageSpec& stage, const RankShare* share,
+                     const RigidFaceLoads* table)
 {
   change_rock_materials(scene, model, system, stage, false);
   if (stage.changes_boundaries)
-    apply_boundaries(system, *built, stage.boundaries);
+    apply_boundaries(system, built, stage.boundaries, share, table);
   RigidSolver& solver = *system.solver;
   if (stage.changes_water)
     solver.set_water(stage.water);
   else if (solver.water().active())
     solver.set_water(solver.water()); // on the blocks the state has moving
+}
+
+std::optional<RigidFaceLoads> BlockCycle::stage_face_loads(const StageSpec& stage) const
+{
+  if (!region_digest_ || !stage.changes_boundaries)
+    return std::nullopt;
+  // Its place among the digest's face loads: the scene's own, then each
+  // stage's that changes boundaries.
+  std::size_t first = scene_.face_pressures.size();
+  for (const StageSpec& s : scene_.stages)
+  {
+    if (s.section == stage.section)
+      return region_digest_->face_load_table(stage.boundaries.face_pressures, first);
+    if (s.changes_boundaries)
+      first += s.boundaries.face_pressures.size();
+  }
+  throw std::logic_error("BlockCycle::stage_face_loads: not one of the scene's stages");
 }
 
 void BlockCycle::restore_stage(const StageSpec& stage)
@@ -333,7 +368,10 @@ void BlockCycle::restore_stage(const StageSpec& stage)
     zones = system_.zones->damping_state();
     zone_steps = system_.zones->step_state();
   }
-  restore_changes(scene_, model_, built_model_.get(), system_, stage);
+  // On ranks, the face loads of the blocks each rank holds.
+  const std::optional<RigidFaceLoads> table = stage_face_loads(stage);
+  restore_changes(scene_, model_, built_model_.get(), system_, stage, share_.get(),
+                  table ? &*table : nullptr);
   system_.solver->set_damper(damper);
   system_.solver->set_time_steps(steps);
   if (zones)
@@ -720,7 +758,9 @@ void BlockCycle::begin_stage(const StageSpec& stage)
   if (stage.changes_boundaries)
   {
     solver.set_loads(stage.boundaries.loads);
-    apply_boundaries(system_, *built_model_, stage.boundaries, share_.get());
+    const std::optional<RigidFaceLoads> table = stage_face_loads(stage);
+    apply_boundaries(system_, built_model_.get(), stage.boundaries, share_.get(),
+                     table ? &*table : nullptr);
     std::printf("  Boundaries: ");
     for (std::size_t k = 0; k < stage.boundary_changes.size(); ++k)
       std::printf("%s%s", k == 0 ? "" : ", ", stage.boundary_changes[k].c_str());

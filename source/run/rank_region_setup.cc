@@ -2,6 +2,7 @@
 // (issue 24): the brick is cut one piece at a time, and each rank keeps the
 // blocks of its region and those near it.
 
+#include <talus/base/exceptions.h>
 #include <talus/contact/cell_partition.h>
 #include <talus/contact/cell_space.h>
 #include <talus/geometry/mass_properties.h>
@@ -14,7 +15,8 @@ namespace talus
 {
 
 RankShare::RankShare(const Scene& scene, BuildReport& report, double reach, MPI_Comm comm,
-                     ModelDigest* digest, const std::function<void()>& check)
+                     ModelDigest* digest, const std::function<void()>& check,
+                     const RankBlocks* saved)
     : comm_(comm), reach_(reach)
 {
   MPI_Comm_rank(comm, &rank_);
@@ -69,6 +71,27 @@ RankShare::RankShare(const Scene& scene, BuildReport& report, double reach, MPI_
   near.hi.array() += margin;
   std::vector<unsigned int> global;
   BuildReport again;
+  if (saved != nullptr) // a restart: the blocks the rank held at its checkpoint
+  {
+    BlockModel held = build_blocks_where(
+        scene, again,
+        [&](unsigned int b, const ConvexPolyhedron&)
+        { return std::binary_search(saved->local.begin(), saved->local.end(), b); },
+        global, n_blocks_);
+    // (Agreed among the ranks before any of them stops: a rank that went on
+    // would wait for the others in the exchanges.)
+    int fits = global == saved->local;
+    MPI_Allreduce(MPI_IN_PLACE, &fits, 1, MPI_INT, MPI_LAND, comm);
+    if (!fits)
+      throw InputError("a rank's checkpoint names blocks that this scene does not have (it has " +
+                       std::to_string(n_blocks_) +
+                       "): the checkpoint was written for another "
+                       "scene");
+    local_ = std::move(held);
+    blocks_ = *saved;
+    start_exchanges();
+    return;
+  }
   const BlockModel held = build_blocks_where(
       scene, again,
       [&](unsigned int, const ConvexPolyhedron& block)

@@ -1,9 +1,11 @@
 #include <talus/base/exceptions.h>
+#include <talus/base/memory.h>
 #include <talus/base/wall_clock.h>
 #include <talus/io/checkpoint.h>
 #include <talus/io/factor_of_safety_run.h>
 #include <talus/io/file_output.h>
 #include <talus/io/history_file.h>
+#include <talus/io/rank_checkpoint.h>
 #include <talus/io/scene_checks.h>
 #include <talus/run/block_cycle.h>
 #include <talus/run/body_cycle.h>
@@ -15,6 +17,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <iostream>
+#include <optional>
 
 namespace talus
 {
@@ -78,14 +81,18 @@ Simulation::Simulation(const std::string& parameter_file, std::string restart_fr
   }
   // read_scene has checked every value and prepared the output folder;
   // what needs the blocks is checked before anything is written.
-  if (ranks > 1 && restart_from_.empty() && !check_only_ && builds_by_region(scene_))
+  if (ranks > 1 && !check_only_ && builds_by_region(scene_))
   {
     by_region_ = true;
     digest_ = ModelDigest(scene_, true);
     model_ = scene_groups(scene_);
+    // A restart: each rank takes the blocks it held at its checkpoint.
+    std::optional<RankBlocks> saved;
+    if (!restart_from_.empty()) // (a file one rank refuses stops them all)
+      agree_on_input_errors([&]() { saved = read_rank_blocks(restart_from_); });
     share_ = std::make_unique<RankShare>(
         scene_, report_, contact_reach(scene_), MPI_COMM_WORLD, &digest_,
-        [&]() { check_built_model(scene_, digest_, report_, nullptr); });
+        [&]() { check_built_model(scene_, digest_, report_, nullptr); }, saved ? &*saved : nullptr);
   }
   else
   {
@@ -439,8 +446,14 @@ int Simulation::run()
   if (staged)
     cycle->print_end();
   // Indented "Time =" lines are ignored when test output is compared.
-  std::printf("   Time = %.3f s (blocks %.3f s, then the calculation and output %.3f s)%s\n",
+  // (On ranks, the largest rank's peak memory: collective.)
+  double peak = peak_memory();
+  if (world_ranks() > 1)
+    MPI_Allreduce(MPI_IN_PLACE, &peak, 1, MPI_DOUBLE, MPI_MAX, MPI_COMM_WORLD);
+  std::printf("   Time = %.3f s (blocks %.3f s, then the calculation and output %.3f s); peak "
+              "memory %s%s%s\n",
               seconds_since(start), built_seconds, seconds_since(start) - built_seconds,
+              memory_text(peak).c_str(), world_ranks() > 1 ? " (the largest rank's)" : "",
               by_region_ ? "; each rank built the blocks of its region only" : "");
   return exit_code;
 }

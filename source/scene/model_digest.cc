@@ -141,12 +141,15 @@ bool ModelDigest::rigid_face_in(std::size_t k) const
                      [&](const FacePatch& p) { return rigid_group_[group_[p.block]]; });
 }
 
-RigidFaceLoads ModelDigest::face_load_table(const Scene& scene) const
+RigidFaceLoads ModelDigest::face_load_table(const std::vector<FacePressure>& loads,
+                                            std::size_t first) const
 {
-  // The scene's own loads come first among the regions.
-  std::vector<std::vector<FacePatch>> own(patches_.begin(),
-                                          patches_.begin() + scene.face_pressures.size());
-  return RigidFaceLoads(own, scene.face_pressures);
+  if (first + loads.size() > patches_.size())
+    throw std::logic_error("ModelDigest::face_load_table: not the scene's face loads (or the "
+                           "digest did not gather them)");
+  const std::vector<std::vector<FacePatch>> these(patches_.begin() + first,
+                                                  patches_.begin() + first + loads.size());
+  return RigidFaceLoads(these, loads);
 }
 
 } // namespace talus

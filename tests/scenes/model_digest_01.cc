@@ -132,7 +132,7 @@ int main()
       selecting += on_whole;
       alike = alike && streamed.rigid_face_in(k) == on_whole;
     }
-    const RigidFaceLoads table = streamed.face_load_table(scene);
+    const RigidFaceLoads table = streamed.face_load_table(scene.face_pressures, 0);
     const RigidFaceLoads expected =
         RigidFaceLoads(whole, rigid, scene.face_pressures).relative_to(whole);
     std::printf("  face loads: %zu, %u select a rigid face, as on the whole model: %s; table of "

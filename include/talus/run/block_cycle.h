@@ -13,6 +13,7 @@
 #include <chrono>
 #include <functional>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -25,9 +26,8 @@ double contact_reach(const Scene& scene);
 
 /// Whether a new run on ranks builds only each rank's region of the blocks
 /// (RankShare from the scene): a scene of rigid blocks with steps to run,
-/// without a factor of safety, and whose stages neither change boundaries
-/// nor search a factor of safety (those select on the whole model as
-/// built).
+/// without a factor of safety, in 'Mode' or in a stage
+/// nor search a factor of safety (those build trials of the whole model).
 bool builds_by_region(const Scene& scene);
 
 /// The distinct element cycle of a model of blocks: rigid ones, and
@@ -78,6 +78,12 @@ private:
   /// The rank's share of the model (null on one rank); declared before
   /// model_, which is its model.
   std::unique_ptr<RankShare> share_;
+  /// When this rank built only its region: the whole model's digest, which
+  /// gives the face loads' table of each stage.
+  const ModelDigest* region_digest_ = nullptr;
+  /// On ranks, the table of a stage's face loads (null when it changes no
+  /// boundaries, or the blocks as built give it).
+  std::optional<RigidFaceLoads> stage_face_loads(const StageSpec& stage) const;
   /// On ranks, with zones: what their split keeps (global blocks, history
   /// points reported here).
   RankZones rank_zones_;

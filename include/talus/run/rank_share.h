@@ -82,10 +82,12 @@ public:
   /// is that of the blocks kept. `report`: the whole model's cutting.
   /// `digest` (optional) takes every block of the first pass in order, and
   /// `check` is called after it, before the ranks cut the cell space: a
-  /// model it refuses stops every rank alike. Defined in
-  /// rank_region_setup.cc.
+  /// model it refuses stops every rank alike. `saved`: on a restart, the
+  /// blocks this rank held at its checkpoint (read_rank_blocks), the only
+  /// ones the second pass keeps. Defined in rank_region_setup.cc.
   RankShare(const Scene& scene, BuildReport& report, double reach, MPI_Comm comm,
-            ModelDigest* digest = nullptr, const std::function<void()>& check = {});
+            ModelDigest* digest = nullptr, const std::function<void()>& check = {},
+            const RankBlocks* saved = nullptr);
 
   /// The number of blocks in the whole model.
   unsigned int n_blocks() const { return n_blocks_; }

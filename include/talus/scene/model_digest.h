@@ -60,10 +60,11 @@ public:
   /// the region of the scene's face load `k`, counted over its own face
   /// loads and then those of each stage that changes boundaries, in order.
   bool rigid_face_in(std::size_t k) const;
-  /// With face loads gathered: the scene's own face loads on every block,
-  /// as RigidFaceLoads(model, all blocks, loads).relative_to(model) gives
-  /// them.
-  RigidFaceLoads face_load_table(const Scene& scene) const;
+  /// With face loads gathered: `loads` on every block, as
+  /// RigidFaceLoads(model, all blocks, loads).relative_to(model) gives them;
+  /// `loads` are the scene's face loads from place `first` on (0: its own;
+  /// a stage's: after those of the scene and of the stages before it).
+  RigidFaceLoads face_load_table(const std::vector<FacePressure>& loads, std::size_t first) const;
 
 private:
   /// The scene's face load regions: its own, then each stage's that
