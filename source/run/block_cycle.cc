@@ -103,17 +103,10 @@ bool builds_by_region(const Scene& scene)
                        "blocks of its region, where the scene allows it) or whole (every rank "
                        "builds the whole model)");
   }
-  unsigned long steps = scene.solver.steps;
-  if (!scene.stages.empty())
-  {
-    steps = 0;
-    for (const StageSpec& stage : scene.stages)
-      steps += stage.steps;
-  }
   bool factor_of_safety = scene.strength_reduction.enabled;
   for (const StageSpec& stage : scene.stages)
     factor_of_safety = factor_of_safety || stage.factor_of_safety;
-  return scene.deformable.groups.empty() && !factor_of_safety && steps > 0;
+  return scene.deformable.groups.empty() && !factor_of_safety && steps_to_run(scene) > 0;
 }
 
 BlockCycle::BlockCycle(Scene& scene, BlockModel& model, const std::string& prefix,

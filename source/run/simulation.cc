@@ -49,8 +49,8 @@ int static_stage_end(const StageSpec& stage, const RunEnd& end, bool staged)
 } // namespace
 
 Simulation::Simulation(const std::string& parameter_file, std::string restart_from, bool check_only)
-    : parameter_file_(parameter_file), restart_from_(std::move(restart_from)),
-      check_only_(check_only)
+    : start_(std::chrono::steady_clock::now()), parameter_file_(parameter_file),
+      restart_from_(std::move(restart_from)), check_only_(check_only)
 {
   // A restart writes into the checkpoint's folder, prepared there; a check
   // prepares nothing.
@@ -105,7 +105,8 @@ Simulation::Simulation(const std::string& parameter_file, std::string restart_fr
 }
 
 Simulation::Simulation(Scene scene)
-    : parameter_file_(scene.parameter_file), check_only_(false), scene_(std::move(scene))
+    : start_(std::chrono::steady_clock::now()), parameter_file_(scene.parameter_file),
+      check_only_(false), scene_(std::move(scene))
 {
   model_ = build_blocks(scene_, report_);
   digest_ = ModelDigest::of(scene_, model_);
@@ -115,19 +116,6 @@ Simulation::Simulation(Scene scene)
 }
 
 Simulation::~Simulation() = default;
-
-std::vector<StageSpec> Simulation::stages() const
-{
-  if (!scene_.stages.empty())
-    return scene_.stages;
-  StageSpec one;
-  one.section = "Solver";
-  one.name = "run";
-  one.dynamic = scene_.solver.dynamic;
-  one.steps = scene_.solver.steps;
-  one.target_ratio = scene_.solver.target_ratio;
-  return {one};
-}
 
 void Simulation::print_model() const
 {
@@ -179,10 +167,7 @@ void Simulation::check_calculation()
   std::printf("talus: scene %s\n", std::filesystem::path(parameter_file_).filename().c_str());
   std::printf("Blocks:       %u\n", model_.n_blocks());
   print_zone_estimate(scene_, model_);
-  unsigned long steps = 0;
-  for (const StageSpec& s : stages())
-    steps += s.steps;
-  if (steps == 0)
+  if (steps_to_run(scene_) == 0)
     return;
   // What the first step needs: the zones and the solvers, whose checks
   // refuse an unstable time step and the like.
@@ -214,7 +199,8 @@ void Simulation::check_calculation()
 
 int Simulation::run()
 {
-  const auto start = std::chrono::steady_clock::now();
+  // From the constructor: the blocks are built there.
+  const auto start = start_;
   if (check_only_)
   {
     // The cycles print what they build (zones, time step); nothing is written.
@@ -236,10 +222,8 @@ int Simulation::run()
     return code;
   }
   // Copied again once the cycle has resolved the group names of their loads.
-  std::vector<StageSpec> stages = this->stages();
-  unsigned long total_steps = 0;
-  for (const StageSpec& s : stages)
-    total_steps += s.steps;
+  std::vector<StageSpec> stages = stages_to_run(scene_);
+  const unsigned long total_steps = steps_to_run(scene_);
   if (total_steps == 0)
   {
     // The model only.
@@ -269,7 +253,7 @@ int Simulation::run()
                                                std::move(share_), by_region);
         }
       });
-  stages = this->stages();
+  stages = stages_to_run(scene_);
   const bool staged = !scene_.stages.empty();
   std::vector<std::string> columns = cycle->history_columns();
   // Input motions: the factor f(t) (or its integral) of each boundary and
@@ -450,11 +434,12 @@ int Simulation::run()
   double peak = peak_memory();
   if (world_ranks() > 1)
     MPI_Allreduce(MPI_IN_PLACE, &peak, 1, MPI_DOUBLE, MPI_MAX, MPI_COMM_WORLD);
-  std::printf("   Time = %.3f s (blocks %.3f s, then the calculation and output %.3f s); peak "
-              "memory %s%s%s\n",
-              seconds_since(start), built_seconds, seconds_since(start) - built_seconds,
-              memory_text(peak).c_str(), world_ranks() > 1 ? " (the largest rank's)" : "",
-              by_region_ ? "; each rank built the blocks of its region only" : "");
+  std::printf(
+      "   Time = %.3f s (scene and blocks %.3f s, then the calculation and output %.3f s); peak "
+      "memory %s%s%s\n",
+      seconds_since(start), built_seconds, seconds_since(start) - built_seconds,
+      memory_text(peak).c_str(), world_ranks() > 1 ? " (the largest rank's)" : "",
+      by_region_ ? "; each rank built the blocks of its region only" : "");
   return exit_code;
 }
 

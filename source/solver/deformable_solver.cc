@@ -2187,7 +2187,7 @@ std::array<std::vector<double>, 4> DeformableSolver::local_vectors() const
 {
   std::array<std::vector<double>, 4> values;
   const std::array<const dealii::PETScWrappers::MPI::Vector*, 4> vec{
-      &petsc_->position, &petsc_->velocity, &petsc_->force, &petsc_->inertial_mass};
+      {&petsc_->position, &petsc_->velocity, &petsc_->force, &petsc_->inertial_mass}};
   for (int k = 0; k < 4; ++k)
   {
     LocalArray a(*vec[k]);
@@ -2199,7 +2199,7 @@ std::array<std::vector<double>, 4> DeformableSolver::local_vectors() const
 void DeformableSolver::set_local_vectors(const std::array<std::vector<double>, 4>& values)
 {
   const std::array<const dealii::PETScWrappers::MPI::Vector*, 4> vec{
-      &petsc_->position, &petsc_->velocity, &petsc_->force, &petsc_->inertial_mass};
+      {&petsc_->position, &petsc_->velocity, &petsc_->force, &petsc_->inertial_mass}};
   for (int k = 0; k < 4; ++k)
   {
     LocalArray a(*vec[k]);

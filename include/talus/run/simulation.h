@@ -6,6 +6,7 @@
 #include <talus/scene/model_digest.h>
 #include <talus/scene/scene.h>
 
+#include <chrono>
 #include <memory>
 #include <string>
 
@@ -41,9 +42,9 @@ private:
   void print_model() const;
   /// `talus --check`: builds what the first step needs and prints it.
   void check_calculation();
-  /// The stages to run: the scene's, or one made of 'Solver'.
-  std::vector<StageSpec> stages() const;
 
+  /// When the constructor began (reading the scene, building the blocks).
+  std::chrono::steady_clock::time_point start_;
   std::string parameter_file_, restart_from_;
   bool check_only_;
   Scene scene_;

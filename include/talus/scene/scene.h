@@ -1,8 +1,8 @@
 #pragma once
 
+#include <talus/base/output_format.h>
 #include <talus/geometry/block_generator.h>
 #include <talus/geometry/region.h>
-#include <talus/base/output_format.h>
 #include <talus/solver/deformable_solver.h>
 #include <talus/solver/rigid_solver.h>
 #include <talus/solver/strength_reduction.h>
@@ -222,7 +222,7 @@ struct Scene
   /// m: the blocks containing or nearest to these points join
   /// solver.history_blocks (resolve_history_blocks).
   std::vector<Vec3> history_block_points;
-  std::vector<std::string> load_groups;  ///< group name of each solver.loads entry
+  std::vector<std::string> load_groups;   ///< group name of each solver.loads entry
   std::vector<std::string> load_sections; ///< "Load N" of each solver.loads entry
   DeformableSpec deformable;
   /// Groups made of a material of their own; the others take 'Material'
@@ -266,5 +266,12 @@ struct Scene
 /// `prepare_output`, also creates the output folder (after every check has
 /// passed) and fails if it cannot be written.
 Scene read_scene(const std::string& filename, bool prepare_output = true);
+
+/// The stages a run of `scene` goes through: its 'Stage N', or one made of
+/// 'Solver' when it has none.
+std::vector<StageSpec> stages_to_run(const Scene& scene);
+
+/// The steps of every stage of `scene` added up (0: the model only).
+unsigned long steps_to_run(const Scene& scene);
 
 } // namespace talus
