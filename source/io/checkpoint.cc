@@ -397,6 +397,13 @@ void Checkpoint::after_step(unsigned long step)
     throw RunInterrupted(signal, step, path_);
 }
 
+DeformableSolver* Checkpoint::zone_solver() const
+{
+  if (rigid_ && rigid_->zone_solver())
+    return rigid_->zone_solver();
+  return zone_source_ ? zone_source_() : zones_;
+}
+
 void Checkpoint::write(unsigned long step) const
 {
   CheckpointWriter out;
@@ -411,6 +418,10 @@ void Checkpoint::write(unsigned long step) const
   out.put(static_cast<std::uint64_t>(step));
   if (share_ != nullptr)
     share_->save_state(out);
+  out.tag("split");
+  out.put(static_cast<unsigned char>(save_split_ != nullptr));
+  if (save_split_)
+    save_split_(out);
   out.tag("counters");
   out.put(static_cast<std::uint64_t>(counters_.size()));
   for (const unsigned int* c : counters_)
@@ -425,7 +436,7 @@ void Checkpoint::write(unsigned long step) const
   if (rigid_ != nullptr)
     rigid_->save_state(out);
   // (The rigid solver's: on ranks its zones change with their blocks' ranks.)
-  DeformableSolver* zones = rigid_ && rigid_->zone_solver() ? rigid_->zone_solver() : zones_;
+  DeformableSolver* zones = zone_solver();
   out.put(static_cast<unsigned char>(zones != nullptr));
   if (zones != nullptr)
     zones->save_state(out);
@@ -471,6 +482,13 @@ unsigned long Checkpoint::restore(const std::string& file)
     in.mismatch("ranks' shares", split_blocks, share_ != nullptr);
   if (share_ != nullptr)
     share_->load_state(in, *rigid_);
+  in.tag("split");
+  unsigned char split = 0;
+  in.get(split);
+  if (split != (load_split_ != nullptr))
+    in.mismatch("zones split again", split, load_split_ != nullptr);
+  if (load_split_)
+    load_split_(in);
   std::uint64_t n = 0;
   in.tag("counters");
   in.get(n);
@@ -495,7 +513,7 @@ unsigned long Checkpoint::restore(const std::string& file)
   if (rigid_ != nullptr)
     rigid_->load_state(in);
   in.get(present);
-  DeformableSolver* zones = rigid_ && rigid_->zone_solver() ? rigid_->zone_solver() : zones_;
+  DeformableSolver* zones = zone_solver();
   if (present != (zones != nullptr))
     in.mismatch("zone solvers", present, zones != nullptr);
   if (zones != nullptr)

@@ -1,15 +1,19 @@
 #include "stage_changes.h"
+#include <talus/base/wall_clock.h>
 #include <talus/io/checkpoint.h>
 #include <talus/io/scene_checks.h>
 #include <talus/run/body_cycle.h>
+#include <talus/run/rank_balance.h>
 #include <talus/run/rank_share.h>
 #include <talus/run/rank_zones.h>
 #include <talus/scene/block_system.h>
 #include <talus/solver/implicit_check.h>
 #include <talus/solver/mesh_share.h>
+#include <talus/solver/zone_migration.h>
 #include <talus/zone/hex_mixed.h>
 #include <talus/zone/tet10_mesh.h>
 
+#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -96,13 +100,13 @@ BodyCycle::BodyCycle(Scene& scene, BlockModel& model, const std::string& prefix)
     : scene_(scene), model_(model), prefix_(prefix), series_(prefix + "_zones.pvd")
 {
   print_zone_estimate(scene, model);
-  mesh_ = zones_of(scene, model, report_);
+  mesh_ = std::make_unique<TetMesh>(zones_of(scene, model, report_));
   const bool from_file = !scene.deformable.mesh_file.empty();
-  check_boundary_selections(scene, model, mesh_);
+  check_boundary_selections(scene, model, *mesh_);
   std::printf(
       "Zones:        %u %s, %u gridpoints, %u boundary faces (%s; largest edge %.4g m, "
       "smallest height %.4g m), zone volume %.9g m^3\n",
-      report_.zones, mesh_.quadratic() ? "10-node tetrahedra" : "tetrahedra", report_.gridpoints,
+      report_.zones, mesh_->quadratic() ? "10-node tetrahedra" : "tetrahedra", report_.gridpoints,
       report_.boundary_faces,
       from_file ? ("from " + std::filesystem::path(scene.deformable.mesh_file).filename().string())
                       .c_str()
@@ -117,32 +121,28 @@ BodyCycle::BodyCycle(Scene& scene, BlockModel& model, const std::string& prefix)
     for (const ExcavationSpec& e : stage.excavations)
     {
       bool any = false;
-      for (unsigned int z = 0; z < mesh_.n_zones() && !any; ++z)
+      for (unsigned int z = 0; z < mesh_->n_zones() && !any; ++z)
         any = e.region.contains(zone_centroid(z), 0.0);
       if (!any)
         throw scene_error(scene, e.section, "",
                           "removes no zone (no zone's centroid lies in the region)",
                           "a region that holds zones of the body");
     }
-  points_ = std::make_unique<PointHistory>(mesh_, scene.solver.history_points);
+  points_ = std::make_unique<PointHistory>(*mesh_, scene.solver.history_points);
   points_->water = has_water(scene);
   points_->gravity = scene.solver.gravity.norm();
-  whole_zones_ = mesh_.n_zones();
+  whole_zones_ = mesh_->n_zones();
   // Split among ranks, the whole mesh stays until the summary has named
   // the gridpoint of the time step.
   TetMesh whole;
   if (world_ranks() > 1)
   {
-    whole = std::move(mesh_);
+    whole = std::move(*mesh_);
     split_among_ranks(whole);
   }
   parallel_ = ParallelEnvironment::unless_running();
-  ZoneMaterials materials = zone_materials(scene, model, mesh_);
-  solver_ = std::make_unique<DeformableSolver>(
-      mesh_, std::move(materials.materials), std::move(materials.of_zone), scene.solver,
-      scene.gridpoint_conditions, scene.face_pressures,
-      scene.has_initial_stress ? &scene.initial_stress : nullptr, split_ ? &share_ : nullptr);
-  print_mesh_quality(report_, split_ ? whole : mesh_, solver_->time_step_gridpoint(), model);
+  make_solver();
+  print_mesh_quality(report_, split_ ? whole : *mesh_, solver_->time_step_gridpoint(), model);
   whole = TetMesh();
   print_nodal_mixed(*solver_);
   std::printf("Time step:    %.6g s (eq. 84%s)\n", solver_->dt(),
@@ -152,13 +152,106 @@ BodyCycle::BodyCycle(Scene& scene, BlockModel& model, const std::string& prefix)
                         scene.solver.time_step > 0.0 ? solver_->dt()
                                                      : solver_->stable_time_step({}, 0.0));
   print_added_mass(scene.solver, solver_->added_mass());
-  writer_ = std::make_unique<ZoneWriter>(split_ ? piece_ : mesh_, scene.output.vtu_encoding);
+  writer_ = std::make_unique<ZoneWriter>(split_ ? piece_ : *mesh_, scene.output.vtu_encoding);
   for (const GridpointCondition& c : scene.gridpoint_conditions)
     if (std::isfinite(c.velocity_until))
       moving_until_ = std::max(moving_until_, c.velocity_until);
 }
 
-void BodyCycle::split_among_ranks(const TetMesh& whole)
+void BodyCycle::make_solver()
+{
+  ZoneMaterials materials = zone_materials(scene_, model_, *mesh_);
+  solver_ = std::make_unique<DeformableSolver>(
+      *mesh_, std::move(materials.materials), std::move(materials.of_zone), scene_.solver,
+      scene_.gridpoint_conditions, scene_.face_pressures,
+      scene_.has_initial_stress ? &scene_.initial_stress : nullptr, split_ ? &share_ : nullptr);
+}
+
+double BodyCycle::work_ratio() const
+{
+  double work = 0.0;
+  for (unsigned int z = 0; z < mesh_->n_zones(); ++z)
+    work += counts(z) && !solver_->zone_removed(z) ? 1.0 : 0.0;
+  double largest = work;
+  MPI_Allreduce(MPI_IN_PLACE, &largest, 1, MPI_DOUBLE, MPI_MAX, MPI_COMM_WORLD);
+  const double mean = sum_over_ranks(work) / world_ranks();
+  return mean > 0.0 ? largest / mean : 1.0;
+}
+
+void BodyCycle::rebalance_after_excavation()
+{
+  const double threshold = rebalance_threshold();
+  const double before = work_ratio();
+  if (threshold == 0.0 || before <= threshold)
+    return;
+  const auto start = std::chrono::steady_clock::now();
+  // The zones removed so far, by their numbers in the whole mesh.
+  std::vector<unsigned char> gone(whole_zones_, 0);
+  for (unsigned int z = 0; z < mesh_->n_zones(); ++z)
+    if (solver_->zone_removed(z))
+      gone[zone_whole_[z]] = 1;
+  MPI_Allreduce(MPI_IN_PLACE, gone.data(), static_cast<int>(gone.size()), MPI_UNSIGNED_CHAR,
+                MPI_MAX, MPI_COMM_WORLD);
+  std::vector<unsigned int> removed;
+  for (unsigned int z = 0; z < whole_zones_; ++z)
+    if (gone[z])
+      removed.push_back(z);
+  split_again(removed, true);
+  ++rebalances_;
+  ratio_before_ = before;
+  ratio_after_ = work_ratio();
+  // (Indented Time lines are left out when outputs are compared: one rank
+  // has no such line.)
+  std::printf("   Time = %.3f s to split the zones again (the ranks' largest work over the mean: "
+              "%.3f after the excavation, %.3f now)\n",
+              seconds_since(start), ratio_before_, ratio_after_);
+}
+
+void BodyCycle::split_again(const std::vector<unsigned int>& removed, bool move_state)
+{
+  // Meshing (or reading the mesh file) gives the same whole mesh again; it
+  // lives only while the split is made, as at the start.
+  MeshReport report;
+  const TetMesh whole = zones_of(scene_, model_, report);
+  std::vector<char> gone(whole.n_zones(), 0);
+  for (unsigned int z : removed)
+    gone[z] = 1;
+  const std::vector<unsigned int> old_owner = owner_, old_zone = zone_whole_;
+  // The solver until now keeps its mesh until the state has moved (the
+  // mesh declared first is destroyed last).
+  const std::unique_ptr<TetMesh> before_mesh = std::move(mesh_);
+  std::unique_ptr<DeformableSolver> before = std::move(solver_);
+  split_among_ranks(whole, &gone);
+  make_solver();
+  writer_ = std::make_unique<ZoneWriter>(piece_, scene_.output.vtu_encoding);
+  split_removed_ = removed;
+  if (!move_state)
+    return; // a restart: the checkpoint's state follows
+  move_zone_state(
+      *before, old_zone, *solver_, zone_whole_,
+      [&](unsigned int g) { return static_cast<int>(old_owner[g]); },
+      [&](unsigned int z) { return static_cast<int>(old_owner[whole.zone_gridpoint[z][0]]); },
+      MPI_COMM_WORLD);
+  before.reset();
+  // What the stages begun changed (materials, boundaries, water), set
+  // again as a restart sets it; the damping's running state and the time
+  // step with its masses are the run's.
+  const DeformableSolver::DampingState damping = solver_->damping_state();
+  const DeformableSolver::StepState steps = solver_->step_state();
+  for (const StageSpec& stage : stages_begun_)
+  {
+    change_rock_materials(stage, false);
+    if (stage.changes_water)
+      solver_->set_water(stage.water);
+    if (stage.changes_boundaries)
+      solver_->set_boundaries(stage.boundaries.gridpoint_conditions,
+                              stage.boundaries.face_pressures);
+  }
+  solver_->set_damping_state(damping);
+  solver_->set_step_state(steps);
+}
+
+void BodyCycle::split_among_ranks(const TetMesh& whole, const std::vector<char>* removed)
 {
   // Owners from a partition of the body's box into cells, balanced by the
   // zones around the gridpoints (gridpoint_owners).
@@ -174,11 +267,17 @@ void BodyCycle::split_among_ranks(const TetMesh& whole)
                      ranks = static_cast<unsigned int>(world_ranks());
   // About 64 cells along the longest side: fine enough to balance.
   const double cell = std::max((box.hi - box.lo).maxCoeff() / 64.0, 1e-12);
-  owner_ = gridpoint_owners(whole, box, cell, ranks);
+  owner_ = gridpoint_owners(whole, box, cell, ranks, removed);
   MeshShare part = share_mesh(whole, owner_, rank, ranks, MPI_COMM_WORLD);
-  mesh_ = std::move(part.mesh);
+  // A new object: a solver of the split before keeps its mesh (move_zone_state).
+  mesh_ = std::make_unique<TetMesh>(std::move(part.mesh));
   share_ = std::move(part.share);
+  zone_whole_ = part.zone;
   split_ = true;
+  point_gridpoint_.clear();
+  point_zone_.clear();
+  piece_zone_.clear();
+  piece_ = TetMesh();
   // The history points: a gridpoint reported by its owner, a zone by the
   // owner of its first corner (the rank that counts it).
   for (std::size_t k = 0; k < points_->gridpoint.size(); ++k)
@@ -197,26 +296,26 @@ void BodyCycle::split_among_ranks(const TetMesh& whole)
   }
   // This rank's output piece: the zones it counts; a hexahedral zone whole,
   // by the rank that counts its first tetrahedron.
-  piece_.position = mesh_.position;
-  piece_.gridpoint_block = mesh_.gridpoint_block;
-  const std::vector<char> in_hex = zones_in_hexes(mesh_);
+  piece_.position = mesh_->position;
+  piece_.gridpoint_block = mesh_->gridpoint_block;
+  const std::vector<char> in_hex = zones_in_hexes(*mesh_);
   const auto add = [&](unsigned int z)
   {
     piece_zone_.push_back(z);
-    piece_.zone_gridpoint.push_back(mesh_.zone_gridpoint[z]);
-    piece_.zone_block.push_back(mesh_.zone_block[z]);
-    if (mesh_.quadratic())
-      piece_.zone_edge_gridpoint.push_back(mesh_.zone_edge_gridpoint[z]);
+    piece_.zone_gridpoint.push_back(mesh_->zone_gridpoint[z]);
+    piece_.zone_block.push_back(mesh_->zone_block[z]);
+    if (mesh_->quadratic())
+      piece_.zone_edge_gridpoint.push_back(mesh_->zone_edge_gridpoint[z]);
   };
-  for (unsigned int z = 0; z < mesh_.n_zones(); ++z)
-    if (!in_hex[z] && share_.counts(mesh_.zone_gridpoint[z][0]))
+  for (unsigned int z = 0; z < mesh_->n_zones(); ++z)
+    if (!in_hex[z] && share_.counts(mesh_->zone_gridpoint[z][0]))
       add(z);
-  for (unsigned int h = 0; h < mesh_.n_hexes(); ++h)
+  for (unsigned int h = 0; h < mesh_->n_hexes(); ++h)
   {
-    const unsigned int first = mesh_.hex_first_zone[h];
-    if (!share_.counts(mesh_.zone_gridpoint[first][0]))
+    const unsigned int first = mesh_->hex_first_zone[h];
+    if (!share_.counts(mesh_->zone_gridpoint[first][0]))
       continue;
-    piece_.hex_gridpoint.push_back(mesh_.hex_gridpoint[h]);
+    piece_.hex_gridpoint.push_back(mesh_->hex_gridpoint[h]);
     piece_.hex_first_zone.push_back(static_cast<unsigned int>(piece_zone_.size()));
     for (unsigned int k = 0; k < TetMesh::tets_per_hex; ++k)
       add(first + k);
@@ -261,8 +360,9 @@ Vec3 BodyCycle::zone_centroid(unsigned int z) const
   Vec3 c = Vec3::Zero();
   for (int a = 0; a < 4; ++a)
   {
-    const unsigned int g = mesh_.zone_gridpoint[z][a];
-    c += 0.25 * Vec3(mesh_.position[3 * g], mesh_.position[3 * g + 1], mesh_.position[3 * g + 2]);
+    const unsigned int g = mesh_->zone_gridpoint[z][a];
+    c +=
+        0.25 * Vec3(mesh_->position[3 * g], mesh_->position[3 * g + 1], mesh_->position[3 * g + 2]);
   }
   return c;
 }
@@ -308,7 +408,7 @@ void BodyCycle::write_frame(bool diverged)
     return;
   if (!split_)
   {
-    write_zone_frame(scene_, mesh_, *solver_, *writer_, series_, frame_++, !diverged);
+    write_zone_frame(scene_, *mesh_, *solver_, *writer_, series_, frame_++, !diverged);
     return;
   }
   // A piece per rank (the zones it counts) and, by rank 0, the .pvtu that
@@ -334,6 +434,32 @@ void BodyCycle::register_checkpoint(Checkpoint& checkpoint)
 {
   checkpoint.add(series_);
   checkpoint.add(frame_);
+  if (!split_)
+    return;
+  // The split the run has now: a restart makes it again before the zones'
+  // state is read.
+  checkpoint.add_split(
+      [this](CheckpointWriter& out)
+      {
+        out.put(split_removed_);
+        out.put(rebalances_);
+        out.put(ratio_before_);
+        out.put(ratio_after_);
+      },
+      [this](CheckpointReader& in)
+      {
+        std::vector<unsigned int> removed;
+        in.get(removed);
+        in.get(rebalances_);
+        in.get(ratio_before_);
+        in.get(ratio_after_);
+        for (unsigned int z : removed)
+          if (z >= whole_zones_)
+            in.mismatch("zone removed when the zones were split again", z, whole_zones_);
+        if (!removed.empty())
+          split_again(removed, false);
+      },
+      [this]() { return solver_.get(); });
 }
 
 void BodyCycle::begin_stage(const StageSpec& stage)
@@ -343,20 +469,20 @@ void BodyCycle::begin_stage(const StageSpec& stage)
   if (!stage.excavations.empty())
   {
     const std::vector<double> x = solver_->positions();
-    std::vector<char> gone(mesh_.n_zones(), 0);
+    std::vector<char> gone(mesh_->n_zones(), 0);
     unsigned int count = 0;
     double volume = 0.0;
-    for (unsigned int z = 0; z < mesh_.n_zones(); ++z)
+    for (unsigned int z = 0; z < mesh_->n_zones(); ++z)
     {
       if (solver_->zone_removed(z))
         continue;
       const bool counted = counts(z);
-      const auto& t = mesh_.zone_gridpoint[z];
+      const auto& t = mesh_->zone_gridpoint[z];
       Vec3 c = Vec3::Zero(), p[4];
       for (int a = 0; a < 4; ++a)
       {
-        p[a] = Vec3(mesh_.position[3 * t[a]], mesh_.position[3 * t[a] + 1],
-                    mesh_.position[3 * t[a] + 2]);
+        p[a] = Vec3(mesh_->position[3 * t[a]], mesh_->position[3 * t[a] + 1],
+                    mesh_->position[3 * t[a] + 2]);
         c += 0.25 * p[a];
       }
       for (const ExcavationSpec& e : stage.excavations)
@@ -374,6 +500,8 @@ void BodyCycle::begin_stage(const StageSpec& stage)
     // Hexahedral zones count twice, once per overlay.
     std::printf("  Excavated:  %u zones, %.9g m^3\n", count,
                 report_.hexes > 0 ? 0.5 * volume : volume);
+    if (split_)
+      rebalance_after_excavation();
   }
   change_rock_materials(stage, true);
   if (stage.changes_water)
@@ -403,6 +531,7 @@ void BodyCycle::begin_stage(const StageSpec& stage)
   }
   if (stage.reset_displacements)
     solver_->reset_displacements();
+  stages_begun_.push_back(stage);
 }
 
 void BodyCycle::change_rock_materials(const StageSpec& stage, bool account)
@@ -415,7 +544,7 @@ void BodyCycle::change_rock_materials(const StageSpec& stage, bool account)
     const RockMaterialSpec* rock =
         c.material < 0 ? nullptr : &scene_.rock_materials[std::size_t(c.material)];
     const ZoneMaterial zone = stage_zone_material(scene_, c);
-    solver_->change_material(std::vector<char>(mesh_.n_zones(), 1), zone, account);
+    solver_->change_material(std::vector<char>(mesh_->n_zones(), 1), zone, account);
     if (account)
       std::printf("  Rock:       the body takes %s\n",
                   rock ? ("rock material " + rock->name).c_str() : "the default rock");
@@ -438,6 +567,7 @@ void BodyCycle::restore_stage(const StageSpec& stage)
   if (stage.changes_boundaries)
     solver_->set_boundaries(stage.boundaries.gridpoint_conditions, stage.boundaries.face_pressures);
   solver_->set_damping_state(std::move(damping));
+  stages_begun_.push_back(stage);
 }
 
 std::string BodyCycle::displacement_text() const
@@ -468,7 +598,7 @@ void BodyCycle::print_end()
   }
   unsigned int yielding = 0; // zones with a yielding stress point
   const unsigned int per_zone = solver.stress_points_per_zone();
-  for (unsigned int z = 0; z < mesh_.n_zones(); ++z)
+  for (unsigned int z = 0; z < mesh_->n_zones(); ++z)
   {
     bool any = false;
     for (unsigned int q = 0; q < per_zone; ++q)
@@ -492,6 +622,13 @@ void BodyCycle::print_end()
       implicit_check(scene_, *solver_);
   }
   std::printf("Output:       %s_zones.pvd, %s_history.csv\n", prefix_.c_str(), prefix_.c_str());
+  // On standard error: the summary is the serial run's, line for line.
+  if (rebalances_ > 0 && world_rank() == 0)
+    std::fprintf(stderr,
+                 "talus: on %d ranks: %lu rebalances of the body's zones after excavations (the "
+                 "ranks' largest work over the mean: %.3f before the last rebalance, %.3f after "
+                 "it)\n",
+                 world_ranks(), rebalances_, ratio_before_, ratio_after_);
 }
 
 void BodyCycle::implicit_check_on_ranks()

@@ -9,16 +9,17 @@ namespace talus
 {
 
 std::vector<unsigned int> gridpoint_owners(const TetMesh& mesh, const Box& domain, double cell_size,
-                                           unsigned int ranks)
+                                           unsigned int ranks, const std::vector<char>* removed)
 {
   const unsigned int ng = mesh.n_gridpoints();
   std::vector<Vec3> point(ng);
   std::vector<double> work(ng, 0.0);
   for (unsigned int p = 0; p < ng; ++p)
     point[p] = Vec3(mesh.position[3 * p], mesh.position[3 * p + 1], mesh.position[3 * p + 2]);
-  for (const auto& zone : mesh.zone_gridpoint)
-    for (unsigned int p : zone)
-      work[p] += 0.25;
+  for (unsigned int z = 0; z < mesh.n_zones(); ++z)
+    if (removed == nullptr || !(*removed)[z])
+      for (unsigned int p : mesh.zone_gridpoint[z])
+        work[p] += 0.25;
   const CellPartition partition(domain, domain.lo, Vec3::Constant(cell_size), point, work, ranks);
   std::vector<unsigned int> owner(ng);
   for (unsigned int p = 0; p < ng; ++p)

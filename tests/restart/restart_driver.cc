@@ -179,13 +179,16 @@ std::string entry(const std::string& prm, const std::string& name)
 }
 
 /// The parameter text with each line "include FILE" replaced by that
-/// file's text (FILE relative to `folder`, the including file's), so that
-/// the copy the runs read stands alone.
+/// file's text (FILE relative to `folder`, the including file's), and a
+/// relative 'Mesh file' made absolute (it is relative to the file that
+/// names it), so that the copy the runs read stands alone.
 std::string with_includes(const std::string& prm, const fs::path& folder)
 {
   std::istringstream lines(prm);
   std::string text;
   for (std::string line; std::getline(lines, line);)
+  {
+    const std::size_t first = line.find_first_not_of(' ');
     if (line.rfind("include ", 0) == 0)
     {
       std::string name = line.substr(8);
@@ -193,8 +196,19 @@ std::string with_includes(const std::string& prm, const fs::path& folder)
       const fs::path file = folder / name;
       text += with_includes(read_file(file), file.parent_path());
     }
+    else if (first != std::string::npos && line.compare(first, 13, "set Mesh file") == 0 &&
+             line.find('=') != std::string::npos)
+    {
+      std::string name = line.substr(line.find('=') + 1);
+      name.erase(0, name.find_first_not_of(' '));
+      name.erase(std::min(name.find('#'), name.size()));
+      name.erase(name.find_last_not_of(" \r") + 1);
+      const fs::path file = fs::path(name).is_absolute() ? fs::path(name) : folder / name;
+      text += line.substr(0, line.find('=') + 1) + " " + file.lexically_normal().string() + "\n";
+    }
     else
       text += line + "\n";
+  }
   return text;
 }
 

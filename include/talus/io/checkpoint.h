@@ -22,6 +22,7 @@
 #include <algorithm>
 #include <cstdint>
 #include <cstring>
+#include <functional>
 #include <stdexcept>
 #include <string>
 #include <type_traits>
@@ -52,8 +53,10 @@ struct Scene;
 /// whose surfaces a rank holds, and the migration's count of the zones'
 /// new splits (deformable blocks change rank); 14: the blocks' geometry
 /// fingerprint taken one block at a time (ModelDigest), so that a rank
-/// that builds only its region takes it too.
-constexpr std::uint32_t checkpoint_format_version = 14;
+/// that builds only its region takes it too; 15: after the rank's share,
+/// the zones' split when the run may change it (a body alone split again
+/// after an excavation: the zones removed when it was last split).
+constexpr std::uint32_t checkpoint_format_version = 15;
 
 /// Thrown after a checkpoint was written because a signal asked the run to
 /// stop; main() turns it into a message and exit code 128 + signal (130 for
@@ -149,6 +152,18 @@ public:
   /// On several ranks: this rank's share of the model (its blocks, their
   /// owners and the migration's state), saved in this rank's file.
   void add(RankShare& share) { share_ = &share; }
+  /// A split of the zones among the ranks that the run may change (a body
+  /// alone split again after an excavation): `save` writes what makes it,
+  /// and on a restart `load` makes it again before the zones' state is
+  /// read into the solver `zones` then gives (the cycle's new one).
+  void add_split(std::function<void(CheckpointWriter&)> save,
+                 std::function<void(CheckpointReader&)> load,
+                 std::function<DeformableSolver*()> zones)
+  {
+    save_split_ = std::move(save);
+    load_split_ = std::move(load);
+    zone_source_ = std::move(zones);
+  }
 
   /// Where checkpoints go: `<Output directory>/<Base name>_checkpoint.bin`;
   /// on N ranks, rank R's file of the set: that name + `.rank-R-of-N`.
@@ -173,6 +188,11 @@ private:
   const Scene& scene_;
   RigidSolver* rigid_;
   DeformableSolver* zones_;
+  std::function<void(CheckpointWriter&)> save_split_;
+  std::function<void(CheckpointReader&)> load_split_;
+  std::function<DeformableSolver*()> zone_source_;
+  /// The zone solver now: the block solver's, the cycle's, or the first.
+  DeformableSolver* zone_solver() const;
   SceneFingerprint scene_hash_;
   std::uint64_t geometry_hash_;
   const unsigned int* stages_begun_ = nullptr;

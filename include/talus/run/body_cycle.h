@@ -56,8 +56,25 @@ public:
 
 private:
   /// On ranks: this rank's share of `whole` as the mesh the solver runs,
-  /// and what the whole body's numbers need (owners, the zones counted).
-  void split_among_ranks(const TetMesh& whole);
+  /// and what the whole body's numbers need (owners, the zones counted);
+  /// the zones `removed` marks (per zone of `whole`) do no work.
+  void split_among_ranks(const TetMesh& whole, const std::vector<char>* removed = nullptr);
+  /// The zone solver of the split (its materials as built).
+  void make_solver();
+  /// On ranks: the ranks' largest work (the zones not removed that each
+  /// counts) over the mean. Collective.
+  double work_ratio() const;
+  /// On ranks, after a stage's excavation: when the ranks' work has become
+  /// uneven (work_ratio above TALUS_REBALANCE_THRESHOLD, 1.15), the body's
+  /// zones split again, balanced by the zones left, the state moving to
+  /// the new owners (move_zone_state) and the earlier stages' changes set
+  /// again. Collective.
+  void rebalance_after_excavation();
+  /// The split with the zones `removed` (whole-mesh numbers; empty: the
+  /// first split) doing no work, from the whole mesh made again; with
+  /// `move_state`, the state moves from the solver until now, else the new
+  /// solver waits for a checkpoint's. Collective.
+  void split_again(const std::vector<unsigned int>& removed, bool move_state);
   /// The implicit check of a body split among ranks: the gridpoints'
   /// displacements gathered on rank 0, which checks them with a solver of
   /// the whole mesh made for it (collective; rank 0 prints).
@@ -66,7 +83,7 @@ private:
   /// stage's excavation and the summary.
   bool counts(unsigned int z) const
   {
-    return !split_ || mesh_.zone_gridpoint[z][0] < solver_->owned_gridpoints();
+    return !split_ || mesh_->zone_gridpoint[z][0] < solver_->owned_gridpoints();
   }
   /// The history points' values (PointHistory::add_values) of the whole
   /// body: each from the rank that holds its gridpoint or zone.
@@ -86,7 +103,8 @@ private:
   BlockModel& model_;
   std::string prefix_;
   MeshReport report_;
-  TetMesh mesh_;
+  /// The zones this rank runs (its own object: a solver keeps a reference).
+  std::unique_ptr<TetMesh> mesh_;
   std::unique_ptr<ParallelEnvironment> parallel_;
   std::unique_ptr<DeformableSolver> solver_;
   PvdSeries series_;
@@ -100,6 +118,16 @@ private:
   GridpointShare share_;
   std::vector<unsigned int> owner_;
   std::vector<int> point_gridpoint_, point_zone_;
+  /// Per local zone: its number in the whole mesh (ascending).
+  std::vector<unsigned int> zone_whole_;
+  /// The stages begun, in order: set again on a new split.
+  std::vector<StageSpec> stages_begun_;
+  /// The zones removed (whole-mesh numbers) when the zones were last split
+  /// again (empty: the first split holds), kept by the checkpoints; the
+  /// splits made again, and the work ratio before and after the last one.
+  std::vector<unsigned int> split_removed_;
+  unsigned long rebalances_ = 0;
+  double ratio_before_ = 0.0, ratio_after_ = 0.0;
   std::vector<unsigned int> piece_zone_;
   TetMesh piece_;
   unsigned int whole_zones_ = 0;

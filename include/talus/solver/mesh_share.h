@@ -31,9 +31,12 @@ struct MeshShare
 
 /// The rank of each gridpoint of `mesh` among `ranks`: the region of a
 /// CellPartition of `domain` (cells of `cell_size`, m) that holds it,
-/// balanced by the zones around the gridpoints (a quarter of a zone each).
+/// balanced by the zones around the gridpoints (a quarter of a zone each;
+/// none for the zones `removed` marks, per zone of `mesh`, when given:
+/// excavated zones do no work).
 std::vector<unsigned int> gridpoint_owners(const TetMesh& mesh, const Box& domain, double cell_size,
-                                           unsigned int ranks);
+                                           unsigned int ranks,
+                                           const std::vector<char>* removed = nullptr);
 
 /// The part of `whole` that rank `rank` of `ranks` holds, with `owner[g]`
 /// the rank of each gridpoint. Every rank must pass the same `owner`.
