@@ -27,11 +27,12 @@ python3 "$here/contrib/meshes/kuhn_box_msh.py" 6 2 5 $((6 * per_metre)) $((2 * p
   $((5 * per_metre)) > "$work/box.msh"
 sed -e 's/box_6x2x5_kuhn.msh/box.msh/' \
   -e 's/^  set Steps            = 400/  set Steps            = 50/' \
-  -e 's/^  set Steps = 300/  set Steps = 50/' \
   -e 's/^  set History interval = 50/  set History interval = 10/' \
-  -e 's/^  set Name = excavate the upper left part/&\n  set Steps = '"$steps"'/' \
   -e 's/^  set Base name = body/&\n  set Write VTU = false/' \
   "$here/tests/parallel/body_excavation_01.prm" > "$work/body.prm"
+sed -e 's/^  set Steps = 300/  set Steps = 50/' \
+  -e 's/^  set Name = excavate the upper left part/&\n  set Steps = '"$steps"'/' \
+  "$here/tests/parallel/body_excavation_scene.prm" > "$work/body_excavation_scene.prm"
 echo "CPU: $(lscpu | sed -n 's/^Model name: *//p' | head -1); $(date -u '+%Y-%m-%d %H:%M UTC')"
 for threshold in 0 1.15; do
   (cd "$work" && rm -rf output_body_excavation &&
