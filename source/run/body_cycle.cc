@@ -239,14 +239,7 @@ void BodyCycle::split_again(const std::vector<unsigned int>& removed, bool move_
   const DeformableSolver::DampingState damping = solver_->damping_state();
   const DeformableSolver::StepState steps = solver_->step_state();
   for (const StageSpec& stage : stages_begun_)
-  {
-    change_rock_materials(stage, false);
-    if (stage.changes_water)
-      solver_->set_water(stage.water);
-    if (stage.changes_boundaries)
-      solver_->set_boundaries(stage.boundaries.gridpoint_conditions,
-                              stage.boundaries.face_pressures);
-  }
+    set_stage_again(stage);
   solver_->set_damping_state(damping);
   solver_->set_step_state(steps);
 }
@@ -557,15 +550,20 @@ int BodyCycle::factor_of_safety(const std::vector<StageSpec>&, unsigned int)
   throw InputError("internal: a stage's factor of safety needs blocks");
 }
 
-void BodyCycle::restore_stage(const StageSpec& stage)
+void BodyCycle::set_stage_again(const StageSpec& stage)
 {
-  // The checkpoint's damping state is the run's: the rock remakes the damper.
-  DeformableSolver::DampingState damping = solver_->damping_state();
   change_rock_materials(stage, false);
   if (stage.changes_water)
     solver_->set_water(stage.water);
   if (stage.changes_boundaries)
     solver_->set_boundaries(stage.boundaries.gridpoint_conditions, stage.boundaries.face_pressures);
+}
+
+void BodyCycle::restore_stage(const StageSpec& stage)
+{
+  // The checkpoint's damping state is the run's: the rock remakes the damper.
+  DeformableSolver::DampingState damping = solver_->damping_state();
+  set_stage_again(stage);
   solver_->set_damping_state(std::move(damping));
   stages_begun_.push_back(stage);
 }

@@ -93,6 +93,10 @@ private:
   /// The position now of gridpoint `g` of the whole mesh, from its owner (m).
   Vec3 whole_gridpoint_position(unsigned int g) const;
 
+  /// What stage `stage` changed of the zones that a new solver does not
+  /// hold (its rock materials, water, boundaries), set again without
+  /// accounting: on a restart, and on a new split.
+  void set_stage_again(const StageSpec& stage);
   /// A stage's 'Rock materials' into the solver; prints what changed
   /// unless restoring (`account` false).
   void change_rock_materials(const StageSpec& stage, bool account);
